@@ -1,0 +1,25 @@
+#!/bin/sh
+# Installs the Debian packages listed in build-deps.txt that are not installed yet.
+# Idempotent and silent when everything is present, so `make run`/`make test` can
+# call it every time.
+set -eu
+list="$(dirname "$0")/build-deps.txt"
+missing=""
+for pkg in $(grep -v '^#' "$list"); do
+    status=$(dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null || true)
+    case "$status" in
+        *"install ok installed"*) ;;
+        *) missing="$missing $pkg" ;;
+    esac
+done
+[ -z "$missing" ] && exit 0
+if [ "$(id -u)" -ne 0 ]; then
+    echo "depthkey: missing Debian packages:$missing" >&2
+    echo "depthkey: run 'sudo make deps' (or apt-get install them) first" >&2
+    exit 1
+fi
+echo "depthkey: installing$missing"
+export DEBIAN_FRONTEND=noninteractive
+# A fresh machine has no package lists; an old list may name versions that are gone.
+apt-get update -qq
+apt-get install -y -qq --no-install-recommends $missing >/dev/null
