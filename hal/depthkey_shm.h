@@ -1,0 +1,310 @@
+/*
+ * depthkey shared-memory frame rings: the layout and a reader for consumers.
+ *
+ * depthkeyd publishes each stream as one POSIX shared-memory object
+ * ("/depthkey.composite" RGB24, "/depthkey.lecturer" RGBA32 straight alpha):
+ * a fixed header, a table of DK_SHM_MAX_SLOTS slot descriptors, then
+ * slot_count pixel slots starting at data_offset. Frame n (n >= 1) is written
+ * into slot n % slot_count under that slot's seqlock, then latest_frame = n.
+ * The writer never waits for readers; a reader that is lapped mid-copy sees the
+ * sequence number change and retries. Readers map the object read-only, so a
+ * reader that crashes or stalls cannot harm the writer or other readers.
+ *
+ * Every field has a fixed width and offset (checked below) so that C, C++ and
+ * other languages agree on the layout whatever the ABI. Multi-byte fields are
+ * in host byte order: producer and consumers share one machine.
+ *
+ * This header compiles as C99 (define _POSIX_C_SOURCE 200809L or use gnu99 so
+ * that shm_open and friends are declared) and as C++. Link with -lrt on old
+ * glibc. 64-bit atomic loads must be plain loads (true on x86-64, arm64 and
+ * armv7 with LPAE), because the mapping is read-only.
+ */
+#ifndef DEPTHKEY_SHM_H
+#define DEPTHKEY_SHM_H
+
+#include <errno.h>
+#include <fcntl.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define DK_SHM_MAGIC 0x48534b44u /* "DKSH" in memory on little-endian */
+#define DK_SHM_VERSION 1u
+#define DK_SHM_MIN_SLOTS 2u
+#define DK_SHM_MAX_SLOTS 8u
+#define DK_SHM_MAX_DIMENSION 16384u
+/* Pixels start on a page boundary so that slots can be mapped or DMA'd alone. */
+#define DK_SHM_DATA_ALIGN 4096u
+/* Bounded so that a reader facing a very fast writer still returns promptly. */
+#define DK_SHM_READ_RETRIES 16
+
+#define DK_SHM_FOURCC(a, b, c, d) \
+	((uint32_t)(a) | ((uint32_t)(b) << 8) | ((uint32_t)(c) << 16) | ((uint32_t)(d) << 24))
+#define DK_SHM_FORMAT_RGB24 DK_SHM_FOURCC('R', 'G', 'B', '3')  /* V4L2_PIX_FMT_RGB24: R,G,B */
+#define DK_SHM_FORMAT_RGBA32 DK_SHM_FOURCC('A', 'B', '2', '4') /* V4L2_PIX_FMT_RGBA32: R,G,B,A */
+
+/* Per-frame flags (dk_shm_slot.flags). */
+#define DK_SHM_FLAG_ONLINE 0x1u    /* both cameras are delivering */
+#define DK_SHM_FLAG_COLOUR_OK 0x2u /* the colour camera is delivering */
+#define DK_SHM_FLAG_DEPTH_OK 0x4u  /* the depth camera is delivering */
+
+struct dk_shm_slot {
+	uint32_t sequence;      /* seqlock: odd while the writer fills the slot */
+	uint32_t flags;         /* DK_SHM_FLAG_* */
+	uint64_t frame;         /* frame number, 1.. within a generation */
+	uint64_t timestamp_ns;  /* capture time, CLOCK_MONOTONIC */
+	uint64_t payload_bytes; /* stride * height */
+	uint8_t reserved[32];   /* one cache line per slot: no false sharing */
+};
+
+struct dk_shm_header {
+	uint32_t magic;         /* DK_SHM_MAGIC */
+	uint32_t version;       /* DK_SHM_VERSION */
+	uint32_t header_size;   /* sizeof(struct dk_shm_header) */
+	uint32_t slot_count;    /* DK_SHM_MIN_SLOTS..DK_SHM_MAX_SLOTS */
+	uint64_t generation;    /* new on every writer (re)start; 0 = header being written */
+	uint32_t width;
+	uint32_t height;
+	uint32_t stride;        /* bytes per row */
+	uint32_t fourcc;        /* DK_SHM_FORMAT_* */
+	uint64_t slot_size;     /* bytes between slots, >= stride * height */
+	uint64_t data_offset;   /* offset of slot 0's pixels from the object start */
+	uint64_t latest_frame;  /* newest complete frame, 0 = none yet */
+	uint32_t online;        /* 1 while a writer has the stream open */
+	uint8_t reserved[60];   /* slots start on their own cache line */
+	struct dk_shm_slot slots[DK_SHM_MAX_SLOTS];
+};
+
+#if defined(__cplusplus)
+#define DK_SHM_STATIC_ASSERT(cond, tag) static_assert(cond, #tag)
+#elif defined(__STDC_VERSION__) && __STDC_VERSION__ >= 201112L
+#define DK_SHM_STATIC_ASSERT(cond, tag) _Static_assert(cond, #tag)
+#else
+#define DK_SHM_STATIC_ASSERT(cond, tag) typedef char dk_shm_assert_##tag[(cond) ? 1 : -1]
+#endif
+
+DK_SHM_STATIC_ASSERT(sizeof(struct dk_shm_slot) == 64, slot_size);
+DK_SHM_STATIC_ASSERT(offsetof(struct dk_shm_slot, frame) == 8, slot_frame);
+DK_SHM_STATIC_ASSERT(offsetof(struct dk_shm_slot, timestamp_ns) == 16, slot_timestamp);
+DK_SHM_STATIC_ASSERT(offsetof(struct dk_shm_slot, payload_bytes) == 24, slot_payload);
+DK_SHM_STATIC_ASSERT(offsetof(struct dk_shm_header, generation) == 16, hdr_generation);
+DK_SHM_STATIC_ASSERT(offsetof(struct dk_shm_header, width) == 24, hdr_width);
+DK_SHM_STATIC_ASSERT(offsetof(struct dk_shm_header, fourcc) == 36, hdr_fourcc);
+DK_SHM_STATIC_ASSERT(offsetof(struct dk_shm_header, slot_size) == 40, hdr_slot_size);
+DK_SHM_STATIC_ASSERT(offsetof(struct dk_shm_header, data_offset) == 48, hdr_data_offset);
+DK_SHM_STATIC_ASSERT(offsetof(struct dk_shm_header, latest_frame) == 56, hdr_latest);
+DK_SHM_STATIC_ASSERT(offsetof(struct dk_shm_header, online) == 64, hdr_online);
+DK_SHM_STATIC_ASSERT(offsetof(struct dk_shm_header, slots) == 128, hdr_slots);
+DK_SHM_STATIC_ASSERT(sizeof(struct dk_shm_header) == 640, hdr_size);
+
+/* Bytes per pixel of a known format, 0 for an unknown one. */
+static inline uint32_t dk_shm_bytes_per_pixel(uint32_t fourcc)
+{
+	if (fourcc == DK_SHM_FORMAT_RGB24)
+		return 3;
+	if (fourcc == DK_SHM_FORMAT_RGBA32)
+		return 4;
+	return 0;
+}
+
+struct dk_shm_reader {
+	const struct dk_shm_header *header;
+	const uint8_t *base;
+	size_t map_size;
+	/* Geometry copied at open time: the reader never trusts the shared header
+	 * for bounds after validating it, so a writer cannot make it overrun. */
+	uint64_t generation;
+	uint32_t width, height, stride, fourcc, slot_count;
+	uint64_t slot_size, data_offset, frame_bytes;
+};
+
+struct dk_shm_frame_info {
+	uint64_t frame;
+	uint64_t timestamp_ns;
+	uint32_t flags;
+	uint32_t online; /* the writer had the stream open */
+	uint32_t width, height, stride, fourcc;
+	uint64_t bytes;  /* bytes copied: stride * height */
+};
+
+static inline int dk_shm_check_layout(const struct dk_shm_header *h, uint64_t size,
+				      struct dk_shm_reader *r)
+{
+	uint32_t bpp = dk_shm_bytes_per_pixel(h->fourcc);
+
+	r->width = h->width;
+	r->height = h->height;
+	r->stride = h->stride;
+	r->fourcc = h->fourcc;
+	r->slot_count = h->slot_count;
+	r->slot_size = h->slot_size;
+	r->data_offset = h->data_offset;
+	r->frame_bytes = (uint64_t)r->stride * r->height;
+
+	/* Dimensions are bounded first, so none of the products below overflow. */
+	if (h->header_size != sizeof(struct dk_shm_header) || bpp == 0 ||
+	    r->width == 0 || r->width > DK_SHM_MAX_DIMENSION ||
+	    r->height == 0 || r->height > DK_SHM_MAX_DIMENSION ||
+	    r->stride < (uint64_t)r->width * bpp || r->stride > 4 * DK_SHM_MAX_DIMENSION ||
+	    r->slot_count < DK_SHM_MIN_SLOTS || r->slot_count > DK_SHM_MAX_SLOTS ||
+	    r->slot_size < r->frame_bytes || r->slot_size > ((uint64_t)1 << 32) ||
+	    r->data_offset < sizeof(struct dk_shm_header) || r->data_offset > size ||
+	    (size - r->data_offset) / r->slot_count < r->slot_size)
+		return -EPROTO;
+	return 0;
+}
+
+static inline void dk_shm_close(struct dk_shm_reader *r)
+{
+	if (r->base)
+		munmap((void *)r->base, r->map_size);
+	memset(r, 0, sizeof(*r));
+}
+
+/*
+ * Maps the object read-only and validates it against its real size.
+ * Returns 0, or -ENOENT (no such object), -EACCES, -EAGAIN (a writer is
+ * creating or restarting it: try again shortly), -EPROTO (not a depthkey ring
+ * of this version, or inconsistent/too small), or another negative errno.
+ */
+static inline int dk_shm_open(const char *name, struct dk_shm_reader *r)
+{
+	const struct dk_shm_header *h;
+	struct stat st;
+	uint64_t gen;
+	void *map;
+	int fd, ret;
+
+	memset(r, 0, sizeof(*r));
+	fd = shm_open(name, O_RDONLY | O_CLOEXEC, 0);
+	if (fd < 0)
+		return -errno;
+	if (fstat(fd, &st) < 0) {
+		ret = -errno;
+		close(fd);
+		return ret;
+	}
+	if (st.st_size == 0) {
+		close(fd);
+		return -EAGAIN; /* just created, not sized yet */
+	}
+	if ((uint64_t)st.st_size < sizeof(struct dk_shm_header)) {
+		close(fd);
+		return -EPROTO;
+	}
+	map = mmap(NULL, (size_t)st.st_size, PROT_READ, MAP_SHARED, fd, 0);
+	ret = map == MAP_FAILED ? -errno : 0;
+	close(fd); /* the mapping keeps the object alive */
+	if (ret)
+		return ret;
+	r->base = (const uint8_t *)map;
+	r->map_size = (size_t)st.st_size;
+	r->header = h = (const struct dk_shm_header *)map;
+
+	/* The header is itself guarded like a seqlock: the writer zeroes the
+	 * generation while it rewrites the fields. */
+	gen = __atomic_load_n(&h->generation, __ATOMIC_ACQUIRE);
+	if (h->magic != DK_SHM_MAGIC && h->magic != 0)
+		ret = -EPROTO; /* something else entirely */
+	else if (gen == 0)
+		ret = -EAGAIN; /* sized but not yet written, or being rewritten */
+	else if (h->magic != DK_SHM_MAGIC || h->version != DK_SHM_VERSION)
+		ret = -EPROTO;
+	else
+		ret = dk_shm_check_layout(h, (uint64_t)st.st_size, r);
+	__atomic_thread_fence(__ATOMIC_ACQUIRE);
+	if (ret == 0 && __atomic_load_n(&h->generation, __ATOMIC_RELAXED) != gen)
+		ret = -EAGAIN;
+	if (ret) {
+		dk_shm_close(r);
+		return ret;
+	}
+	r->generation = gen;
+	return 0;
+}
+
+/* The newest complete frame number (0 = none yet) in *frame, for cheap polling.
+ * Returns 0, or -ESTALE when the writer restarted: close and open again. */
+static inline int dk_shm_latest(const struct dk_shm_reader *r, uint64_t *frame)
+{
+	const struct dk_shm_header *h = r->header;
+
+	*frame = __atomic_load_n(&h->latest_frame, __ATOMIC_ACQUIRE);
+	if (__atomic_load_n(&h->generation, __ATOMIC_ACQUIRE) != r->generation)
+		return -ESTALE;
+	return 0;
+}
+
+/*
+ * Copies the newest complete frame (stride * height bytes) into dst.
+ * Returns 0, or -ESTALE (writer restarted: close and open again), -ENODATA (no
+ * frame written yet), -ENOBUFS (dst_size too small), -EAGAIN (the writer kept
+ * overwriting the slot being copied: try again). info may be NULL.
+ */
+static inline int dk_shm_read_latest(const struct dk_shm_reader *r, void *dst, size_t dst_size,
+				     struct dk_shm_frame_info *info)
+{
+	const struct dk_shm_header *h = r->header;
+	int attempt;
+
+	if (dst_size < r->frame_bytes)
+		return -ENOBUFS;
+
+	for (attempt = 0; attempt < DK_SHM_READ_RETRIES; attempt++) {
+		const struct dk_shm_slot *slot;
+		uint64_t latest, frame, timestamp;
+		uint32_t seq, flags, index;
+
+		if (__atomic_load_n(&h->generation, __ATOMIC_ACQUIRE) != r->generation)
+			return -ESTALE;
+		latest = __atomic_load_n(&h->latest_frame, __ATOMIC_ACQUIRE);
+		if (latest == 0)
+			return -ENODATA;
+		index = (uint32_t)(latest % r->slot_count);
+		slot = &h->slots[index];
+
+		seq = __atomic_load_n(&slot->sequence, __ATOMIC_ACQUIRE);
+		if (seq & 1)
+			continue; /* lapped: the writer is refilling it already */
+		frame = __atomic_load_n(&slot->frame, __ATOMIC_RELAXED);
+		timestamp = __atomic_load_n(&slot->timestamp_ns, __ATOMIC_RELAXED);
+		flags = __atomic_load_n(&slot->flags, __ATOMIC_RELAXED);
+		memcpy(dst, r->base + r->data_offset + index * r->slot_size, (size_t)r->frame_bytes);
+		/* Orders the copy before the re-check (seqlock reader side). */
+		__atomic_thread_fence(__ATOMIC_ACQUIRE);
+		if (__atomic_load_n(&slot->sequence, __ATOMIC_RELAXED) != seq)
+			continue;
+		/* A restart may have changed the geometry under the copy. */
+		if (__atomic_load_n(&h->generation, __ATOMIC_RELAXED) != r->generation)
+			return -ESTALE;
+		if (frame == 0)
+			continue; /* slot reset by a restarting writer */
+
+		if (info) {
+			info->frame = frame;
+			info->timestamp_ns = timestamp;
+			info->flags = flags;
+			info->online = __atomic_load_n(&h->online, __ATOMIC_RELAXED);
+			info->width = r->width;
+			info->height = r->height;
+			info->stride = r->stride;
+			info->fourcc = r->fourcc;
+			info->bytes = r->frame_bytes;
+		}
+		return 0;
+	}
+	return -EAGAIN;
+}
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* DEPTHKEY_SHM_H */

@@ -1,0 +1,289 @@
+#include "hal/shm_ring_writer.hpp"
+
+#include "hal/depthkey_shm.h"
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <ctime>
+#include <fcntl.h>
+#include <grp.h>
+#include <sys/file.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <vector>
+
+namespace depthkey {
+
+namespace {
+
+constexpr mode_t kMode = 0640;
+
+uint64_t roundUp(uint64_t value, uint64_t align)
+{
+	return (value + align - 1) / align * align;
+}
+
+bool validName(const std::string &name)
+{
+	// POSIX leaves names without a single leading slash implementation-defined.
+	return name.size() >= 2 && name.size() < 255 && name[0] == '/' &&
+	       name.find('/', 1) == std::string::npos;
+}
+
+// Wall-clock time differs across restarts, even of a process that gets the
+// same pid back; the pid separates two writers started in the same ns.
+uint64_t newGeneration(uint64_t previous)
+{
+	timespec ts{};
+	clock_gettime(CLOCK_REALTIME, &ts);
+	uint64_t gen = (static_cast<uint64_t>(ts.tv_sec) * 1000000000u +
+			static_cast<uint64_t>(ts.tv_nsec)) ^ static_cast<uint64_t>(getpid());
+	while (gen == 0 || gen == previous)
+		gen++;
+	return gen;
+}
+
+} // namespace
+
+ShmRingWriter::~ShmRingWriter()
+{
+	close();
+}
+
+int ShmRingWriter::fail(int error, const char *step, const char *reason)
+{
+	error_ = error;
+	failedStep_ = step;
+	reason_ = reason;
+	return error;
+}
+
+std::string ShmRingWriter::describeError() const
+{
+	if (error_ == 0)
+		return {};
+	std::string text = name_.empty() ? std::string("shm ring") : name_;
+	text += ": ";
+	text += failedStep_;
+	if (!detail_.empty())
+		text += " '" + detail_ + "'";
+	text += ": ";
+	text += reason_ ? reason_ : std::strerror(-error_);
+	return text;
+}
+
+// Accepts a group name or a numeric gid.
+int ShmRingWriter::resolveGroup(const std::string &group, unsigned int *gid)
+{
+	char *end = nullptr;
+	unsigned long number = std::strtoul(group.c_str(), &end, 10);
+	if (!group.empty() && *end == '\0') {
+		*gid = static_cast<unsigned int>(number);
+		return 0;
+	}
+
+	long hint = sysconf(_SC_GETGR_R_SIZE_MAX);
+	std::vector<char> buffer(hint > 0 ? static_cast<size_t>(hint) : 1024);
+	struct group entry{};
+	struct group *result = nullptr;
+	int ret;
+	while ((ret = getgrnam_r(group.c_str(), &entry, buffer.data(), buffer.size(),
+				 &result)) == ERANGE)
+		buffer.resize(buffer.size() * 2);
+
+	detail_ = group;
+	if (ret)
+		return fail(-ret, "look up group");
+	if (!result)
+		return fail(-ENOENT, "chgrp to", "no such group");
+	*gid = result->gr_gid;
+	detail_.clear();
+	return 0;
+}
+
+int ShmRingWriter::open(const std::string &name, int width, int height, uint32_t fourcc,
+			int slots, const std::string &group)
+{
+	close();
+	name_ = name;
+	error_ = 0;
+	detail_.clear();
+
+	const uint32_t bpp = dk_shm_bytes_per_pixel(fourcc);
+	if (!validName(name))
+		return fail(-EINVAL, "invalid object name", "must be \"/name\" without further '/'");
+	if (width < 1 || height < 1 || width > static_cast<int>(DK_SHM_MAX_DIMENSION) ||
+	    height > static_cast<int>(DK_SHM_MAX_DIMENSION))
+		return fail(-EINVAL, "invalid frame size");
+	if (bpp == 0)
+		return fail(-EINVAL, "unsupported pixel format");
+	if (slots < static_cast<int>(DK_SHM_MIN_SLOTS) || slots > static_cast<int>(DK_SHM_MAX_SLOTS))
+		return fail(-EINVAL, "slot count outside 2..8");
+
+	unsigned int gid = 0;
+	if (!group.empty()) {
+		int ret = resolveGroup(group, &gid);
+		if (ret)
+			return ret;
+	}
+
+	const int stride = width * static_cast<int>(bpp);
+	const uint64_t slotSize = roundUp(static_cast<uint64_t>(stride) * height, DK_SHM_DATA_ALIGN);
+	const uint64_t dataOffset = roundUp(sizeof(dk_shm_header), DK_SHM_DATA_ALIGN);
+	const uint64_t needed = dataOffset + slotSize * slots;
+
+	int fd = shm_open(name.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, kMode);
+	if (fd < 0)
+		return fail(-errno, "shm_open");
+
+	// A second writer on the same object would interleave frames and
+	// generations; the lock dies with the process, so a crash frees it.
+	if (flock(fd, LOCK_EX | LOCK_NB) < 0) {
+		int err = errno == EWOULDBLOCK ? -EBUSY : -errno;
+		::close(fd);
+		return fail(err, "lock", err == -EBUSY ? "another writer has it open" : nullptr);
+	}
+
+	struct stat st{};
+	const char *step = nullptr;
+	if (fchmod(fd, kMode) < 0) // the umask may have narrowed the mode
+		step = "chmod 0640";
+	else if (!group.empty() && fchown(fd, static_cast<uid_t>(-1), gid) < 0)
+		step = "chgrp to";
+	else if (fstat(fd, &st) < 0)
+		step = "fstat";
+	else if (static_cast<uint64_t>(st.st_size) < needed &&
+		 ftruncate(fd, static_cast<off_t>(needed)) < 0)
+		step = "grow";
+	if (step) {
+		int err = -errno;
+		::close(fd);
+		if (std::strcmp(step, "chgrp to") == 0)
+			detail_ = group;
+		return fail(err, step);
+	}
+
+	void *map = mmap(nullptr, needed, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
+	if (map == MAP_FAILED) {
+		int err = -errno;
+		::close(fd);
+		return fail(err, "mmap");
+	}
+
+	fd_ = fd;
+	header_ = static_cast<dk_shm_header *>(map);
+	data_ = static_cast<uint8_t *>(map) + dataOffset;
+	mapSize_ = needed;
+	width_ = width;
+	height_ = height;
+	fourcc_ = fourcc;
+	stride_ = stride;
+	slots_ = slots;
+	slotSize_ = slotSize;
+	frame_ = 0;
+	writeHeader(slotSize, dataOffset);
+	return 0;
+}
+
+// The header has its own seqlock: generation 0 while the fields change, then
+// the new generation. Readers that raced with us see 0 or a new value and
+// retry; readers still on the old generation get -ESTALE.
+void ShmRingWriter::writeHeader(uint64_t slotSize, uint64_t dataOffset)
+{
+	dk_shm_header *h = header_;
+	const uint64_t previous = __atomic_load_n(&h->generation, __ATOMIC_RELAXED);
+
+	__atomic_store_n(&h->generation, 0, __ATOMIC_RELAXED);
+	__atomic_thread_fence(__ATOMIC_RELEASE);
+
+	h->magic = DK_SHM_MAGIC;
+	h->version = DK_SHM_VERSION;
+	h->header_size = sizeof(dk_shm_header);
+	h->slot_count = static_cast<uint32_t>(slots_);
+	h->width = static_cast<uint32_t>(width_);
+	h->height = static_cast<uint32_t>(height_);
+	h->stride = static_cast<uint32_t>(stride_);
+	h->fourcc = fourcc_;
+	h->slot_size = slotSize;
+	h->data_offset = dataOffset;
+	__atomic_store_n(&h->latest_frame, 0, __ATOMIC_RELAXED);
+	for (dk_shm_slot &slot : h->slots) {
+		// Sequence numbers only ever grow; an odd one left by a writer
+		// that died mid-frame is closed here.
+		uint32_t seq = __atomic_load_n(&slot.sequence, __ATOMIC_RELAXED);
+		__atomic_store_n(&slot.sequence, (seq + 1) & ~1u, __ATOMIC_RELAXED);
+		__atomic_store_n(&slot.frame, 0, __ATOMIC_RELAXED);
+		__atomic_store_n(&slot.timestamp_ns, 0, __ATOMIC_RELAXED);
+		__atomic_store_n(&slot.flags, 0, __ATOMIC_RELAXED);
+		__atomic_store_n(&slot.payload_bytes, 0, __ATOMIC_RELAXED);
+	}
+	__atomic_store_n(&h->online, 1, __ATOMIC_RELAXED);
+
+	generation_ = newGeneration(previous);
+	__atomic_store_n(&h->generation, generation_, __ATOMIC_RELEASE);
+}
+
+int ShmRingWriter::write(const uint8_t *pixels, int srcStride, uint64_t captureNs, uint32_t flags)
+{
+	if (!header_)
+		return fail(-EBADF, "write to a closed ring");
+	const size_t rowBytes = static_cast<size_t>(stride_);
+	if (!pixels || srcStride < stride_)
+		return fail(-EINVAL, "write with a bad source buffer");
+
+	const uint64_t frame = frame_ + 1;
+	const uint32_t index = static_cast<uint32_t>(frame % static_cast<uint64_t>(slots_));
+	dk_shm_slot &slot = header_->slots[index];
+	uint8_t *dst = data_ + index * slotSize_;
+
+	// Seqlock writer side: odd sequence, release fence, payload, even
+	// sequence with release. A reader that copied any byte of this payload
+	// then sees the sequence change and drops its copy.
+	const uint32_t seq = __atomic_load_n(&slot.sequence, __ATOMIC_RELAXED);
+	__atomic_store_n(&slot.sequence, seq + 1, __ATOMIC_RELAXED);
+	__atomic_thread_fence(__ATOMIC_RELEASE);
+
+	__atomic_store_n(&slot.frame, frame, __ATOMIC_RELAXED);
+	__atomic_store_n(&slot.timestamp_ns, captureNs, __ATOMIC_RELAXED);
+	__atomic_store_n(&slot.flags, flags, __ATOMIC_RELAXED);
+	__atomic_store_n(&slot.payload_bytes, rowBytes * height_, __ATOMIC_RELAXED);
+	if (static_cast<size_t>(srcStride) == rowBytes) {
+		std::memcpy(dst, pixels, rowBytes * height_);
+	} else {
+		for (int y = 0; y < height_; y++)
+			std::memcpy(dst + y * rowBytes, pixels + static_cast<size_t>(y) * srcStride,
+				    rowBytes);
+	}
+
+	__atomic_store_n(&slot.sequence, seq + 2, __ATOMIC_RELEASE);
+	__atomic_store_n(&header_->latest_frame, frame, __ATOMIC_RELEASE);
+	frame_ = frame;
+	return 0;
+}
+
+void ShmRingWriter::close()
+{
+	if (!header_)
+		return;
+	__atomic_store_n(&header_->online, 0, __ATOMIC_RELEASE);
+	munmap(header_, mapSize_);
+	::close(fd_); // releases the writer lock
+	fd_ = -1;
+	header_ = nullptr;
+	data_ = nullptr;
+	mapSize_ = 0;
+}
+
+int ShmRingWriter::unlink()
+{
+	close();
+	if (name_.empty())
+		return fail(-EINVAL, "unlink an unnamed ring");
+	if (shm_unlink(name_.c_str()) < 0)
+		return fail(-errno, "shm_unlink");
+	return 0;
+}
+
+} // namespace depthkey

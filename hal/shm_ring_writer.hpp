@@ -1,0 +1,90 @@
+// The writing side of a depthkey shared-memory frame ring (layout and reader
+// in hal/depthkey_shm.h). One writer per object; any number of readers.
+//
+// write() never blocks and never waits for readers: it fills the next slot
+// under that slot's seqlock and moves on, so a stalled or crashed consumer
+// cannot hold up the daemon. Each open() stamps a new generation so that
+// readers notice a restart (or a new geometry) and re-open.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+struct dk_shm_header;
+
+namespace depthkey {
+
+class ShmRingWriter
+{
+public:
+	ShmRingWriter() = default;
+	~ShmRingWriter();
+
+	ShmRingWriter(const ShmRingWriter &) = delete;
+	ShmRingWriter &operator=(const ShmRingWriter &) = delete;
+
+	// Creates or reuses the object `name` ("/depthkey.composite") with mode
+	// 0640, owned by `group` unless it is empty. An existing object is grown
+	// if needed but never shrunk, so readers still mapping it cannot fault.
+	// fourcc is DK_SHM_FORMAT_RGB24 or DK_SHM_FORMAT_RGBA32, slots 2..8.
+	// Re-opening an open writer closes it first. Returns 0 or a negative
+	// errno; describeError() then says what failed.
+	int open(const std::string &name, int width, int height, uint32_t fourcc, int slots,
+		 const std::string &group);
+
+	// Publishes one frame: height rows of width * bytesPerPixel bytes, rows
+	// srcStride bytes apart. No allocation, no system call, no waiting.
+	// Returns 0, -EBADF when not open or -EINVAL for a bad buffer.
+	int write(const uint8_t *pixels, int srcStride, uint64_t captureNs, uint32_t flags);
+
+	// Marks the stream offline and unmaps. The object stays, holding the last
+	// frames; the next open() (this process or a restarted one) reuses it.
+	void close();
+
+	// Closes, then removes the object's name (clean shutdown, tests).
+	// Returns 0 or a negative errno (-ENOENT if already gone).
+	int unlink();
+
+	bool isOpen() const { return header_ != nullptr; }
+	const std::string &name() const { return name_; }
+	int width() const { return width_; }
+	int height() const { return height_; }
+	uint32_t fourcc() const { return fourcc_; }
+	int stride() const { return stride_; }
+	int slots() const { return slots_; }
+	uint64_t generation() const { return generation_; }
+	uint64_t frameCount() const { return frame_; }
+
+	// The last failure: 0 or a negative errno, and a sentence naming the
+	// object ("/depthkey.composite: chgrp to 'video': no such group").
+	int error() const { return error_; }
+	std::string describeError() const;
+
+private:
+	int fail(int error, const char *step, const char *reason = nullptr);
+	int resolveGroup(const std::string &group, unsigned int *gid);
+	void writeHeader(uint64_t slotSize, uint64_t dataOffset);
+
+	std::string name_;
+	int fd_ = -1; // held for the writer lock
+	dk_shm_header *header_ = nullptr;
+	uint8_t *data_ = nullptr;
+	size_t mapSize_ = 0;
+
+	int width_ = 0;
+	int height_ = 0;
+	uint32_t fourcc_ = 0;
+	int stride_ = 0;
+	int slots_ = 0;
+	uint64_t slotSize_ = 0;
+	uint64_t generation_ = 0;
+	uint64_t frame_ = 0;
+
+	// Static strings, so that failing in write() needs no allocation.
+	int error_ = 0;
+	const char *failedStep_ = "";
+	const char *reason_ = nullptr; // replaces strerror() when set
+	std::string detail_;           // e.g. the group name
+};
+
+} // namespace depthkey
