@@ -1,0 +1,93 @@
+// FrameSink for tests of the daemon: keeps the last frame of each stream and
+// counts them, and can be told to fail.
+#pragma once
+
+#include "hal/frame_sink.hpp"
+
+#include <cerrno>
+
+namespace depthkey {
+
+class FakeFrameSink : public FrameSink
+{
+public:
+	int open(const OutputSettings &settings, int width, int height) override
+	{
+		if (failOpen_)
+			return failOpen_;
+		settings_ = settings;
+		width_ = width;
+		height_ = height;
+		open_ = true;
+		opens_++;
+		return 0;
+	}
+
+	int publishComposite(const RgbImage &image, uint64_t captureNs, uint32_t flags) override
+	{
+		int ret = check(image.width(), image.height());
+		if (ret)
+			return ret;
+		composite_ = image;
+		compositeCount_++;
+		captureNs_ = captureNs;
+		flags_ = flags;
+		return 0;
+	}
+
+	int publishLecturer(const RgbaImage &image, uint64_t captureNs, uint32_t flags) override
+	{
+		int ret = check(image.width(), image.height());
+		if (ret)
+			return ret;
+		lecturer_ = image;
+		lecturerCount_++;
+		captureNs_ = captureNs;
+		flags_ = flags;
+		return 0;
+	}
+
+	void close() override { open_ = false; }
+
+	std::string describeError() const override
+	{
+		return failOpen_ ? "fake sink: told to fail" : std::string();
+	}
+
+	void failOpenWith(int error) { failOpen_ = error; }
+
+	bool isOpen() const { return open_; }
+	int opens() const { return opens_; }
+	int width() const { return width_; }
+	int height() const { return height_; }
+	const OutputSettings &settings() const { return settings_; }
+	const RgbImage &composite() const { return composite_; }
+	const RgbaImage &lecturer() const { return lecturer_; }
+	uint64_t compositeCount() const { return compositeCount_; }
+	uint64_t lecturerCount() const { return lecturerCount_; }
+	uint64_t lastCaptureNs() const { return captureNs_; }
+	uint32_t lastFlags() const { return flags_; }
+
+private:
+	int check(int width, int height) const
+	{
+		if (!open_)
+			return -EBADF;
+		return width == width_ && height == height_ ? 0 : -EINVAL;
+	}
+
+	OutputSettings settings_;
+	bool open_ = false;
+	int failOpen_ = 0;
+	int opens_ = 0;
+	int width_ = 0;
+	int height_ = 0;
+	RgbImage composite_;
+	RgbaImage lecturer_;
+	uint64_t compositeCount_ = 0;
+	uint64_t lecturerCount_ = 0;
+	uint64_t captureNs_ = 0;
+	uint32_t flags_ = 0;
+};
+
+} // namespace depthkey

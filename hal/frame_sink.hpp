@@ -1,0 +1,37 @@
+// Where the daemon's output frames go: the composite (lecturer over board,
+// RGB) and the lecturer alone (RGBA, straight alpha). The real backend is
+// shared memory for the recorder (hal/shm_frame_sink.hpp); tests use
+// FakeFrameSink (hal/fake_frame_sink.hpp). Publishing never blocks.
+#pragma once
+
+#include "algo/image.hpp"
+#include "config/settings.hpp"
+
+#include <cstdint>
+#include <string>
+
+namespace depthkey {
+
+class FrameSink
+{
+public:
+	virtual ~FrameSink() = default;
+
+	// Opens both streams at width x height. Calling it again (config reload,
+	// new resolution) re-opens them. Returns 0 or a negative errno.
+	virtual int open(const OutputSettings &settings, int width, int height) = 0;
+
+	// flags: DK_SHM_FLAG_* from hal/depthkey_shm.h. captureNs is the
+	// CLOCK_MONOTONIC capture time of the colour frame. Images must have the
+	// size given to open() (-EINVAL otherwise); -EBADF when not open.
+	virtual int publishComposite(const RgbImage &image, uint64_t captureNs, uint32_t flags) = 0;
+	virtual int publishLecturer(const RgbaImage &image, uint64_t captureNs, uint32_t flags) = 0;
+
+	// Marks the streams offline; consumers keep the last frames.
+	virtual void close() = 0;
+
+	// What failed last, naming the object, for the journal; "" if nothing.
+	virtual std::string describeError() const = 0;
+};
+
+} // namespace depthkey

@@ -1,0 +1,83 @@
+#include "hal/shm_frame_sink.hpp"
+
+#include "hal/depthkey_shm.h"
+
+#include <cerrno>
+
+namespace depthkey {
+
+int ShmFrameSink::open(const OutputSettings &settings, int width, int height)
+{
+	failed_ = nullptr;
+	sizeMismatch_ = nullptr;
+
+	int ret = composite_.open(settings.compositeName, width, height, DK_SHM_FORMAT_RGB24,
+				  settings.slots, settings.group);
+	if (ret) {
+		failed_ = &composite_;
+		lecturer_.close(); // no half-configured pair from an earlier open
+		return ret;
+	}
+	ret = lecturer_.open(settings.lecturerName, width, height, DK_SHM_FORMAT_RGBA32,
+			     settings.slots, settings.group);
+	if (ret) {
+		failed_ = &lecturer_;
+		composite_.close();
+		return ret;
+	}
+	return 0;
+}
+
+// Rgb8/Rgba8 are packed byte triples/quads, i.e. exactly RGB24/RGBA32 rows.
+template<typename Image>
+int ShmFrameSink::publish(ShmRingWriter &writer, const Image &image, uint64_t captureNs,
+			  uint32_t flags)
+{
+	static_assert(sizeof(*image.data()) == 3 || sizeof(*image.data()) == 4);
+
+	if (writer.isOpen() && (image.width() != writer.width() || image.height() != writer.height())) {
+		sizeMismatch_ = &writer;
+		failed_ = nullptr;
+		mismatchWidth_ = image.width();
+		mismatchHeight_ = image.height();
+		return -EINVAL;
+	}
+	const int stride = image.width() * static_cast<int>(sizeof(*image.data()));
+	int ret = writer.write(reinterpret_cast<const uint8_t *>(image.data()), stride, captureNs,
+			       flags);
+	if (ret) {
+		failed_ = &writer;
+		sizeMismatch_ = nullptr;
+	}
+	return ret;
+}
+
+int ShmFrameSink::publishComposite(const RgbImage &image, uint64_t captureNs, uint32_t flags)
+{
+	return publish(composite_, image, captureNs, flags);
+}
+
+int ShmFrameSink::publishLecturer(const RgbaImage &image, uint64_t captureNs, uint32_t flags)
+{
+	return publish(lecturer_, image, captureNs, flags);
+}
+
+void ShmFrameSink::close()
+{
+	composite_.close();
+	lecturer_.close();
+}
+
+std::string ShmFrameSink::describeError() const
+{
+	if (sizeMismatch_)
+		return sizeMismatch_->name() + ": image " + std::to_string(mismatchWidth_) + "x" +
+		       std::to_string(mismatchHeight_) + " does not match the stream's " +
+		       std::to_string(sizeMismatch_->width()) + "x" +
+		       std::to_string(sizeMismatch_->height());
+	if (failed_)
+		return failed_->describeError();
+	return {};
+}
+
+} // namespace depthkey

@@ -1,0 +1,37 @@
+// FrameSink backend for the recorder: one shared-memory ring per stream,
+// settings.compositeName as RGB24 and settings.lecturerName as RGBA32.
+#pragma once
+
+#include "hal/frame_sink.hpp"
+#include "hal/shm_ring_writer.hpp"
+
+namespace depthkey {
+
+class ShmFrameSink : public FrameSink
+{
+public:
+	int open(const OutputSettings &settings, int width, int height) override;
+	int publishComposite(const RgbImage &image, uint64_t captureNs, uint32_t flags) override;
+	int publishLecturer(const RgbaImage &image, uint64_t captureNs, uint32_t flags) override;
+	void close() override;
+	std::string describeError() const override;
+
+	// For tests and status reports.
+	const ShmRingWriter &composite() const { return composite_; }
+	const ShmRingWriter &lecturer() const { return lecturer_; }
+
+private:
+	template<typename Image>
+	int publish(ShmRingWriter &writer, const Image &image, uint64_t captureNs, uint32_t flags);
+
+	ShmRingWriter composite_;
+	ShmRingWriter lecturer_;
+	// The writer that failed last, or null when the failure was our own
+	// (sizeMismatch_) or there was none.
+	const ShmRingWriter *failed_ = nullptr;
+	const ShmRingWriter *sizeMismatch_ = nullptr;
+	int mismatchWidth_ = 0;
+	int mismatchHeight_ = 0;
+};
+
+} // namespace depthkey
