@@ -1,0 +1,346 @@
+#include "daemon/daemon.hpp"
+
+#include "config/config_loader.hpp"
+#include "daemon/device_factory.hpp"
+#include "daemon/log.hpp"
+#include "daemon/snapshot_writer.hpp"
+#include "algo/no_signal_frame.hpp"
+#include "hal/depthkey_shm.h"
+
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+
+namespace depthkey {
+
+namespace {
+
+// A depth frame older than this is not paired with colour any more: the
+// lecturer may have moved a metre since (the SR-2 runs at ~10 fps).
+constexpr uint64_t kDepthStaleNs = 500'000'000;
+// Without a colour frame for this many frame periods, publish NO SIGNAL.
+constexpr uint64_t kColourStalePeriods = 3;
+// In a degraded mode (a camera missing) READY=1 is sent after this long, so
+// that systemd's start job does not hang on a box with a camera unplugged.
+constexpr uint64_t kDegradedReadyUs = 5'000'000;
+constexpr uint64_t kTerminalStatusEvery = 5; // status ticks (seconds)
+
+} // namespace
+
+void CommandLineOverrides::applyTo(Settings &settings) const
+{
+	if (!snapshotDir.empty())
+		settings.daemon.snapshotDir = snapshotDir;
+}
+
+Daemon::~Daemon()
+{
+	stopCameras();
+	if (sink_)
+		sink_->close();
+	if (leds_)
+		leds_->close();
+}
+
+int Daemon::start(const Settings &settings)
+{
+	settings_ = settings;
+	overrides_.applyTo(settings_);
+	LogLevel level;
+	if (parseLogLevel(settings.daemon.logLevel, level))
+		logger().setLevel(level);
+
+	int ret = loop_.open();
+	if (ret < 0)
+		return ret;
+	ret = EventLoop::blockSignals({ SIGTERM, SIGINT, SIGHUP, SIGUSR1 });
+	if (ret < 0)
+		return ret;
+	loop_.addSignal(SIGTERM, [this] { stop(); }, sigterm_);
+	loop_.addSignal(SIGINT, [this] { stop(); }, sigint_);
+	loop_.addSignal(SIGHUP, [this] { reload(); }, sighup_);
+	loop_.addSignal(SIGUSR1, [this] { writeSnapshot(); }, sigusr1_);
+
+	startedUs_ = statusAtUs_ = loop_.nowUs();
+	pipeline_.configure(settings_.segmentation, settings_.composite);
+	underSystemd_ = std::getenv("NOTIFY_SOCKET") != nullptr;
+
+	leds_ = createStatusLeds(settings_);
+	if (leds_->open(loop_, settings_.leds) < 0)
+		logger().errorOnce("leds", "status LEDs unavailable, running without them",
+				   { { "DEVICE", "leds" } });
+
+	openOutput();
+	startCameras();
+
+	loop_.addPeriodic(1000000u / settings_.colour.fps, [this] { onFrameTick(); }, frameTick_);
+	loop_.addPeriodic(1000000u, [this] { onStatusTick(); }, statusTick_);
+	if (uint64_t usec = ServiceNotifier::watchdogUsec())
+		loop_.addPeriodic(usec / 2, [this] { onWatchdogTick(); }, watchdogTick_);
+
+	logger().info("depthkeyd started", { { "CONFIG_FILE", configPath_ } });
+	return 0;
+}
+
+int Daemon::run()
+{
+	int ret = loop_.run();
+	notifier_.stopping();
+	stopCameras();
+	if (sink_)
+		sink_->close();
+	logger().info("depthkeyd stopped");
+	return ret < 0 ? 1 : ret;
+}
+
+void Daemon::stop()
+{
+	notifier_.stopping();
+	loop_.exit(0);
+}
+
+int Daemon::openOutput()
+{
+	if (!sink_)
+		sink_ = createFrameSink(settings_);
+	int ret = sink_->open(settings_.output, settings_.colour.width, settings_.colour.height);
+	sinkOpen_ = ret >= 0;
+	if (ret < 0)
+		logger().errorOnce("output", "cannot open shared-memory output: " + sink_->describeError(),
+				   { { "DEVICE", "shm" }, { "ERROR", errnoText(ret) } });
+	else
+		logger().clearError("output", "shared-memory output open", { { "DEVICE", "shm" } });
+	return ret;
+}
+
+void Daemon::startCameras()
+{
+	colour_ = createColourCamera(settings_);
+	depth_ = createDepthCamera(settings_);
+	std::string colourName = colour_->name(), depthName = depth_->name();
+	int ret = colour_->start(
+		loop_, [this](const ColourFrame &f) { onColourFrame(f); },
+		[this, colourName](const DeviceStatus &s) { onDeviceStatus(colourName, s); });
+	if (ret < 0)
+		onDeviceStatus(colourName, { DeviceState::Lost, ret, "cannot start" });
+	ret = depth_->start(
+		loop_, [this](const DepthFrame &f) { onDepthFrame(f); },
+		[this, depthName](const DeviceStatus &s) { onDeviceStatus(depthName, s); });
+	if (ret < 0)
+		onDeviceStatus(depthName, { DeviceState::Lost, ret, "cannot start" });
+}
+
+void Daemon::stopCameras()
+{
+	if (colour_)
+		colour_->stop();
+	if (depth_)
+		depth_->stop();
+	haveDepth_ = haveColour_ = false;
+}
+
+void Daemon::onDeviceStatus(const std::string &device, const DeviceStatus &status)
+{
+	if (status.state == DeviceState::Lost)
+		logger().errorOnce(device, device + " lost: " + status.detail,
+				   { { "DEVICE", device }, { "ERROR", errnoText(status.error) } });
+	else if (status.state == DeviceState::Streaming)
+		logger().clearError(device, device + " streaming again", { { "DEVICE", device } });
+	if (leds_)
+		leds_->show(summary());
+}
+
+void Daemon::onDepthFrame(const DepthFrame &frame)
+{
+	depthLatest_ = frame; // same-size copy: no allocation after the first
+	haveDepth_ = true;
+	depthFrames_++;
+}
+
+void Daemon::onColourFrame(const ColourFrame &frame)
+{
+	colourFrames_++;
+	haveColour_ = true;
+	lastColourNs_ = frame.timestampNs;
+	uint32_t flags = DK_SHM_FLAG_COLOUR_OK;
+	if (haveDepth_ && depthFresh(frame.timestampNs)) {
+		pipeline_.process(frame, depthLatest_, output_);
+		flags |= DK_SHM_FLAG_DEPTH_OK | DK_SHM_FLAG_ONLINE;
+	} else {
+		pipeline_.passThrough(frame, output_);
+	}
+	if (settings_.daemon.snapshotDir.size())
+		colourLatest_ = frame; // kept only for snapshots
+	publish(frame.timestampNs, flags);
+}
+
+bool Daemon::depthFresh(uint64_t nowNs) const
+{
+	uint64_t ts = depthLatest_.timestampNs;
+	return ts + kDepthStaleNs >= nowNs && ts <= nowNs + kDepthStaleNs;
+}
+
+void Daemon::publish(uint64_t captureNs, uint32_t flags)
+{
+	if (!sinkOpen_ && openOutput() < 0)
+		return;
+	int ret = sink_->publishComposite(output_.composite, captureNs, flags);
+	if (ret >= 0)
+		ret = sink_->publishLecturer(output_.lecturer, captureNs, flags);
+	if (ret < 0) {
+		logger().errorOnce("output", "cannot publish: " + sink_->describeError(),
+				   { { "DEVICE", "shm" }, { "ERROR", errnoText(ret) } });
+		return;
+	}
+	published_++;
+	if (!ready_ && (flags & DK_SHM_FLAG_ONLINE)) {
+		ready_ = true;
+		notifier_.ready();
+		logger().info("frames flow, ready");
+	}
+}
+
+// Runs at the colour frame rate: when colour frames stop (camera lost or
+// stalled), keep the recorder fed with a NO SIGNAL frame marked offline.
+void Daemon::onFrameTick()
+{
+	uint64_t nowNs = loop_.nowUs() * 1000u;
+	uint64_t periodNs = 1'000'000'000u / settings_.colour.fps;
+	if (haveColour_ && lastColourNs_ + kColourStalePeriods * periodNs > nowNs)
+		return;
+	publishNoSignal(nowNs);
+}
+
+void Daemon::publishNoSignal(uint64_t nowNs)
+{
+	int w = settings_.colour.width, h = settings_.colour.height;
+	std::string text = "NO SIGNAL: " + (colour_ ? colour_->name() : std::string("colour camera"));
+	if (noSignal_.width() != w || noSignal_.height() != h || text != noSignalText_) {
+		noSignal_.resize(w, h);
+		renderNoSignalFrame(text, noSignal_);
+		noSignalText_ = text;
+	}
+	output_.composite = noSignal_;
+	output_.alpha.resize(w, h);
+	std::fill(output_.alpha.data(), output_.alpha.data() + output_.alpha.size(), 0);
+	output_.lecturer.resize(w, h);
+	std::fill(output_.lecturer.data(), output_.lecturer.data() + output_.lecturer.size(), Rgba8{ 0, 0, 0, 0 });
+	publish(nowNs, depthFresh(nowNs) && haveDepth_ ? DK_SHM_FLAG_DEPTH_OK : 0);
+}
+
+StatusSummary Daemon::summary() const
+{
+	StatusSummary s;
+	s.colourOk = colour_ && colour_->status().state == DeviceState::Streaming;
+	s.depthOk = depth_ && depth_->status().state == DeviceState::Streaming;
+	s.calibrated = false;
+	s.error = logger().activeErrorCount() > 0;
+	return s;
+}
+
+void Daemon::onStatusTick()
+{
+	uint64_t now = loop_.nowUs();
+	double seconds = (now - statusAtUs_) / 1e6;
+	if (seconds <= 0)
+		return;
+	auto rate = [seconds](uint64_t count, uint64_t &before) {
+		double r = (count - before) / seconds;
+		before = count;
+		return r;
+	};
+	char text[512];
+	std::snprintf(text, sizeof(text), "colour %s %s %.1f fps; depth %s %s %.1f fps; output %.1f fps",
+		      colour_ ? colour_->name().c_str() : "-",
+		      colour_ ? deviceStateName(colour_->status().state) : "none",
+		      rate(colourFrames_, colourFramesAtStatus_),
+		      depth_ ? depth_->name().c_str() : "-",
+		      depth_ ? deviceStateName(depth_->status().state) : "none",
+		      rate(depthFrames_, depthFramesAtStatus_), rate(published_, publishedAtStatus_));
+	statusAtUs_ = now;
+	notifier_.status(text);
+	// In a terminal there is no STATUS= to look at: say it every few seconds.
+	if (!underSystemd_ && ++statusTicks_ % kTerminalStatusEvery == 0)
+		logger().info(text);
+	if (leds_)
+		leds_->show(summary());
+	if (!ready_ && now - startedUs_ > kDegradedReadyUs && published_ > 0) {
+		ready_ = true;
+		notifier_.ready();
+		logger().warning(std::string("ready in degraded mode: ") + text);
+	}
+}
+
+// Fed only while frames are being published: if the frame loop stalls,
+// systemd stops hearing from us and restarts the service.
+void Daemon::onWatchdogTick()
+{
+	if (published_ == publishedAtWatchdog_)
+		return;
+	publishedAtWatchdog_ = published_;
+	notifier_.watchdog();
+}
+
+void Daemon::reload()
+{
+	notifier_.reloading();
+	ConfigResult result = loadConfig(configPath_);
+	if (!result.ok()) {
+		for (const ConfigError &e : result.errors)
+			logger().error("config reload refused: " + e.toString(),
+				       { { "CONFIG_FILE", e.file }, { "CONFIG_LINE", std::to_string(e.line) } });
+		logger().warning("keeping the previous configuration", { { "CONFIG_FILE", configPath_ } });
+		notifier_.reloaded();
+		return;
+	}
+	overrides_.applyTo(result.settings);
+	apply(result.settings);
+	notifier_.reloaded();
+	logger().info("configuration reloaded", { { "CONFIG_FILE", configPath_ } });
+}
+
+void Daemon::apply(const Settings &next)
+{
+	Settings previous = settings_;
+	settings_ = next;
+	LogLevel level;
+	if (parseLogLevel(next.daemon.logLevel, level))
+		logger().setLevel(level);
+	pipeline_.configure(next.segmentation, next.composite);
+
+	bool sizeChanged = previous.colour.width != next.colour.width ||
+			   previous.colour.height != next.colour.height;
+	if (!(previous.output == next.output) || sizeChanged) {
+		sink_->close();
+		openOutput();
+	}
+	if (!(previous.colour == next.colour) || !(previous.depth == next.depth) ||
+	    !(previous.sim == next.sim)) {
+		stopCameras();
+		startCameras();
+	}
+	if (previous.colour.fps != next.colour.fps)
+		loop_.addPeriodic(1000000u / next.colour.fps, [this] { onFrameTick(); }, frameTick_);
+	if (!(previous.leds == next.leds)) {
+		leds_->close();
+		leds_ = createStatusLeds(next);
+		leds_->open(loop_, next.leds);
+	}
+}
+
+void Daemon::writeSnapshot()
+{
+	const std::string &dir = settings_.daemon.snapshotDir;
+	if (dir.empty()) {
+		logger().warning("snapshot requested but daemon.snapshot_dir is not set");
+		return;
+	}
+	SnapshotImages images{ colourLatest_.rgb, depthLatest_.depthMm, output_.alpha, output_.composite };
+	std::string error;
+	if (writeSnapshotImages(dir, images, error) < 0)
+		logger().error("snapshot failed: " + error, { { "SNAPSHOT_DIR", dir } });
+	else
+		logger().info("snapshot written to " + dir, { { "SNAPSHOT_DIR", dir } });
+}
+
+} // namespace depthkey

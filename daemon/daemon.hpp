@@ -1,0 +1,94 @@
+// depthkeyd's wiring: one event loop, the devices behind hal/ interfaces, the
+// pipeline, shared-memory output, status for systemd and the LEDs. It holds
+// no algorithm; it decides what to run when, and degrades instead of dying.
+#pragma once
+
+#include "algo/pipeline.hpp"
+#include "config/settings.hpp"
+#include "daemon/service_notifier.hpp"
+#include "hal/camera.hpp"
+#include "hal/event_loop.hpp"
+#include "hal/frame_sink.hpp"
+#include "hal/status_leds.hpp"
+
+#include <memory>
+#include <string>
+
+namespace depthkey {
+
+// Command-line options that win over the config file, on start and reload.
+struct CommandLineOverrides {
+	std::string snapshotDir;
+	void applyTo(Settings &settings) const;
+};
+
+class Daemon
+{
+public:
+	Daemon(std::string configPath, CommandLineOverrides overrides)
+		: configPath_(std::move(configPath)), overrides_(std::move(overrides)) {}
+	~Daemon();
+
+	// Sets up the loop, signals, devices and output. A negative errno means
+	// the daemon cannot run at all (no event loop); missing cameras do not
+	// fail here, they are reported and retried.
+	int start(const Settings &settings);
+	int run(); // until SIGTERM/SIGINT; returns the exit status
+
+private:
+	void onColourFrame(const ColourFrame &frame);
+	void onDepthFrame(const DepthFrame &frame);
+	void onDeviceStatus(const std::string &device, const DeviceStatus &status);
+	void onFrameTick();
+	void onStatusTick();
+	void onWatchdogTick();
+	void reload();
+	void writeSnapshot();
+	void stop();
+
+	int openOutput();
+	void startCameras();
+	void stopCameras();
+	void apply(const Settings &settings);
+	void publish(uint64_t captureNs, uint32_t flags);
+	void publishNoSignal(uint64_t nowNs);
+	bool depthFresh(uint64_t nowNs) const;
+	StatusSummary summary() const;
+
+	std::string configPath_;
+	CommandLineOverrides overrides_;
+	Settings settings_;
+	EventLoop loop_;
+	ServiceNotifier notifier_;
+
+	std::unique_ptr<ColourCamera> colour_;
+	std::unique_ptr<DepthCamera> depth_;
+	std::unique_ptr<FrameSink> sink_;
+	std::unique_ptr<StatusLeds> leds_;
+	bool sinkOpen_ = false;
+
+	EventSource sigterm_, sigint_, sighup_, sigusr1_;
+	EventSource frameTick_, statusTick_, watchdogTick_;
+
+	Pipeline pipeline_;
+	PipelineOutput output_;
+	DepthFrame depthLatest_;
+	ColourFrame colourLatest_;
+	bool haveDepth_ = false;
+	bool haveColour_ = false;
+	uint64_t lastColourNs_ = 0;
+	RgbImage noSignal_;
+	std::string noSignalText_;
+
+	bool ready_ = false;
+	bool underSystemd_ = false;
+	uint64_t statusTicks_ = 0;
+	uint64_t startedUs_ = 0;
+	uint64_t published_ = 0;
+	uint64_t publishedAtWatchdog_ = 0;
+	uint64_t colourFrames_ = 0, depthFrames_ = 0;
+	uint64_t colourFramesAtStatus_ = 0, depthFramesAtStatus_ = 0, publishedAtStatus_ = 0;
+	uint64_t statusAtUs_ = 0;
+};
+
+} // namespace depthkey

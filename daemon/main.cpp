@@ -1,0 +1,112 @@
+// depthkeyd: captures the colour and depth cameras, keys the lecturer out and
+// publishes the composite and the lecturer layer to shared memory.
+#include "config/config_loader.hpp"
+#include "daemon/daemon.hpp"
+#include "daemon/log.hpp"
+#include "daemon/version.hpp"
+
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <sys/stat.h>
+#include <unistd.h>
+
+using namespace depthkey;
+
+namespace {
+
+constexpr const char *kSystemConfig = "/etc/depthkey/depthkey.toml";
+
+void usage(FILE *out)
+{
+	std::fprintf(out,
+		     "usage: depthkeyd [--config FILE] [--snapshot-dir DIR]\n"
+		     "       depthkeyd --check-config FILE\n"
+		     "       depthkeyd --version\n"
+		     "\n"
+		     "Without --config: %s, or config/depthkey.toml of the source tree\n"
+		     "when run from build/bin/. Signals: SIGHUP re-reads the config,\n"
+		     "SIGUSR1 writes stage snapshots, SIGTERM/SIGINT stop.\n",
+		     kSystemConfig);
+}
+
+bool fileExists(const std::string &path)
+{
+	struct stat st;
+	return stat(path.c_str(), &st) == 0;
+}
+
+// /etc first (an installed box); else the tree this binary was built in.
+std::string defaultConfigPath()
+{
+	if (fileExists(kSystemConfig))
+		return kSystemConfig;
+	char buf[4096];
+	ssize_t n = readlink("/proc/self/exe", buf, sizeof(buf) - 1);
+	if (n > 0) {
+		std::string exe(buf, static_cast<size_t>(n));
+		std::string dir = exe.substr(0, exe.rfind('/'));
+		for (const char *up : { "/../../config/depthkey.toml", "/../../../config/depthkey.toml" }) {
+			std::string candidate = dir + up;
+			if (fileExists(candidate))
+				return candidate;
+		}
+	}
+	return kSystemConfig;
+}
+
+int checkConfig(const std::string &path)
+{
+	ConfigResult result = loadConfig(path);
+	for (const ConfigError &e : result.errors)
+		std::fprintf(stderr, "%s\n", e.toString().c_str());
+	if (!result.ok())
+		return 1;
+	std::printf("%s: ok\n", path.c_str());
+	return 0;
+}
+
+} // namespace
+
+int main(int argc, char **argv)
+{
+	std::string configPath;
+	CommandLineOverrides overrides;
+	for (int i = 1; i < argc; ++i) {
+		std::string arg = argv[i];
+		if (arg == "--version") {
+			std::printf("depthkeyd %s\n", DEPTHKEY_VERSION);
+			return 0;
+		} else if (arg == "--help" || arg == "-h") {
+			usage(stdout);
+			return 0;
+		} else if (arg == "--check-config" && i + 1 < argc) {
+			return checkConfig(argv[++i]);
+		} else if (arg == "--config" && i + 1 < argc) {
+			configPath = argv[++i];
+		} else if (arg == "--snapshot-dir" && i + 1 < argc) {
+			overrides.snapshotDir = argv[++i];
+		} else {
+			std::fprintf(stderr, "depthkeyd: unknown or incomplete argument '%s'\n", arg.c_str());
+			usage(stderr);
+			return 2;
+		}
+	}
+	if (configPath.empty())
+		configPath = defaultConfigPath();
+
+	ConfigResult config = loadConfig(configPath);
+	if (!config.ok()) {
+		for (const ConfigError &e : config.errors)
+			logger().error("config: " + e.toString(), { { "CONFIG_FILE", e.file } });
+		return 1;
+	}
+
+	Daemon daemon(configPath, overrides);
+	int ret = daemon.start(config.settings);
+	if (ret < 0) {
+		logger().error("cannot start: " + errnoText(ret));
+		return 1;
+	}
+	return daemon.run();
+}

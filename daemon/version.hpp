@@ -1,0 +1,2 @@
+#pragma once
+#define DEPTHKEY_VERSION "0.1.0"

@@ -1,0 +1,52 @@
+// A camera as the daemon sees it, whatever the backend (simulated, SR-2 over
+// USB, V4L2): it is started on the event loop, delivers frames through a
+// callback and reports its state. A backend that loses its device reports
+// Lost, keeps retrying by itself, and reports Streaming when it is back.
+#pragma once
+
+#include "algo/frames.hpp"
+#include "hal/event_loop.hpp"
+
+#include <functional>
+#include <string>
+
+namespace depthkey {
+
+enum class DeviceState {
+	Stopped,
+	Streaming,
+	Lost, // unplugged, stalled or failing; the backend retries with backoff
+};
+
+const char *deviceStateName(DeviceState state);
+
+struct DeviceStatus {
+	DeviceState state = DeviceState::Stopped;
+	int error = 0;          // negative errno of the last failure, 0 if none
+	std::string detail;     // what failed and where, for the journal
+};
+
+template<typename Frame>
+class Camera
+{
+public:
+	using FrameHandler = std::function<void(const Frame &)>;
+	using StatusHandler = std::function<void(const DeviceStatus &)>;
+
+	virtual ~Camera() = default;
+
+	// A name for logs and the journal's DEVICE= field, e.g. "sim-colour".
+	virtual std::string name() const = 0;
+
+	// Starts streaming. A negative errno means it could not even try (bad
+	// parameters); a device that is merely absent starts in the Lost state.
+	virtual int start(EventLoop &loop, FrameHandler onFrame, StatusHandler onStatus) = 0;
+	virtual void stop() = 0;
+
+	virtual DeviceStatus status() const = 0;
+};
+
+using ColourCamera = Camera<ColourFrame>;
+using DepthCamera = Camera<DepthFrame>;
+
+} // namespace depthkey

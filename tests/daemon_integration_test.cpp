@@ -1,0 +1,162 @@
+// Starts the real depthkeyd on simulated devices and checks what systemd and
+// the recorder would see: the notify protocol, frames in shared memory,
+// reload with a broken config, clean stop.
+#include "hal/depthkey_shm.h"
+#include "tests/daemon_process.hpp"
+
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <sys/wait.h>
+#include <thread>
+#include <vector>
+
+using namespace std::chrono_literals;
+using depthkey::test::DaemonProcess;
+
+namespace {
+
+std::string configText(const std::string &prefix, const std::string &extra = "")
+{
+	return "[colour]\nwidth = 320\nheight = 240\nfps = 25\n"
+	       "[output]\ncomposite_name = \"" + prefix + ".composite\"\n"
+	       "lecturer_name = \"" + prefix + ".lecturer\"\n" + extra;
+}
+
+struct ShmFrame {
+	dk_shm_frame_info info{};
+	std::vector<uint8_t> pixels;
+};
+
+// Opens and reads the newest frame, retrying while the writer starts up.
+bool readFrame(const std::string &name, ShmFrame &frame, std::chrono::milliseconds timeout)
+{
+	auto deadline = std::chrono::steady_clock::now() + timeout;
+	while (std::chrono::steady_clock::now() < deadline) {
+		dk_shm_reader reader{};
+		if (dk_shm_open(name.c_str(), &reader) == 0) {
+			frame.pixels.resize(reader.frame_bytes);
+			int ret = dk_shm_read_latest(&reader, frame.pixels.data(), frame.pixels.size(),
+						     &frame.info);
+			dk_shm_close(&reader);
+			if (ret == 0)
+				return true;
+		}
+		std::this_thread::sleep_for(20ms);
+	}
+	return false;
+}
+
+} // namespace
+
+class DaemonIntegration : public testing::Test
+{
+protected:
+	void SetUp() override
+	{
+		prefix_ = "/depthkey-it-" + std::to_string(getpid());
+		config_ = daemon_.writeFile("depthkey.toml", configText(prefix_));
+	}
+	void TearDown() override
+	{
+		shm_unlink((prefix_ + ".composite").c_str());
+		shm_unlink((prefix_ + ".lecturer").c_str());
+	}
+
+	DaemonProcess daemon_;
+	std::string prefix_;
+	std::string config_;
+};
+
+TEST_F(DaemonIntegration, ReadyWatchdogFramesReloadAndStop)
+{
+	ASSERT_TRUE(daemon_.start({ "--config", config_ }, 300000));
+	ASSERT_TRUE(daemon_.waitForNotify("READY=1", 10s)) << daemon_.log();
+
+	// WATCHDOG=1 keeps arriving (every WATCHDOG_USEC / 2 while frames flow).
+	int before = daemon_.countNotify("WATCHDOG=1");
+	std::this_thread::sleep_for(1200ms);
+	daemon_.pollNotify();
+	EXPECT_GE(daemon_.countNotify("WATCHDOG=1") - before, 3);
+	EXPECT_GE(daemon_.countNotify("STATUS=colour sim-colour streaming"), 1);
+
+	// Frames in shared memory: rising frame numbers, online, plausible content.
+	ShmFrame first, second;
+	ASSERT_TRUE(readFrame(prefix_ + ".composite", first, 2s));
+	std::this_thread::sleep_for(200ms);
+	ASSERT_TRUE(readFrame(prefix_ + ".composite", second, 2s));
+	EXPECT_GT(second.info.frame, first.info.frame);
+	EXPECT_GT(second.info.timestamp_ns, first.info.timestamp_ns);
+	EXPECT_EQ(second.info.width, 320u);
+	EXPECT_EQ(second.info.height, 240u);
+	EXPECT_EQ(second.info.fourcc, DK_SHM_FORMAT_RGB24);
+	EXPECT_TRUE(second.info.flags & DK_SHM_FLAG_ONLINE);
+	EXPECT_EQ(second.info.online, 1u);
+
+	// The lecturer layer: some pixels keyed in (alpha 255), most of the
+	// board keyed out (alpha 0) — the sim's figure covers roughly 15 %.
+	ShmFrame lecturer;
+	ASSERT_TRUE(readFrame(prefix_ + ".lecturer", lecturer, 2s));
+	size_t opaque = 0, pixels = lecturer.pixels.size() / 4;
+	for (size_t i = 0; i < pixels; ++i)
+		opaque += lecturer.pixels[i * 4 + 3] == 255;
+	EXPECT_GT(opaque, pixels / 20);
+	EXPECT_LT(opaque, pixels / 2);
+
+	// A broken config on SIGHUP is refused, naming file and line; the
+	// daemon runs on with the old one.
+	daemon_.writeFile("depthkey.toml", configText(prefix_, "[segmentation]\nnear_mm = \"close\"\n"));
+	ASSERT_EQ(daemon_.signal(SIGHUP), 0);
+	ASSERT_TRUE(daemon_.waitForNotify("RELOADING=1", 5s));
+	std::this_thread::sleep_for(500ms);
+	EXPECT_TRUE(daemon_.running());
+	EXPECT_NE(daemon_.log().find("depthkey.toml:9:11"), std::string::npos) << daemon_.log();
+	ShmFrame third;
+	ASSERT_TRUE(readFrame(prefix_ + ".composite", third, 2s));
+	EXPECT_GT(third.info.frame, second.info.frame);
+	EXPECT_EQ(third.info.width, 320u);
+
+	// A good config is taken: the new resolution appears in shared memory.
+	daemon_.writeFile("depthkey.toml",
+			  "[colour]\nwidth = 160\nheight = 120\n[output]\ncomposite_name = \"" +
+				  prefix_ + ".composite\"\nlecturer_name = \"" + prefix_ + ".lecturer\"\n");
+	ASSERT_EQ(daemon_.signal(SIGHUP), 0);
+	ShmFrame resized;
+	auto deadline = std::chrono::steady_clock::now() + 5s;
+	while (std::chrono::steady_clock::now() < deadline &&
+	       !(readFrame(prefix_ + ".composite", resized, 1s) && resized.info.width == 160))
+		std::this_thread::sleep_for(50ms);
+	EXPECT_EQ(resized.info.width, 160u);
+	EXPECT_EQ(resized.info.height, 120u);
+
+	// SIGTERM: STOPPING=1, exit status 0.
+	ASSERT_EQ(daemon_.signal(SIGTERM), 0);
+	int status = daemon_.waitExit(5s);
+	ASSERT_NE(status, -1) << "depthkeyd did not stop";
+	EXPECT_TRUE(WIFEXITED(status));
+	EXPECT_EQ(WEXITSTATUS(status), 0);
+	daemon_.pollNotify();
+	EXPECT_GE(daemon_.countNotify("STOPPING=1"), 1);
+}
+
+TEST_F(DaemonIntegration, CheckConfigReportsErrorsAndExitStatus)
+{
+	std::string bad = daemon_.writeFile("bad.toml", "[segmentation]\nnear_mm = 9000\nfrobnicate = 1\n");
+	ASSERT_TRUE(daemon_.start({ "--check-config", bad }));
+	int status = daemon_.waitExit(5s);
+	ASSERT_TRUE(WIFEXITED(status));
+	EXPECT_EQ(WEXITSTATUS(status), 1);
+	std::string log = daemon_.log();
+	EXPECT_NE(log.find("bad.toml:2:11"), std::string::npos) << log;
+	EXPECT_NE(log.find("segmentation.frobnicate"), std::string::npos) << log;
+}
+
+TEST_F(DaemonIntegration, SigintStopsCleanly)
+{
+	ASSERT_TRUE(daemon_.start({ "--config", config_ }));
+	ASSERT_TRUE(daemon_.waitForNotify("READY=1", 10s)) << daemon_.log();
+	ASSERT_EQ(daemon_.signal(SIGINT), 0);
+	int status = daemon_.waitExit(5s);
+	ASSERT_TRUE(WIFEXITED(status));
+	EXPECT_EQ(WEXITSTATUS(status), 0);
+}

@@ -1,0 +1,49 @@
+// Runs the real build/bin/depthkeyd as a child process with its own
+// NOTIFY_SOCKET, so tests see exactly what systemd would see.
+#pragma once
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+namespace depthkey::test {
+
+class DaemonProcess
+{
+public:
+	DaemonProcess();
+	~DaemonProcess(); // kills a still running daemon
+
+	// A fresh temporary folder for config, notify socket and logs.
+	const std::string &dir() const { return dir_; }
+	std::string writeFile(const std::string &name, const std::string &text) const;
+
+	// Starts depthkeyd with args; watchdogUsec > 0 sets WATCHDOG_USEC.
+	bool start(const std::vector<std::string> &args, unsigned long watchdogUsec = 0);
+
+	// Waits for a notify datagram containing `text` (e.g. "READY=1").
+	bool waitForNotify(const std::string &text, std::chrono::milliseconds timeout);
+	// Every datagram received so far.
+	const std::vector<std::string> &notifications() const { return messages_; }
+	int countNotify(const std::string &text) const;
+	// Drains datagrams that have arrived, without waiting.
+	void pollNotify();
+
+	bool running();
+	int signal(int sig);
+	// Waits for exit; returns the wait status or -1 on timeout.
+	int waitExit(std::chrono::milliseconds timeout);
+	int pid() const { return pid_; }
+	std::string log() const; // the daemon's stderr so far
+
+private:
+	bool receive(std::chrono::milliseconds timeout);
+
+	std::string dir_;
+	int socket_ = -1;
+	int pid_ = -1;
+	int exitStatus_ = -1;
+	std::vector<std::string> messages_;
+};
+
+} // namespace depthkey::test
