@@ -1,0 +1,354 @@
+// Config loading: the shipped file, a custom file, and each class of error
+// with the exact place a technician is sent to.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "config/config_loader.hpp"
+#include "config/toml_binder.hpp"
+#include "tests/test_paths.hpp"
+
+namespace depthkey {
+
+// So that a failed EXPECT_EQ shows the error as the technician would see it.
+void PrintTo(const ConfigError &error, std::ostream *os)
+{
+	*os << error.toString();
+}
+
+namespace {
+
+const std::string kFile = "test.toml";
+
+std::string defaultConfigPath()
+{
+	return test::sourceDir() + "/config/depthkey.toml";
+}
+
+std::string readFile(const std::string &path)
+{
+	std::ifstream in(path);
+	std::stringstream text;
+	text << in.rdbuf();
+	return text.str();
+}
+
+// The single error a text produces, or a failure when it produces other than one.
+ConfigError onlyError(std::string_view text)
+{
+	ConfigResult result = parseConfig(text, kFile);
+	if (result.errors.size() != 1) {
+		ADD_FAILURE() << result.errors.size() << " errors, expected 1";
+		for (const ConfigError &e : result.errors)
+			ADD_FAILURE() << e.toString();
+	}
+	return result.errors.empty() ? ConfigError{} : result.errors[0];
+}
+
+TEST(ConfigLoader, DefaultFileLoadsAsSettingsDefaults)
+{
+	ConfigResult result = loadConfig(defaultConfigPath());
+	for (const ConfigError &e : result.errors)
+		ADD_FAILURE() << e.toString();
+	EXPECT_TRUE(result.ok());
+	EXPECT_EQ(result.settings, Settings{});
+}
+
+TEST(ConfigLoader, DefaultFileShowsEveryKey)
+{
+	Settings settings;
+	TomlBindResult bound = bindToml(readFile(defaultConfigPath()), "depthkey.toml",
+					[&](TomlSection &root) { bindSettings(root, settings); });
+	EXPECT_TRUE(bound.errors.empty());
+	for (const std::string &key : bound.absent)
+		ADD_FAILURE() << "config/depthkey.toml lacks " << key;
+}
+
+TEST(ConfigLoader, EmptyFileGivesDefaults)
+{
+	ConfigResult result = parseConfig("", kFile);
+	EXPECT_TRUE(result.ok());
+	EXPECT_EQ(result.settings, Settings{});
+}
+
+TEST(ConfigLoader, CustomFileSetsEveryField)
+{
+	ConfigResult result = parseConfig(R"(
+[daemon]
+log_level = "debug"
+snapshot_dir = "/var/lib/depthkey/snapshots"
+[colour]
+backend = "sim"
+device = "/dev/v4l/by-id/usb-cam"
+width = 1280
+height = 720
+fps = 30
+[depth]
+backend = "sim"
+fps = 15
+[segmentation]
+near_mm = 800
+far_mm = 2500
+[composite]
+opacity = 1
+board_colour = "#FF8000"
+[output]
+composite_name = "/room12.composite"
+lecturer_name = "/room12.lecturer"
+slots = 5
+group = "video"
+[leds]
+backend = "none"
+[sim]
+seed = 9007199254740993
+)",
+					  kFile);
+	for (const ConfigError &e : result.errors)
+		ADD_FAILURE() << e.toString();
+
+	Settings expected;
+	expected.daemon = { "debug", "/var/lib/depthkey/snapshots" };
+	expected.colour = { "sim", "/dev/v4l/by-id/usb-cam", 1280, 720, 30 };
+	expected.depth = { "sim", 15 };
+	expected.segmentation = { 800, 2500 };
+	expected.composite = { 1.0, 0xff8000 };
+	expected.output = { "/room12.composite", "/room12.lecturer", 5, "video" };
+	expected.leds = { "none" };
+	expected.sim = { 9007199254740993u };
+	EXPECT_EQ(result.settings, expected);
+
+	// Every section the file can change did change (backends and LEDs have
+	// only one allowed value today).
+	const Settings defaults;
+	EXPECT_NE(expected.daemon, defaults.daemon);
+	EXPECT_NE(expected.colour, defaults.colour);
+	EXPECT_NE(expected.depth, defaults.depth);
+	EXPECT_NE(expected.segmentation, defaults.segmentation);
+	EXPECT_NE(expected.composite, defaults.composite);
+	EXPECT_NE(expected.output, defaults.output);
+	EXPECT_NE(expected.sim, defaults.sim);
+}
+
+TEST(ConfigLoader, ErrorFormat)
+{
+	EXPECT_EQ((ConfigError{ "a.toml", 3, 7, "colour.fps", "61 is out of range: 1..60" })
+			  .toString(),
+		  "a.toml:3:7: colour.fps: 61 is out of range: 1..60");
+	EXPECT_EQ((ConfigError{ "a.toml", 2, 5, "", "bad" }).toString(), "a.toml:2:5: bad");
+	EXPECT_EQ((ConfigError{ "a.toml", 0, 0, "", "cannot open" }).toString(),
+		  "a.toml: cannot open");
+}
+
+TEST(ConfigLoader, SyntaxErrorHasItsPosition)
+{
+	ConfigError e = onlyError("[colour]\nwidth = 640\nheight = = 480\n");
+	EXPECT_EQ(e.file, kFile);
+	EXPECT_EQ(e.line, 3);
+	EXPECT_EQ(e.column, 10);
+	EXPECT_EQ(e.key, "");
+	EXPECT_NE(e.message.find("value"), std::string::npos) << e.message;
+}
+
+TEST(ConfigLoader, UnknownKeySuggestsTheNearestOne)
+{
+	EXPECT_EQ(onlyError("[segmentation]\nnear_mm = 600\n  near_nm = 700\n"),
+		  (ConfigError{ kFile, 3, 3, "segmentation.near_nm",
+				"unknown key (did you mean \"near_mm\"?)" }));
+	EXPECT_EQ(onlyError("[sim]\nvolume = 3\n"),
+		  (ConfigError{ kFile, 2, 1, "sim.volume", "unknown key" }));
+	EXPECT_EQ(onlyError("verbose = true\n"),
+		  (ConfigError{ kFile, 1, 1, "verbose", "unknown key" }));
+}
+
+TEST(ConfigLoader, UnknownSection)
+{
+	EXPECT_EQ(onlyError("[daemon]\nlog_level = \"info\"\n\n[segmentaton]\nnear_mm = 600\n"),
+		  (ConfigError{ kFile, 4, 2, "segmentaton",
+				"unknown section (did you mean \"segmentation\"?)" }));
+	EXPECT_EQ(onlyError("[colour.lens]\nzoom = 2\n"),
+		  (ConfigError{ kFile, 1, 9, "colour.lens", "unknown section" }));
+	EXPECT_EQ(onlyError("[[registers]]\naddress = 1\n"),
+		  (ConfigError{ kFile, 1, 3, "registers", "unknown section" }));
+}
+
+TEST(ConfigLoader, WrongType)
+{
+	EXPECT_EQ(onlyError("[colour]\nwidth = \"640\"\n"),
+		  (ConfigError{ kFile, 2, 9, "colour.width", "expected an integer, got a string" }));
+	EXPECT_EQ(onlyError("[segmentation]\nnear_mm = 500.0\n"),
+		  (ConfigError{ kFile, 2, 11, "segmentation.near_mm",
+				"expected an integer, got a floating-point number" }));
+	EXPECT_EQ(onlyError("[composite]\nopacity = \"half\"\n"),
+		  (ConfigError{ kFile, 2, 11, "composite.opacity", "expected a number, got a string" }));
+	EXPECT_EQ(onlyError("[output]\ngroup = 44\n"),
+		  (ConfigError{ kFile, 2, 9, "output.group", "expected a string, got an integer" }));
+	EXPECT_EQ(onlyError("colour = 3\n"),
+		  (ConfigError{ kFile, 1, 10, "colour", "expected a table ([colour]), got an integer" }));
+}
+
+TEST(ConfigLoader, OutOfRange)
+{
+	EXPECT_EQ(onlyError("[colour]\nfps = 61\n"),
+		  (ConfigError{ kFile, 2, 7, "colour.fps", "61 is out of range: 1..60" }));
+	EXPECT_EQ(onlyError("[segmentation]\nnear_mm = 299\n"),
+		  (ConfigError{ kFile, 2, 11, "segmentation.near_mm", "299 is out of range: 300..7500" }));
+	EXPECT_EQ(onlyError("[composite]\nopacity = 1.5\n"),
+		  (ConfigError{ kFile, 2, 11, "composite.opacity", "1.5 is out of range: 0..1" }));
+	EXPECT_EQ(onlyError("[composite]\nopacity = nan\n"),
+		  (ConfigError{ kFile, 2, 11, "composite.opacity", "nan is out of range: 0..1" }));
+	EXPECT_EQ(onlyError("[sim]\nseed = -1\n"),
+		  (ConfigError{ kFile, 2, 8, "sim.seed", "-1 is out of range: must be at least 0" }));
+	EXPECT_EQ(onlyError("[composite]\nboard_colour = 0x1000000\n"),
+		  (ConfigError{ kFile, 2, 16, "composite.board_colour",
+				"16777216 is not a colour: expected 0x000000..0xffffff" }));
+	EXPECT_EQ(onlyError("[composite]\nboard_colour = \"#12345\"\n"),
+		  (ConfigError{ kFile, 2, 16, "composite.board_colour",
+				"\"#12345\" is not a colour: expected \"#rrggbb\"" }));
+}
+
+TEST(ConfigLoader, ValueNotAllowed)
+{
+	EXPECT_EQ(onlyError("[depth]\nbackend = \"sr2\"\n"),
+		  (ConfigError{ kFile, 2, 11, "depth.backend", "\"sr2\" is not one of \"sim\"" }));
+	EXPECT_EQ(onlyError("[daemon]\nlog_level = \"verbose\"\n"),
+		  (ConfigError{ kFile, 2, 13, "daemon.log_level",
+				"\"verbose\" is not one of \"error\" \"warning\" \"info\" \"debug\"" }));
+	EXPECT_EQ(onlyError("[daemon]\nsnapshot_dir = \"snaps\"\n"),
+		  (ConfigError{ kFile, 2, 16, "daemon.snapshot_dir",
+				"\"snaps\" must be an absolute path" }));
+}
+
+TEST(ConfigLoader, NearMustBeLessThanFar)
+{
+	EXPECT_EQ(onlyError("[segmentation]\nnear_mm = 1600\nfar_mm = 1600\n"),
+		  (ConfigError{ kFile, 3, 10, "segmentation.far_mm",
+				"near_mm (1600) must be less than far_mm (1600)" }));
+	// Against the default far_mm (1600): the key that is in the file is blamed.
+	EXPECT_EQ(onlyError("[segmentation]\nnear_mm = 2000\n"),
+		  (ConfigError{ kFile, 2, 11, "segmentation.near_mm",
+				"near_mm (2000) must be less than far_mm (1600)" }));
+	// An invalid value is reported once, not again as a cross-field error.
+	EXPECT_EQ(onlyError("[segmentation]\nnear_mm = 9000\nfar_mm = 400\n").key,
+		  "segmentation.near_mm");
+}
+
+TEST(ConfigLoader, SharedMemoryNames)
+{
+	const char *expected = "must be \"/name\": a leading '/' and no other '/'";
+	EXPECT_EQ(onlyError("[output]\ncomposite_name = \"depthkey\"\n"),
+		  (ConfigError{ kFile, 2, 18, "output.composite_name",
+				"\"depthkey\" " + std::string(expected) }));
+	EXPECT_EQ(onlyError("[output]\nlecturer_name = \"/dk/lecturer\"\n"),
+		  (ConfigError{ kFile, 2, 17, "output.lecturer_name",
+				"\"/dk/lecturer\" " + std::string(expected) }));
+	EXPECT_EQ(onlyError("[output]\nlecturer_name = \"/\"\n").key, "output.lecturer_name");
+	EXPECT_EQ(onlyError("[output]\nlecturer_name = \"/depthkey.composite\"\n"),
+		  (ConfigError{ kFile, 2, 17, "output.lecturer_name",
+				"composite_name and lecturer_name must differ" }));
+	EXPECT_EQ(onlyError("[output]\ngroup = \"video staff\"\n").message,
+		  "\"video staff\" is not a group name");
+}
+
+TEST(ConfigLoader, AllErrorsAreReportedInFileOrder)
+{
+	ConfigResult result = parseConfig(R"([colour]
+width = 8
+fps = "fast"
+[segmentation]
+near_mm = 1200
+far_mm = 1000
+[ouptut]
+slots = 4
+[sim]
+seed = 1.5
+)",
+					  kFile);
+	std::vector<std::pair<int, std::string>> got;
+	for (const ConfigError &e : result.errors)
+		got.emplace_back(e.line, e.key);
+	EXPECT_EQ(got, (std::vector<std::pair<int, std::string>>{
+			       { 2, "colour.width" },
+			       { 3, "colour.fps" },
+			       { 6, "segmentation.far_mm" },
+			       { 7, "ouptut" },
+			       { 10, "sim.seed" },
+		       }));
+	// Valid keys in a file with errors still bind; invalid ones keep defaults.
+	EXPECT_EQ(result.settings.segmentation.nearMm, 1200);
+	EXPECT_EQ(result.settings.colour.width, Settings{}.colour.width);
+}
+
+TEST(ConfigLoader, MissingFileNamesThePath)
+{
+	const std::string path = "/nonexistent/depthkey.toml";
+	ConfigResult result = loadConfig(path);
+	ASSERT_EQ(result.errors.size(), 1u);
+	EXPECT_EQ(result.errors[0].file, path);
+	EXPECT_EQ(result.errors[0].toString(),
+		  path + ": cannot open config file: No such file or directory");
+	EXPECT_EQ(result.settings, Settings{});
+}
+
+TEST(ConfigLoader, DirectoryIsNotAConfigFile)
+{
+	ConfigResult result = loadConfig("/");
+	ASSERT_EQ(result.errors.size(), 1u);
+	EXPECT_EQ(result.errors[0].toString(), "/: cannot read config file: Is a directory");
+}
+
+// The binder's nesting, for the sections still to come (calibration tables,
+// SR-2 register writes as an array of tables).
+struct Register {
+	uint16_t address = 0;
+	uint32_t value = 0;
+};
+
+TEST(ConfigBinder, NestedTablesAndArraysOfTables)
+{
+	int64_t offset = 0;
+	bool enabled = false;
+	std::vector<Register> registers;
+	TomlBindResult bound = bindToml(R"(
+[camera.calibration]
+offset = -12
+[[camera.register]]
+address = 0x10
+value = 0xdeadbeef
+[[camera.register]]
+address = 0x10000
+vaule = 1
+)",
+					kFile, [&](TomlSection &root) {
+		root.table("camera", [&](TomlSection &camera) {
+			camera.table("calibration", [&](TomlSection &cal) {
+				cal.integer("offset", offset, -100, 100);
+				cal.boolean("enabled", enabled);
+			});
+			camera.tables("register", [&](TomlSection &reg, size_t) {
+				Register r;
+				reg.integer("address", r.address, 0, 0xffff);
+				reg.integer("value", r.value, 0, 0xffffffff);
+				registers.push_back(r);
+			});
+		});
+	});
+
+	EXPECT_EQ(offset, -12);
+	ASSERT_EQ(registers.size(), 2u);
+	EXPECT_EQ(registers[0].address, 0x10);
+	EXPECT_EQ(registers[0].value, 0xdeadbeefu);
+	EXPECT_EQ(bound.errors,
+		  (std::vector<ConfigError>{
+			  { kFile, 8, 11, "camera.register[1].address",
+			    "65536 is out of range: 0..65535" },
+			  { kFile, 9, 1, "camera.register[1].vaule",
+			    "unknown key (did you mean \"value\"?)" },
+		  }));
+	EXPECT_EQ(bound.absent, (std::vector<std::string>{ "camera.calibration.enabled",
+							     "camera.register[1].value" }));
+}
+
+} // namespace
+
+} // namespace depthkey
