@@ -123,6 +123,9 @@ struct dk_shm_reader {
 	uint64_t generation;
 	uint32_t width, height, stride, fourcc, slot_count;
 	uint64_t slot_size, data_offset, frame_bytes;
+	/* Copies dropped because the writer overwrote the slot meanwhile: a
+	 * consumer that sees this grow fast copies too slowly for slot_count. */
+	uint64_t torn_copies;
 };
 
 struct dk_shm_frame_info {
@@ -248,7 +251,7 @@ static inline int dk_shm_latest(const struct dk_shm_reader *r, uint64_t *frame)
  * frame written yet), -ENOBUFS (dst_size too small), -EAGAIN (the writer kept
  * overwriting the slot being copied: try again). info may be NULL.
  */
-static inline int dk_shm_read_latest(const struct dk_shm_reader *r, void *dst, size_t dst_size,
+static inline int dk_shm_read_latest(struct dk_shm_reader *r, void *dst, size_t dst_size,
 				     struct dk_shm_frame_info *info)
 {
 	const struct dk_shm_header *h = r->header;
@@ -271,16 +274,20 @@ static inline int dk_shm_read_latest(const struct dk_shm_reader *r, void *dst, s
 		slot = &h->slots[index];
 
 		seq = __atomic_load_n(&slot->sequence, __ATOMIC_ACQUIRE);
-		if (seq & 1)
-			continue; /* lapped: the writer is refilling it already */
+		if (seq & 1) {
+			r->torn_copies++; /* lapped: the writer is refilling it already */
+			continue;
+		}
 		frame = __atomic_load_n(&slot->frame, __ATOMIC_RELAXED);
 		timestamp = __atomic_load_n(&slot->timestamp_ns, __ATOMIC_RELAXED);
 		flags = __atomic_load_n(&slot->flags, __ATOMIC_RELAXED);
 		memcpy(dst, r->base + r->data_offset + index * r->slot_size, (size_t)r->frame_bytes);
 		/* Orders the copy before the re-check (seqlock reader side). */
 		__atomic_thread_fence(__ATOMIC_ACQUIRE);
-		if (__atomic_load_n(&slot->sequence, __ATOMIC_RELAXED) != seq)
+		if (__atomic_load_n(&slot->sequence, __ATOMIC_RELAXED) != seq) {
+			r->torn_copies++;
 			continue;
+		}
 		/* A restart may have changed the geometry under the copy. */
 		if (__atomic_load_n(&h->generation, __ATOMIC_RELAXED) != r->generation)
 			return -ESTALE;

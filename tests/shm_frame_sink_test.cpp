@@ -1,0 +1,142 @@
+// ShmFrameSink: the daemon's output, read back through the C reader.
+#include "hal/depthkey_shm.h"
+#include "hal/shm_frame_sink.hpp"
+#include "tests/shm_test_util.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <vector>
+
+using namespace depthkey;
+using depthkey::test::ShmName;
+
+namespace {
+
+struct SinkNames {
+	ShmName composite;
+	ShmName lecturer;
+	OutputSettings settings() const
+	{
+		OutputSettings s;
+		s.compositeName = composite.str();
+		s.lecturerName = lecturer.str();
+		s.slots = 3;
+		return s;
+	}
+};
+
+RgbImage rgbPattern(int width, int height)
+{
+	RgbImage image(width, height);
+	for (int y = 0; y < height; y++)
+		for (int x = 0; x < width; x++)
+			image.at(x, y) = { uint8_t(x * 5), uint8_t(y * 9), uint8_t(x + y) };
+	return image;
+}
+
+RgbaImage rgbaPattern(int width, int height)
+{
+	RgbaImage image(width, height);
+	for (int y = 0; y < height; y++)
+		for (int x = 0; x < width; x++)
+			image.at(x, y) = { uint8_t(x * 3), uint8_t(y), uint8_t(200 - x), uint8_t(x * y) };
+	return image;
+}
+
+// Reads the newest frame of `name`; returns the bytes or an empty vector.
+std::vector<uint8_t> readLatest(const std::string &name, dk_shm_frame_info *info)
+{
+	dk_shm_reader r;
+	if (dk_shm_open(name.c_str(), &r))
+		return {};
+	std::vector<uint8_t> out(r.frame_bytes);
+	if (dk_shm_read_latest(&r, out.data(), out.size(), info))
+		out.clear();
+	dk_shm_close(&r);
+	return out;
+}
+
+} // namespace
+
+TEST(ShmFrameSink, PublishesBothStreams)
+{
+	SinkNames names;
+	ShmFrameSink sink;
+	ASSERT_EQ(sink.open(names.settings(), 40, 30), 0) << sink.describeError();
+
+	const RgbImage composite = rgbPattern(40, 30);
+	const RgbaImage lecturer = rgbaPattern(40, 30);
+	const uint32_t flags = DK_SHM_FLAG_ONLINE | DK_SHM_FLAG_COLOUR_OK | DK_SHM_FLAG_DEPTH_OK;
+	ASSERT_EQ(sink.publishComposite(composite, 123456789, flags), 0);
+	ASSERT_EQ(sink.publishLecturer(lecturer, 123456789, DK_SHM_FLAG_COLOUR_OK), 0);
+
+	dk_shm_frame_info info{};
+	auto bytes = readLatest(names.composite.str(), &info);
+	ASSERT_EQ(bytes.size(), 40u * 30 * 3);
+	EXPECT_EQ(std::memcmp(bytes.data(), composite.data(), bytes.size()), 0);
+	EXPECT_EQ(info.fourcc, DK_SHM_FORMAT_RGB24);
+	EXPECT_EQ(info.timestamp_ns, 123456789u);
+	EXPECT_EQ(info.flags, flags);
+
+	bytes = readLatest(names.lecturer.str(), &info);
+	ASSERT_EQ(bytes.size(), 40u * 30 * 4);
+	EXPECT_EQ(std::memcmp(bytes.data(), lecturer.data(), bytes.size()), 0);
+	EXPECT_EQ(info.fourcc, DK_SHM_FORMAT_RGBA32);
+	EXPECT_EQ(info.flags, DK_SHM_FLAG_COLOUR_OK);
+	EXPECT_EQ(sink.describeError(), "");
+}
+
+TEST(ShmFrameSink, WrongImageSizeNamesTheStream)
+{
+	SinkNames names;
+	ShmFrameSink sink;
+	EXPECT_EQ(sink.publishComposite(rgbPattern(8, 8), 0, 0), -EBADF);
+	ASSERT_EQ(sink.open(names.settings(), 40, 30), 0);
+	EXPECT_EQ(sink.publishLecturer(rgbaPattern(16, 16), 0, 0), -EINVAL);
+	const std::string message = sink.describeError();
+	EXPECT_NE(message.find(names.lecturer.str()), std::string::npos) << message;
+	EXPECT_NE(message.find("16x16"), std::string::npos) << message;
+}
+
+TEST(ShmFrameSink, FailedOpenNamesTheObject)
+{
+	SinkNames names;
+	ShmFrameSink sink;
+	OutputSettings settings = names.settings();
+	settings.group = "depthkey-no-such-group";
+	EXPECT_EQ(sink.open(settings, 40, 30), -ENOENT);
+	const std::string message = sink.describeError();
+	EXPECT_NE(message.find(names.composite.str()), std::string::npos) << message;
+	EXPECT_NE(message.find("depthkey-no-such-group"), std::string::npos) << message;
+	EXPECT_EQ(sink.publishComposite(rgbPattern(40, 30), 0, 0), -EBADF);
+}
+
+// A config reload may change the resolution: readers see a new generation.
+TEST(ShmFrameSink, ReopenWithNewSize)
+{
+	SinkNames names;
+	ShmFrameSink sink;
+	ASSERT_EQ(sink.open(names.settings(), 40, 30), 0);
+	ASSERT_EQ(sink.publishComposite(rgbPattern(40, 30), 1, 0), 0);
+	dk_shm_reader r;
+	ASSERT_EQ(dk_shm_open(names.composite.c_str(), &r), 0);
+
+	ASSERT_EQ(sink.open(names.settings(), 64, 48), 0) << sink.describeError();
+	std::vector<uint8_t> out(r.frame_bytes);
+	EXPECT_EQ(dk_shm_read_latest(&r, out.data(), out.size(), nullptr), -ESTALE);
+	dk_shm_close(&r);
+
+	const RgbImage bigger = rgbPattern(64, 48);
+	ASSERT_EQ(sink.publishComposite(bigger, 2, 0), 0);
+	dk_shm_frame_info info{};
+	auto bytes = readLatest(names.composite.str(), &info);
+	ASSERT_EQ(bytes.size(), 64u * 48 * 3);
+	EXPECT_EQ(info.width, 64u);
+	EXPECT_EQ(std::memcmp(bytes.data(), bigger.data(), bytes.size()), 0);
+
+	sink.close();
+	bytes = readLatest(names.composite.str(), &info);
+	ASSERT_FALSE(bytes.empty());
+	EXPECT_EQ(info.online, 0u);
+}

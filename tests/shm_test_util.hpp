@@ -1,0 +1,34 @@
+// Helpers for the shared-memory tests: object names that no other test (or
+// concurrent test run) uses, removed again when the test ends.
+#pragma once
+
+#include <atomic>
+#include <string>
+#include <sys/mman.h>
+#include <unistd.h>
+
+namespace depthkey::test {
+
+class ShmName
+{
+public:
+	ShmName()
+	{
+		static std::atomic<int> counter{ 0 };
+		name_ = "/depthkey-test-" + std::to_string(getpid()) + "-" +
+			std::to_string(counter++);
+		shm_unlink(name_.c_str());
+	}
+	~ShmName() { shm_unlink(name_.c_str()); }
+
+	ShmName(const ShmName &) = delete;
+	ShmName &operator=(const ShmName &) = delete;
+
+	const std::string &str() const { return name_; }
+	const char *c_str() const { return name_.c_str(); }
+
+private:
+	std::string name_;
+};
+
+} // namespace depthkey::test
