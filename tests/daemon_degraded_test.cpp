@@ -25,6 +25,14 @@ uint64_t monotonicNs()
 	return static_cast<uint64_t>(ts.tv_sec) * 1000000000u + static_cast<uint64_t>(ts.tv_nsec);
 }
 
+// Daemon::start blocks the signals it handles; give them back to the test binary.
+void unblockSignals()
+{
+	sigset_t set;
+	sigfillset(&set);
+	sigprocmask(SIG_UNBLOCK, &set, nullptr);
+}
+
 struct Harness {
 	FakeCamera<ColourFrame> *colour = nullptr;
 	FakeCamera<DepthFrame> *depth = nullptr;
@@ -129,9 +137,7 @@ TEST(DaemonDegraded, PublishesOfflineFramesWhileACameraIsLostAndRecovers)
 		recoveredPixel = h.sink->composite().at(32, 24);
 	});
 	script.run();
-	sigset_t set;
-	sigfillset(&set);
-	sigprocmask(SIG_UNBLOCK, &set, nullptr);
+	unblockSignals();
 
 	EXPECT_TRUE(onlineFlags & DK_SHM_FLAG_ONLINE);
 	// Frames kept coming while the camera was gone (~10 at 50 fps, after the
@@ -165,9 +171,7 @@ TEST(DaemonDegraded, StaleDepthPublishesColourUnkeyedAndOffline)
 		pixel = h.sink->composite().at(5, 5);
 	});
 	script.run();
-	sigset_t set;
-	sigfillset(&set);
-	sigprocmask(SIG_UNBLOCK, &set, nullptr);
+	unblockSignals();
 	EXPECT_TRUE(flags & DK_SHM_FLAG_COLOUR_OK);
 	EXPECT_FALSE(flags & DK_SHM_FLAG_DEPTH_OK);
 	EXPECT_FALSE(flags & DK_SHM_FLAG_ONLINE);
