@@ -89,7 +89,7 @@ void Sr2Camera::tryOpen()
 	if (phase_ != Phase::Closed)
 		return;
 	std::string detail;
-	int ret = openSr2(usb_.context(), settings_.usbPath, handle_, detail);
+	int ret = openSr2(usb_.context(), settings_.usbPath, handle_, endpoints_, detail);
 	if (ret < 0) {
 		setStatus(DeviceState::Lost, ret, detail);
 		loop_->addTimer(backoff_.nextDelayUs(), [this] { tryOpen(); }, retryTimer_);
@@ -139,7 +139,7 @@ void Sr2Camera::writeRegister(const Sr2RegisterWrite &write)
 {
 	registerBuffer_[0] = static_cast<uint8_t>(write.address);
 	registerBuffer_[1] = static_cast<uint8_t>(write.value);
-	libusb_fill_bulk_transfer(register_, handle_, sr2::kEndpointRegistersOut,
+	libusb_fill_bulk_transfer(register_, handle_, endpoints_.registersOut,
 				  registerBuffer_.data(), 2, transferCallback, this,
 				  settings_.timeoutMs);
 	submit(register_);
@@ -157,7 +157,7 @@ void Sr2Camera::requestFrame()
 
 void Sr2Camera::readFrame()
 {
-	libusb_fill_bulk_transfer(bulk_, handle_, sr2::kEndpointFramesIn, bulkBuffer_.data(),
+	libusb_fill_bulk_transfer(bulk_, handle_, endpoints_.framesIn, bulkBuffer_.data(),
 				  static_cast<int>(bulkBuffer_.size()), transferCallback, this,
 				  settings_.timeoutMs);
 	submit(bulk_);

@@ -9,6 +9,7 @@
 #include "config/settings.hpp"
 #include "hal/camera.hpp"
 #include "hal/reconnect_backoff.hpp"
+#include "hal/sr2/sr2_usb_device.hpp"
 #include "hal/usb/usb_event_bridge.hpp"
 
 #include <deque>
@@ -57,6 +58,7 @@ private:
 
 	UsbEventBridge usb_;
 	libusb_device_handle *handle_ = nullptr;
+	Sr2Endpoints endpoints_;
 	libusb_transfer *control_ = nullptr, *bulk_ = nullptr, *register_ = nullptr;
 	libusb_transfer *inFlight_ = nullptr; // the protocol is strictly one at a time
 	std::vector<uint8_t> controlBuffer_, bulkBuffer_, registerBuffer_;

@@ -35,10 +35,45 @@ std::string idText()
 	return text;
 }
 
+// The wanted endpoint if interface 0 has it, else its first bulk endpoint
+// of the same direction; 0 if there is none.
+uint8_t findBulkEndpoint(const libusb_interface_descriptor &alt, uint8_t wanted)
+{
+	uint8_t fallback = 0;
+	for (int i = 0; i < alt.bNumEndpoints; i++) {
+		const libusb_endpoint_descriptor &ep = alt.endpoint[i];
+		bool bulk = (ep.bmAttributes & LIBUSB_TRANSFER_TYPE_MASK) == LIBUSB_TRANSFER_TYPE_BULK;
+		bool sameDirection = (ep.bEndpointAddress & LIBUSB_ENDPOINT_IN) ==
+				     (wanted & LIBUSB_ENDPOINT_IN);
+		if (ep.bEndpointAddress == wanted && bulk)
+			return wanted;
+		if (bulk && sameDirection && !fallback)
+			fallback = ep.bEndpointAddress;
+	}
+	return fallback;
+}
+
+int findEndpoints(libusb_device *device, Sr2Endpoints &endpoints)
+{
+	libusb_config_descriptor *config = nullptr;
+	int ret = libusb_get_active_config_descriptor(device, &config);
+	if (ret < 0)
+		return usbErrno(ret);
+	endpoints = {};
+	if (config->bNumInterfaces > sr2::kInterface &&
+	    config->interface[sr2::kInterface].num_altsetting > 0) {
+		const libusb_interface_descriptor &alt = config->interface[sr2::kInterface].altsetting[0];
+		endpoints.framesIn = findBulkEndpoint(alt, sr2::kEndpointFramesIn);
+		endpoints.registersOut = findBulkEndpoint(alt, sr2::kEndpointRegistersOut);
+	}
+	libusb_free_config_descriptor(config);
+	return endpoints.framesIn && endpoints.registersOut ? 0 : -ENODEV;
+}
+
 } // namespace
 
 int openSr2(libusb_context *context, const std::string &usbPath,
-	    libusb_device_handle *&handle, std::string &detail)
+	    libusb_device_handle *&handle, Sr2Endpoints &endpoints, std::string &detail)
 {
 	handle = nullptr;
 	libusb_device **list = nullptr;
@@ -62,6 +97,13 @@ int openSr2(libusb_context *context, const std::string &usbPath,
 		handle = nullptr;
 		detail = "cannot open SR-2" + where + ": " + libusb_error_name(ret);
 		return usbErrno(ret);
+	}
+	ret = findEndpoints(libusb_get_device(handle), endpoints);
+	if (ret < 0) {
+		detail = "SR-2" + where + " has no bulk IN and OUT endpoints on interface 0";
+		libusb_close(handle);
+		handle = nullptr;
+		return ret;
 	}
 	libusb_set_auto_detach_kernel_driver(handle, 1);
 	ret = libusb_claim_interface(handle, sr2::kInterface);
