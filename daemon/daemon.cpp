@@ -62,7 +62,7 @@ int Daemon::start(const Settings &settings)
 	loop_.addSignal(SIGUSR1, [this] { writeSnapshot(); }, sigusr1_);
 
 	startedUs_ = statusAtUs_ = loop_.nowUs();
-	pipeline_.configure(settings_.segmentation, settings_.composite);
+	pipeline_.configure(settings_, MappingModel{});
 	underSystemd_ = std::getenv("NOTIFY_SOCKET") != nullptr;
 
 	leds_ = createStatusLeds(settings_);
@@ -306,7 +306,7 @@ void Daemon::apply(const Settings &next)
 	LogLevel level;
 	if (parseLogLevel(next.daemon.logLevel, level))
 		logger().setLevel(level);
-	pipeline_.configure(next.segmentation, next.composite);
+	pipeline_.configure(next, MappingModel{});
 
 	bool sizeChanged = previous.colour.width != next.colour.width ||
 			   previous.colour.height != next.colour.height;
