@@ -1,12 +1,10 @@
 // The depthkey config schema, one function per section, and file loading.
 #include "config/config_loader.hpp"
 
-#include <cerrno>
 #include <cstring>
 #include <limits>
-#include <fcntl.h>
-#include <unistd.h>
 
+#include "config/text_file.hpp"
 #include "config/toml_binder.hpp"
 
 namespace depthkey {
@@ -191,36 +189,15 @@ ConfigResult parseConfig(std::string_view text, const std::string &sourceName)
 
 ConfigResult loadConfig(const std::string &path)
 {
-	ConfigResult result;
-	auto fail = [&](const char *what, int err) {
-		result.errors.push_back({ path, 0, 0, "",
-					  std::string(what) + ": " + std::strerror(err) });
-		return result;
-	};
-
-	// POSIX I/O rather than iostreams: the errno says why (ENOENT, EACCES,
-	// EISDIR), which is what a technician needs to fix it.
-	int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-	if (fd < 0)
-		return fail("cannot open config file", errno);
-
 	std::string text;
-	char buf[4096];
-	for (;;) {
-		ssize_t n = ::read(fd, buf, sizeof(buf));
-		if (n < 0 && errno == EINTR)
-			continue;
-		if (n < 0) {
-			int err = errno;
-			::close(fd);
-			return fail("cannot read config file", err);
-		}
-		if (n == 0)
-			break;
-		text.append(buf, static_cast<size_t>(n));
+	const char *step;
+	if (int ret = readTextFile(path, text, step); ret < 0) {
+		ConfigResult result;
+		result.errors.push_back({ path, 0, 0, "",
+					  std::string("cannot ") + step + " config file: " +
+						  std::strerror(-ret) });
+		return result;
 	}
-	::close(fd);
-
 	return parseConfig(text, path);
 }
 
