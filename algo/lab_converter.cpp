@@ -37,41 +37,42 @@ LabConverter::LabConverter()
 	for (int i = 0; i < 256; ++i) {
 		double c = i / 255.0;
 		double lin = c > 0.04045 ? std::pow((c + 0.055) / 1.055, 2.4) : c / 12.92;
-		linear_[i] = static_cast<int32_t>(std::lround(lin * 65536.0));
+		linear_[i] = static_cast<int32_t>(std::lround(lin * kOne));
 	}
 	for (int i = 0; i <= kCubeRootSteps; ++i)
-		cubeRoot_[i] = static_cast<int32_t>(std::lround(labF(double(i) / kCubeRootSteps) * 65536.0));
+		cubeRoot_[i] = static_cast<int32_t>(std::lround(labF(double(i) / kCubeRootSteps) * kOne));
 }
 
-int32_t LabConverter::cubeRoot(int32_t tQ16) const
+int32_t LabConverter::cubeRoot(int64_t t) const
 {
 	// Slightly above 1.0 can happen by rounding; the table ends at 1.0.
-	if (tQ16 >= 65536)
+	if (t >= kOne)
 		return cubeRoot_[kCubeRootSteps];
-	if (tQ16 < 0)
-		tQ16 = 0;
-	// 65536 / 4096 = 16 input steps per table step.
-	int32_t i = tQ16 >> 4, frac = tQ16 & 15;
-	return cubeRoot_[i] + (((cubeRoot_[i + 1] - cubeRoot_[i]) * frac + 8) >> 4);
+	if (t < 0)
+		t = 0;
+	// 2^24 / 4096 = 4096 input steps per table step.
+	int64_t i = t >> 12, frac = t & 4095;
+	return int32_t(cubeRoot_[i] + (((cubeRoot_[i + 1] - cubeRoot_[i]) * frac + 2048) >> 12));
 }
 
 Lab16 LabConverter::convert(uint8_t r, uint8_t g, uint8_t b) const
 {
-	int32_t lr = linear_[r], lg = linear_[g], lb = linear_[b];
-	// Q16 * Q14 -> Q30, back to Q16 with rounding.
-	int32_t x = (lr * kXr + lg * kXg + lb * kXb + (1 << 13)) >> 14;
-	int32_t y = (lr * kYr + lg * kYg + lb * kYb + (1 << 13)) >> 14;
-	int32_t z = (lr * kZr + lg * kZg + lb * kZb + (1 << 13)) >> 14;
-	int32_t fx = cubeRoot(x), fy = cubeRoot(y), fz = cubeRoot(z);
-	// L = 116 fy - 16, a = 500 (fx - fy), b = 200 (fy - fz), times 100, f in Q16:
-	//   11600 / 65536 = 725 / 4096;  50000 / 65536 = 3125 / 4096;  20000 / 65536 = 625 / 2048.
-	auto roundShift = [](int32_t v, int shift) {
-		return (v + (1 << (shift - 1))) >> shift; // arithmetic shift: floor(v / 2^s + 0.5)
+	int64_t lr = linear_[r], lg = linear_[g], lb = linear_[b];
+	// Q24 * Q14 -> Q38, back to Q24 with rounding (64-bit: table building
+	// and cache misses only, never per pixel).
+	int64_t x = (lr * kXr + lg * kXg + lb * kXb + (1 << 13)) >> 14;
+	int64_t y = (lr * kYr + lg * kYg + lb * kYb + (1 << 13)) >> 14;
+	int64_t z = (lr * kZr + lg * kZg + lb * kZb + (1 << 13)) >> 14;
+	int64_t fx = cubeRoot(x), fy = cubeRoot(y), fz = cubeRoot(z);
+	// L = 116 fy - 16, a = 500 (fx - fy), b = 200 (fy - fz), times 100, f in Q24.
+	auto scaled = [](int64_t f, int64_t factor) {
+		int64_t v = f * factor;
+		return (v + (int64_t(1) << 23)) >> 24; // floor(v / 2^24 + 0.5)
 	};
 	Lab16 out;
-	out.l = static_cast<int16_t>(roundShift(fy * 725, 12) - 1600);
-	out.a = static_cast<int16_t>(roundShift((fx - fy) * 3125, 12));
-	out.b = static_cast<int16_t>(roundShift((fy - fz) * 625, 11));
+	out.l = static_cast<int16_t>(scaled(fy, 11600) - 1600);
+	out.a = static_cast<int16_t>(scaled(fx - fy, 50000));
+	out.b = static_cast<int16_t>(scaled(fy - fz, 20000));
 	return out;
 }
 

@@ -6,12 +6,14 @@
 // Every difference of two Lab16 fits int16 and every squared distance fits
 // int32 (max about 8.6e8).
 //
-// Fixed point, from three tables built once:
-//   sRGB -> linear light, Q16 (0..65536), 256 entries;
+// Fixed point, from tables built once:
+//   sRGB -> linear light, Q24, 256 entries;
 //   linear -> X/Xn, Y/Yn, Z/Zn with the white division folded into Q14
-//   coefficients (each row sums to 1.0, so no overflow: 65536 * 16384 < 2^31);
-//   f(t) = t^(1/3) (t > 0.008856) or 7.787 t + 16/116, Q16, a 4097-entry table
-//   over t in [0, 1] with linear interpolation (worst error 4e-6 near the knee).
+//   coefficients (each row sums to 1.0), 64-bit products;
+//   f(t) = t^(1/3) (t > 0.008856) or 7.787 t + 16/116, Q24, a 4097-entry table
+//   over t in [0, 1] with linear interpolation.
+// Q24 rather than Q16 because a* = 500 (fx - fy) amplifies the error of f
+// 50000-fold in Lab16 units: Q16 left 0.08 a* units in dark colours.
 // Tested against the double formulas for every 3rd code value in each channel:
 // max error stated in tests/lab_converter_test.cpp.
 #pragma once
@@ -37,7 +39,8 @@ public:
 
 private:
 	static constexpr int kCubeRootSteps = 4096;
-	int32_t cubeRoot(int32_t tQ16) const;
+	static constexpr int64_t kOne = int64_t(1) << 24;
+	int32_t cubeRoot(int64_t t) const;
 
 	std::array<int32_t, 256> linear_;
 	std::array<int32_t, kCubeRootSteps + 1> cubeRoot_;
