@@ -101,14 +101,34 @@ void Pipeline::process(const ColourFrame &colour, const DepthFrame &depth, Pipel
 	// lecturer: the output is the depth superset, which never cuts the
 	// lecturer off.
 	refiner_.refine(colour.rgb, trimap_, roi_, classifier_, out.alpha);
-	composite(colour.rgb, out.alpha, board_, opacityQ8_, out.composite);
-	lecturerLayer(colour.rgb, out.alpha, out.lecturer);
+	compose(colour.rgb, out);
 
 	status_.learning = learner_.derivations() == 0;
 	status_.derivations = learner_.derivations();
 	status_.bandPixels = refiner_.bandPixels();
 	status_.lecturerCentroids = classifier_.lecturer().size();
 	status_.boardCentroids = classifier_.board().size();
+}
+
+// Outside the ROI the alpha is 0, so the composite is the board there: only
+// the ROI is blended (the lecturer is a fraction of the frame).
+void Pipeline::compose(const RgbImage &colour, PipelineOutput &out) const
+{
+	const int w = colour.width(), h = colour.height();
+	out.composite.resize(w, h);
+	for (int y = 0; y < h; ++y) {
+		Rgb8 *dst = out.composite.row(y);
+		const Rgb8 *board = board_.row(y);
+		if (roi_.empty() || y < roi_.y0 || y >= roi_.y1) {
+			std::copy(board, board + w, dst);
+			continue;
+		}
+		std::copy(board, board + roi_.x0, dst);
+		compositeRow_C(colour.row(y) + roi_.x0, out.alpha.row(y) + roi_.x0, board + roi_.x0, opacityQ8_,
+				  dst + roi_.x0, roi_.x1 - roi_.x0);
+		std::copy(board + roi_.x1, board + w, dst + roi_.x1);
+	}
+	lecturerLayer(colour, out.alpha, out.lecturer);
 }
 
 void Pipeline::passThrough(const ColourFrame &colour, PipelineOutput &out)

@@ -65,6 +65,7 @@ private:
 	void ensureSizes(int colourWidth, int colourHeight, int depthWidth, int depthHeight);
 	void renderBoard(int width, int height);
 	void restartLearning();
+	void compose(const RgbImage &colour, PipelineOutput &out) const;
 
 	Settings settings_;
 	MappingModel mapping_;
