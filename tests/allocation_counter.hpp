@@ -8,6 +8,8 @@
 namespace depthkey::test {
 
 size_t allocationCount();
+// False in sanitizer builds, where operator new belongs to ASan.
+bool allocationCounting();
 
 class CountAllocations
 {
