@@ -61,7 +61,7 @@ int Daemon::start(const Settings &settings)
 	loop_.addSignal(SIGUSR1, [this] { writeSnapshot(); }, sigusr1_);
 
 	startedUs_ = statusAtUs_ = loop_.nowUs();
-	pipeline_.configure(settings_.segmentation, settings_.composite);
+	configurePipeline();
 	configurePairing();
 	underSystemd_ = std::getenv("NOTIFY_SOCKET") != nullptr;
 
@@ -242,7 +242,7 @@ StatusSummary Daemon::summary() const
 	StatusSummary s;
 	s.colourOk = colour_ && colour_->status().state == DeviceState::Streaming;
 	s.depthOk = depth_ && depth_->status().state == DeviceState::Streaming;
-	s.calibrated = false;
+	s.calibrated = calibrated_ && pipeline_.status().mappingFits;
 	s.error = logger().activeErrorCount() > 0;
 	return s;
 }
@@ -322,7 +322,7 @@ void Daemon::apply(const Settings &next)
 	LogLevel level;
 	if (parseLogLevel(next.daemon.logLevel, level))
 		logger().setLevel(level);
-	pipeline_.configure(next.segmentation, next.composite);
+	configurePipeline();
 	configurePairing();
 
 	bool sizeChanged = previous.colour.width != next.colour.width ||

@@ -56,6 +56,7 @@ private:
 	void startCameras();
 	void stopCameras();
 	void apply(const Settings &settings);
+	void configurePipeline();
 	void publish(uint64_t captureNs, uint32_t flags);
 	void publishNoSignal(uint64_t nowNs);
 	bool depthFresh(uint64_t nowNs) const;
@@ -79,6 +80,8 @@ private:
 	EventSource frameTick_, statusTick_, watchdogTick_;
 
 	Pipeline pipeline_;
+	MappingModel mapping_;     // the last good calibration, or identity
+	bool calibrated_ = false;
 	PipelineOutput output_;
 	FramePairer pairer_;
 	ColourFrame colourLatest_;
