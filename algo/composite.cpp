@@ -1,6 +1,8 @@
 #include "algo/composite.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace depthkey {
 
@@ -17,10 +19,7 @@ void compositeRow_C(const Rgb8 *lecturer, const uint8_t *alpha, const Rgb8 *boar
 		    int opacityQ8, Rgb8 *out, int width)
 {
 	for (int x = 0; x < width; ++x) {
-		// p = o*a <= 256*255 = 65280; round(p/255) without a division:
-		// (p + 128 + ((p + 128) >> 8)) >> 8 is exact for 0 <= p < 65536.
-		unsigned p = static_cast<unsigned>(opacityQ8) * alpha[x] + 128u;
-		unsigned w = (p + (p >> 8)) >> 8;  // 0..256
+		unsigned w = compositeWeight(opacityQ8, alpha[x]); // 0..256
 		unsigned wb = 256u - w;
 		out[x].r = static_cast<uint8_t>((board[x].r * wb + lecturer[x].r * w + 128u) >> 8);
 		out[x].g = static_cast<uint8_t>((board[x].g * wb + lecturer[x].g * w + 128u) >> 8);
@@ -34,20 +33,58 @@ void lecturerLayerRow_C(const Rgb8 *colour, const uint8_t *alpha, Rgba8 *out, in
 		out[x] = { colour[x].r, colour[x].g, colour[x].b, alpha[x] };
 }
 
+void compositeRow(KernelPath path, const Rgb8 *lecturer, const uint8_t *alpha, const Rgb8 *board,
+		  int opacityQ8, Rgb8 *out, int width)
+{
+	if (path == KernelPath::Sse2)
+		compositeRow_SSE2(lecturer, alpha, board, opacityQ8, out, width);
+	else
+		compositeRow_C(lecturer, alpha, board, opacityQ8, out, width);
+}
+
+void lecturerLayerRow(KernelPath path, const Rgb8 *colour, const uint8_t *alpha, Rgba8 *out, int width)
+{
+	if (path == KernelPath::Sse2)
+		lecturerLayerRow_SSE2(colour, alpha, out, width);
+	else
+		lecturerLayerRow_C(colour, alpha, out, width);
+}
+
 void composite(const RgbImage &lecturer, const Gray8Image &alpha, const RgbImage &board,
-	       int opacityQ8, RgbImage &out)
+	       int opacityQ8, RgbImage &out, KernelPath path)
 {
 	out.resize(lecturer.width(), lecturer.height());
 	for (int y = 0; y < lecturer.height(); ++y)
-		compositeRow_C(lecturer.row(y), alpha.row(y), board.row(y), opacityQ8, out.row(y),
-			       lecturer.width());
+		compositeRow(path, lecturer.row(y), alpha.row(y), board.row(y), opacityQ8, out.row(y),
+			     lecturer.width());
 }
 
-void lecturerLayer(const RgbImage &colour, const Gray8Image &alpha, RgbaImage &out)
+void compositeRoi(const RgbImage &lecturer, const Gray8Image &alpha, const RgbImage &board, const Roi &roi,
+		  int opacityQ8, RgbImage &out, KernelPath path)
+{
+	const int w = lecturer.width(), h = lecturer.height();
+	out.resize(w, h);
+	if (w == 0 || h == 0)
+		return;
+	const int y0 = roi.empty() ? h : std::clamp(roi.y0, 0, h), y1 = roi.empty() ? h : std::clamp(roi.y1, y0, h);
+	const int x0 = std::clamp(roi.x0, 0, w), x1 = std::clamp(roi.x1, x0, w);
+	// Rows above and below the ROI are contiguous: one copy each.
+	std::memcpy(out.row(0), board.row(0), size_t(y0) * w * sizeof(Rgb8));
+	std::memcpy(out.row(y1), board.row(y1), size_t(h - y1) * w * sizeof(Rgb8));
+	for (int y = y0; y < y1; ++y) {
+		Rgb8 *dst = out.row(y);
+		const Rgb8 *b = board.row(y);
+		std::memcpy(dst, b, size_t(x0) * sizeof(Rgb8));
+		compositeRow(path, lecturer.row(y) + x0, alpha.row(y) + x0, b + x0, opacityQ8, dst + x0, x1 - x0);
+		std::memcpy(dst + x1, b + x1, size_t(w - x1) * sizeof(Rgb8));
+	}
+}
+
+void lecturerLayer(const RgbImage &colour, const Gray8Image &alpha, RgbaImage &out, KernelPath path)
 {
 	out.resize(colour.width(), colour.height());
 	for (int y = 0; y < colour.height(); ++y)
-		lecturerLayerRow_C(colour.row(y), alpha.row(y), out.row(y), colour.width());
+		lecturerLayerRow(path, colour.row(y), alpha.row(y), out.row(y), colour.width());
 }
 
 } // namespace depthkey

@@ -2,9 +2,15 @@
 //   composite = board * (1 - o*a) + lecturer * (o*a)
 // with o the configured opacity and a the alpha matte (0..255). Fixed point:
 // o is Q8 (256 = opaque), the blend weight w = round(o*a/255) is Q8 too.
+//
+// Row kernels come as a plain C reference (_C) and an SSE2 variant (_SSE2,
+// algo/composite_sse2.cpp) that gives the same bytes for any width and any
+// pointer alignment (tests/composite_test.cpp compares them bit for bit).
 #pragma once
 
 #include "algo/image.hpp"
+#include "algo/kernel_path.hpp"
+#include "algo/trimap.hpp"
 
 #include <cstdint>
 
@@ -13,16 +19,38 @@ namespace depthkey {
 // 0..1 -> 0..256, rounded. Done once per config, not per pixel.
 int opacityToQ8(double opacity);
 
-// Reference row kernel (plain C++). out may alias neither input.
+// Blend weight of one pixel, Q8 (0..256): round(o * a / 255) without a
+// division: with p = o*a + 128 <= 256*255 + 128, (p + (p >> 8)) >> 8 is
+// exact for 0 <= o*a < 65536.
+inline unsigned compositeWeight(int opacityQ8, uint8_t alpha)
+{
+	unsigned p = static_cast<unsigned>(opacityQ8) * alpha + 128u;
+	return (p + (p >> 8)) >> 8;
+}
+
+// out = (board * (256 - w) + lecturer * w + 128) >> 8 per channel.
+// out may alias neither input.
 void compositeRow_C(const Rgb8 *lecturer, const uint8_t *alpha, const Rgb8 *board,
 		    int opacityQ8, Rgb8 *out, int width);
+void compositeRow_SSE2(const Rgb8 *lecturer, const uint8_t *alpha, const Rgb8 *board,
+		       int opacityQ8, Rgb8 *out, int width);
+void compositeRow(KernelPath path, const Rgb8 *lecturer, const uint8_t *alpha, const Rgb8 *board,
+		  int opacityQ8, Rgb8 *out, int width);
 
 // Straight (not premultiplied) alpha, as the recorder's RGBA layer expects.
 void lecturerLayerRow_C(const Rgb8 *colour, const uint8_t *alpha, Rgba8 *out, int width);
+void lecturerLayerRow_SSE2(const Rgb8 *colour, const uint8_t *alpha, Rgba8 *out, int width);
+void lecturerLayerRow(KernelPath path, const Rgb8 *colour, const uint8_t *alpha, Rgba8 *out, int width);
 
 // Whole images; outputs are resized to the colour image's size.
 void composite(const RgbImage &lecturer, const Gray8Image &alpha, const RgbImage &board,
-	       int opacityQ8, RgbImage &out);
-void lecturerLayer(const RgbImage &colour, const Gray8Image &alpha, RgbaImage &out);
+	       int opacityQ8, RgbImage &out, KernelPath path = bestKernelPath());
+// The same where alpha is known to be 0 outside roi: the composite is the
+// board there, so those pixels are copied (memcpy) and only the ROI is
+// blended. An empty roi gives the board.
+void compositeRoi(const RgbImage &lecturer, const Gray8Image &alpha, const RgbImage &board, const Roi &roi,
+		  int opacityQ8, RgbImage &out, KernelPath path = bestKernelPath());
+void lecturerLayer(const RgbImage &colour, const Gray8Image &alpha, RgbaImage &out,
+		   KernelPath path = bestKernelPath());
 
 } // namespace depthkey

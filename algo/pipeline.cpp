@@ -110,25 +110,11 @@ void Pipeline::process(const ColourFrame &colour, const DepthFrame &depth, Pipel
 	status_.boardCentroids = classifier_.board().size();
 }
 
-// Outside the ROI the alpha is 0, so the composite is the board there: only
-// the ROI is blended (the lecturer is a fraction of the frame).
+// Outside the ROI the alpha is 0: only the ROI is blended.
 void Pipeline::compose(const RgbImage &colour, PipelineOutput &out) const
 {
-	const int w = colour.width(), h = colour.height();
-	out.composite.resize(w, h);
-	for (int y = 0; y < h; ++y) {
-		Rgb8 *dst = out.composite.row(y);
-		const Rgb8 *board = board_.row(y);
-		if (roi_.empty() || y < roi_.y0 || y >= roi_.y1) {
-			std::copy(board, board + w, dst);
-			continue;
-		}
-		std::copy(board, board + roi_.x0, dst);
-		compositeRow_C(colour.row(y) + roi_.x0, out.alpha.row(y) + roi_.x0, board + roi_.x0, opacityQ8_,
-				  dst + roi_.x0, roi_.x1 - roi_.x0);
-		std::copy(board + roi_.x1, board + w, dst + roi_.x1);
-	}
-	lecturerLayer(colour, out.alpha, out.lecturer);
+	compositeRoi(colour, out.alpha, board_, roi_, opacityQ8_, out.composite, kernelPath_);
+	lecturerLayer(colour, out.alpha, out.lecturer, kernelPath_);
 }
 
 void Pipeline::passThrough(const ColourFrame &colour, PipelineOutput &out)
@@ -137,7 +123,7 @@ void Pipeline::passThrough(const ColourFrame &colour, PipelineOutput &out)
 	std::fill(out.alpha.data(), out.alpha.data() + out.alpha.size(), uint8_t(255));
 	out.composite.resize(colour.rgb.width(), colour.rgb.height());
 	std::copy(colour.rgb.data(), colour.rgb.data() + colour.rgb.size(), out.composite.data());
-	lecturerLayer(colour.rgb, out.alpha, out.lecturer);
+	lecturerLayer(colour.rgb, out.alpha, out.lecturer, kernelPath_);
 }
 
 } // namespace depthkey

@@ -15,6 +15,7 @@
 #include "algo/depth_mapper.hpp"
 #include "algo/depth_seeder.hpp"
 #include "algo/frames.hpp"
+#include "algo/kernel_path.hpp"
 #include "algo/mapping_model.hpp"
 #include "algo/seed_mapper.hpp"
 #include "algo/siox_classifier.hpp"
@@ -49,6 +50,8 @@ public:
 	// The board source when composite.board_image is set (scaled to the
 	// colour size, nearest neighbour); an empty image = the solid colour.
 	void setBoardImage(const RgbImage &board);
+	// The row kernels to use (algo/kernel_path.hpp); the best by default.
+	void setKernelPath(KernelPath path) { kernelPath_ = path; }
 
 	void process(const ColourFrame &colour, const DepthFrame &depth, PipelineOutput &out);
 
@@ -70,6 +73,7 @@ private:
 	Settings settings_;
 	MappingModel mapping_;
 	int opacityQ8_ = 128;
+	KernelPath kernelPath_ = bestKernelPath();
 
 	QuantisedLabTable lab_;
 	SioxClassifier classifier_;

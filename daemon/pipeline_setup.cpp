@@ -8,6 +8,7 @@
 #include "config/calibration_file.hpp"
 #include "daemon/log.hpp"
 #include "hal/image_file.hpp"
+#include "hal/kernel_path_env.hpp"
 
 namespace depthkey {
 
@@ -66,6 +67,7 @@ void Daemon::configurePipeline()
 			logger().clearError("board_image", "board image loaded", { { "DEVICE", "board_image" } });
 		}
 	}
+	pipeline_.setKernelPath(kernelPathFromEnvironment());
 	pipeline_.setBoardImage(board);
 	pipeline_.configure(settings_, mapping_);
 }

@@ -74,3 +74,107 @@ TEST(Composite, OpacityToQ8ClampsAndRounds)
 	EXPECT_EQ(opacityToQ8(2.0), 256);
 	EXPECT_EQ(opacityToQ8(std::nan("")), 0);
 }
+
+namespace {
+
+// Random rows whose alpha is flat in runs (as a matte is: 0 off the
+// lecturer, 255 on it) with soft values between, so both the SSE2 blocks of
+// one weight and the mixed blocks are exercised.
+struct RandomRows {
+	std::vector<Rgb8> lecturer, board;
+	std::vector<uint8_t> alpha;
+
+	RandomRows(int width, std::mt19937 &rng)
+		: lecturer(width + 1), board(width + 1), alpha(width + 1)
+	{
+		std::uniform_int_distribution<int> byte(0, 255), run(1, 40), kind(0, 3);
+		for (int i = 0; i <= width; ++i) {
+			lecturer[i] = { uint8_t(byte(rng)), uint8_t(byte(rng)), uint8_t(byte(rng)) };
+			board[i] = { uint8_t(byte(rng)), uint8_t(byte(rng)), uint8_t(byte(rng)) };
+		}
+		for (int i = 0; i <= width;) {
+			int n = run(rng), k = kind(rng);
+			uint8_t flat = k == 0 ? 0 : k == 1 ? 255 : uint8_t(byte(rng));
+			for (int j = 0; j < n && i <= width; ++j, ++i)
+				alpha[i] = k == 3 ? uint8_t(byte(rng)) : flat;
+		}
+	}
+};
+
+} // namespace
+
+// The SSE2 rows against the C rows, bit for bit, for every width up to 100
+// and a few long ones, at every pointer offset the byte arrays allow.
+TEST(Composite, Sse2RowsEqualTheCRowsBitForBit)
+{
+	std::mt19937 rng(11);
+	size_t compared = 0;
+	for (int width : { 0, 1, 2, 3, 15, 16, 17, 18, 19, 31, 33, 47, 64, 100, 641, 1919 }) {
+		for (int offset = 0; offset < 2; ++offset) { // offset 1: every pointer off its alignment
+			RandomRows rows(width, rng);
+			const Rgb8 *l = rows.lecturer.data() + offset, *b = rows.board.data() + offset;
+			const uint8_t *a = rows.alpha.data() + offset;
+			for (int opacity : { 0, 77, 128, 256 }) {
+				std::vector<Rgb8> outC(width + 1), outSse(width + 1);
+				compositeRow_C(l, a, b, opacity, outC.data() + offset, width);
+				compositeRow_SSE2(l, a, b, opacity, outSse.data() + offset, width);
+				ASSERT_EQ(outC, outSse) << "composite width " << width << " offset " << offset
+							<< " opacity " << opacity;
+			}
+			std::vector<Rgba8> layerC(width + 1), layerSse(width + 1);
+			lecturerLayerRow_C(l, a, layerC.data() + offset, width);
+			lecturerLayerRow_SSE2(l, a, layerSse.data() + offset, width);
+			ASSERT_EQ(layerC, layerSse) << "lecturer layer width " << width << " offset " << offset;
+			compared += width;
+		}
+	}
+	EXPECT_GT(compared, 5000u);
+}
+
+TEST(Composite, WholeImagesAgreeOnEveryKernelPath)
+{
+	std::mt19937 rng(5);
+	const int w = 97, h = 13;
+	RgbImage lecturer(w, h), board(w, h), outC, outBest;
+	Gray8Image alpha(w, h);
+	for (int y = 0; y < h; ++y) {
+		RandomRows rows(w, rng);
+		std::copy(rows.lecturer.begin(), rows.lecturer.begin() + w, lecturer.row(y));
+		std::copy(rows.board.begin(), rows.board.begin() + w, board.row(y));
+		std::copy(rows.alpha.begin(), rows.alpha.begin() + w, alpha.row(y));
+	}
+	composite(lecturer, alpha, board, 128, outC, KernelPath::C);
+	composite(lecturer, alpha, board, 128, outBest, KernelPath::Sse2);
+	EXPECT_EQ(outC, outBest);
+	RgbaImage layerC, layerBest;
+	lecturerLayer(lecturer, alpha, layerC, KernelPath::C);
+	lecturerLayer(lecturer, alpha, layerBest, KernelPath::Sse2);
+	EXPECT_EQ(layerC, layerBest);
+}
+
+// Where the matte is 0 outside the ROI, blending only the ROI and copying the
+// board elsewhere gives the whole-image composite, on every path; an empty
+// ROI gives the board.
+TEST(Composite, RoiCompositeEqualsTheWholeImageComposite)
+{
+	std::mt19937 rng(3);
+	const int w = 83, h = 21;
+	RgbImage lecturer(w, h), board(w, h), whole, part;
+	Gray8Image alpha(w, h, 0);
+	const Roi roi{ 9, 4, 70, 17 };
+	for (int y = 0; y < h; ++y) {
+		RandomRows rows(w, rng);
+		std::copy(rows.lecturer.begin(), rows.lecturer.begin() + w, lecturer.row(y));
+		std::copy(rows.board.begin(), rows.board.begin() + w, board.row(y));
+		if (y >= roi.y0 && y < roi.y1)
+			std::copy(rows.alpha.begin() + roi.x0, rows.alpha.begin() + roi.x1, alpha.row(y) + roi.x0);
+	}
+	for (KernelPath path : { KernelPath::C, KernelPath::Sse2 }) {
+		composite(lecturer, alpha, board, 200, whole, path);
+		part = RgbImage(w, h, Rgb8{ 1, 2, 3 }); // stale content must all be overwritten
+		compositeRoi(lecturer, alpha, board, roi, 200, part, path);
+		EXPECT_EQ(part, whole);
+		compositeRoi(lecturer, alpha, board, Roi{}, 200, part, path);
+		EXPECT_EQ(part, board);
+	}
+}

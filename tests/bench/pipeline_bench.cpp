@@ -11,6 +11,7 @@
 #include "algo/seed_mapper.hpp"
 #include "algo/siox_refiner.hpp"
 #include "algo/still_siox.hpp"
+#include "hal/kernel_path_env.hpp"
 #include "hal/sim/simple_scene.hpp"
 #include "tests/synthetic_still.hpp"
 
@@ -68,6 +69,7 @@ void BM_PipelineFrame(benchmark::State &state)
 	const Inputs &in = inputs(w, h);
 	auto pipeline = std::make_unique<Pipeline>();
 	pipeline->configure(Settings{}, identity(w, h));
+	pipeline->setKernelPath(kernelPathFromEnvironment());
 	PipelineOutput out;
 	for (int i = 0; i < 30; ++i) // past learning
 		pipeline->process(in.colour[i % kFrames], in.depth[i % kFrames], out);
@@ -140,8 +142,8 @@ void BM_Stage(benchmark::State &state, int stage)
 			s->refiner.refine(rgb, s->trimap, s->roi, s->classifier, s->alpha);
 			break;
 		default:
-			composite(rgb, s->alpha, s->board, 128, s->composite);
-			lecturerLayer(rgb, s->alpha, s->layer);
+			compositeRoi(rgb, s->alpha, s->board, s->roi, 128, s->composite, kernelPathFromEnvironment());
+			lecturerLayer(rgb, s->alpha, s->layer, kernelPathFromEnvironment());
 			break;
 		}
 		++i;
