@@ -33,10 +33,10 @@ void DepthSeeder::seed(const DepthFrame &depth, DepthSeeds &out)
 		t[i] = inRange && trusted ? 255 : 0;
 	}
 
-	erodeSquare(trusted_, settings_.erodePx, subset_, morphology_);
+	erodeSquare(trusted_, settings_.erodePx, subset_, morphology_, path_);
 	out.lecturerPixels = keepLargestComponent(subset_, components_);
-	dilateSquare(subset_, settings_.dilatePx, superset_, morphology_);
-	dilateSquare(subset_, settings_.dilatePx + marginPx_, far_, morphology_);
+	dilateSquare(subset_, settings_.dilatePx, superset_, morphology_, path_);
+	dilateSquare(subset_, settings_.dilatePx + marginPx_, far_, morphology_, path_);
 
 	uint64_t depthSum = 0;
 	const uint8_t *sub = subset_.data(), *sup = superset_.data(), *f = far_.data();

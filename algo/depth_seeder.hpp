@@ -28,6 +28,7 @@ class DepthSeeder
 {
 public:
 	void configure(const SegmentationSettings &segmentation, const LearningSettings &learning);
+	void setKernelPath(KernelPath path) { path_ = path; }
 
 	// A frame whose images differ in size from each other gives no lecturer.
 	void seed(const DepthFrame &depth, DepthSeeds &out);
@@ -35,6 +36,7 @@ public:
 private:
 	SegmentationSettings settings_;
 	int marginPx_ = 2;
+	KernelPath path_ = bestKernelPath();
 	Gray8Image trusted_, subset_, superset_, far_;
 	MorphologyScratch morphology_;
 	ComponentScratch components_;

@@ -1,96 +1,111 @@
 #include "algo/morphology.hpp"
 
+#include "algo/mask_rows.hpp"
+
 #include <algorithm>
+#include <cstring>
 
 namespace depthkey {
 
 namespace {
 
-// One line (row or column, given by a start and a step) through a window of
-// radius r: out = all set (erode) or any set (dilate) in [i - r, i + r],
-// clamped to the line, from prefix counts of set pixels.
-void filterLine(const uint8_t *in, uint8_t *out, int n, int step, int radius, bool erode,
-		std::vector<int32_t> &prefix)
-{
-	prefix[0] = 0;
-	for (int i = 0; i < n; ++i)
-		prefix[i + 1] = prefix[i] + (in[i * step] != 0);
-	for (int i = 0; i < n; ++i) {
-		int a = std::max(0, i - radius), b = std::min(n - 1, i + radius);
-		int set = prefix[b + 1] - prefix[a];
-		bool on = erode ? set == b - a + 1 : set > 0;
-		out[i * step] = on ? 255 : 0;
-	}
-}
-
-void morph(const Gray8Image &in, int radius, Gray8Image &out, MorphologyScratch &scratch, bool erode)
+// Outside the image the edge pixel repeats, so a window clamped to the image
+// and a window over the padded row agree: min / max over the same values.
+void morph(const Gray8Image &in, int radius, Gray8Image &out, MorphologyScratch &scratch, bool erode,
+	   KernelPath path)
 {
 	const int w = in.width(), h = in.height();
 	out.resize(w, h);
+	if (w == 0 || h == 0)
+		return;
 	scratch.pass.resize(w, h);
-	scratch.prefix.resize(std::max(w, h) + 1);
-	for (int y = 0; y < h; ++y)
-		filterLine(in.row(y), scratch.pass.row(y), w, 1, radius, erode, scratch.prefix);
-	for (int x = 0; x < w; ++x)
-		filterLine(scratch.pass.data() + x, out.data() + x, h, w, radius, erode, scratch.prefix);
+	scratch.padded.resize(size_t(w) + 2 * radius);
+	const MaskRowFn combine = maskRow(path, erode);
+	uint8_t *pad = scratch.padded.data();
+	for (int y = 0; y < h; ++y) {
+		const uint8_t *src = in.row(y);
+		for (int x = 0; x < w; ++x)
+			pad[radius + x] = src[x] ? 255 : 0;
+		std::memset(pad, pad[radius], size_t(radius));
+		std::memset(pad + radius + w, pad[radius + w - 1], size_t(radius));
+		uint8_t *dst = scratch.pass.row(y);
+		std::memcpy(dst, pad, size_t(w));
+		for (int k = 1; k <= 2 * radius; ++k)
+			combine(dst, pad + k, w);
+	}
+	for (int y = 0; y < h; ++y) {
+		uint8_t *dst = out.row(y);
+		const int y0 = std::max(0, y - radius), y1 = std::min(h - 1, y + radius);
+		std::memcpy(dst, scratch.pass.row(y0), size_t(w));
+		for (int yy = y0 + 1; yy <= y1; ++yy)
+			combine(dst, scratch.pass.row(yy), w);
+	}
 }
 
 } // namespace
 
-void erodeSquare(const Gray8Image &in, int radius, Gray8Image &out, MorphologyScratch &scratch)
+void erodeSquare(const Gray8Image &in, int radius, Gray8Image &out, MorphologyScratch &scratch, KernelPath path)
 {
-	morph(in, radius, out, scratch, true);
+	morph(in, radius, out, scratch, true, path);
 }
 
-void dilateSquare(const Gray8Image &in, int radius, Gray8Image &out, MorphologyScratch &scratch)
+void dilateSquare(const Gray8Image &in, int radius, Gray8Image &out, MorphologyScratch &scratch, KernelPath path)
 {
-	morph(in, radius, out, scratch, false);
+	morph(in, radius, out, scratch, false, path);
 }
 
+// Labels live in a grid one pixel larger on every side whose border is
+// never set, so the flood visits the 4 neighbours without bounds checks.
 int keepLargestComponent(Gray8Image &mask, ComponentScratch &scratch)
 {
-	const int w = mask.width(), h = mask.height();
-	const int n = w * h;
-	scratch.labels.assign(n, -1);
-	scratch.stack.resize(n);
+	constexpr int32_t kUnset = -2, kUnvisited = -1;
+	const int w = mask.width(), h = mask.height(), stride = w + 2;
+	if (w == 0 || h == 0)
+		return 0;
+	scratch.labels.assign(size_t(stride) * (h + 2), kUnset);
+	scratch.stack.resize(size_t(w) * h);
 	uint8_t *m = mask.data();
 	int32_t *labels = scratch.labels.data();
 	int32_t *stack = scratch.stack.data();
-	int bestLabel = -1, bestSize = 0, label = 0;
-	for (int start = 0; start < n; ++start) {
-		if (!m[start] || labels[start] >= 0)
-			continue;
-		// Each pixel is pushed once (labelled when pushed): n entries suffice.
-		int top = 0, size = 0;
-		labels[start] = label;
-		stack[top++] = start;
-		while (top) {
-			int p = stack[--top];
-			++size;
-			int x = p % w;
-			auto visit = [&](int q) {
-				if (m[q] && labels[q] < 0) {
-					labels[q] = label;
-					stack[top++] = q;
-				}
-			};
-			if (x > 0)
-				visit(p - 1);
-			if (x + 1 < w)
-				visit(p + 1);
-			if (p >= w)
-				visit(p - w);
-			if (p + w < n)
-				visit(p + w);
-		}
-		if (size > bestSize) {
-			bestSize = size;
-			bestLabel = label;
-		}
-		++label;
+	for (int y = 0; y < h; ++y) {
+		const uint8_t *row = m + size_t(y) * w;
+		int32_t *l = labels + size_t(y + 1) * stride + 1;
+		for (int x = 0; x < w; ++x)
+			l[x] = row[x] ? kUnvisited : kUnset;
 	}
-	for (int i = 0; i < n; ++i)
-		m[i] = labels[i] == bestLabel && bestLabel >= 0 ? 255 : 0;
+	int bestLabel = -1, bestSize = 0, label = 0;
+	for (int y = 0; y < h; ++y) {
+		const int rowStart = (y + 1) * stride + 1;
+		for (int start = rowStart; start < rowStart + w; ++start) {
+			if (labels[start] != kUnvisited)
+				continue;
+			// Each pixel is pushed once (labelled when pushed): w * h entries suffice.
+			int top = 0, size = 0;
+			labels[start] = label;
+			stack[top++] = start;
+			while (top) {
+				const int p = stack[--top];
+				++size;
+				for (int q : { p - 1, p + 1, p - stride, p + stride }) {
+					if (labels[q] == kUnvisited) {
+						labels[q] = label;
+						stack[top++] = q;
+					}
+				}
+			}
+			if (size > bestSize) {
+				bestSize = size;
+				bestLabel = label;
+			}
+			++label;
+		}
+	}
+	for (int y = 0; y < h; ++y) {
+		uint8_t *row = m + size_t(y) * w;
+		const int32_t *l = labels + size_t(y + 1) * stride + 1;
+		for (int x = 0; x < w; ++x)
+			row[x] = l[x] == bestLabel && bestLabel >= 0 ? 255 : 0;
+	}
 	return bestSize;
 }
 

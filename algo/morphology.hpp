@@ -1,12 +1,15 @@
 // Binary morphology and connected components on 0 / non-zero masks (results
 // are 0 / 255). Square structuring elements of (2r+1)^2 pixels, computed
-// separably with running counts, so the cost does not grow with the radius.
+// separably: a row is the OR (dilate) or AND (erode) of 2r+1 shifted copies
+// of the padded input row, a column pass the same over 2r+1 whole rows, 16
+// pixels per SSE2 instruction (algo/mask_rows.hpp).
 // Outside the image the nearest edge pixel repeats: a lecturer cut by the
 // frame's edge is not eroded away from it. Scratch buffers are the caller's
 // and grow once; in steady state nothing allocates.
 #pragma once
 
 #include "algo/image.hpp"
+#include "algo/kernel_path.hpp"
 
 #include <cstdint>
 #include <vector>
@@ -15,11 +18,13 @@ namespace depthkey {
 
 struct MorphologyScratch {
 	Gray8Image pass;                 // the horizontal pass's result
-	std::vector<int32_t> prefix;     // running counts of one row or column
+	std::vector<uint8_t> padded;     // one input row, edge pixels repeated r times
 };
 
-void erodeSquare(const Gray8Image &in, int radius, Gray8Image &out, MorphologyScratch &scratch);
-void dilateSquare(const Gray8Image &in, int radius, Gray8Image &out, MorphologyScratch &scratch);
+void erodeSquare(const Gray8Image &in, int radius, Gray8Image &out, MorphologyScratch &scratch,
+		 KernelPath path = bestKernelPath());
+void dilateSquare(const Gray8Image &in, int radius, Gray8Image &out, MorphologyScratch &scratch,
+		  KernelPath path = bestKernelPath());
 
 struct ComponentScratch {
 	std::vector<int32_t> labels;

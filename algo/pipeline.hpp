@@ -51,7 +51,11 @@ public:
 	// colour size, nearest neighbour); an empty image = the solid colour.
 	void setBoardImage(const RgbImage &board);
 	// The row kernels to use (algo/kernel_path.hpp); the best by default.
-	void setKernelPath(KernelPath path) { kernelPath_ = path; }
+	void setKernelPath(KernelPath path)
+	{
+		kernelPath_ = path;
+		seeder_.setKernelPath(path);
+	}
 
 	void process(const ColourFrame &colour, const DepthFrame &depth, PipelineOutput &out);
 

@@ -6,6 +6,7 @@
 #include "algo/depth_mapper.hpp"
 #include "algo/depth_range_keyer.hpp"
 #include "algo/depth_seeder.hpp"
+#include "algo/mask_rows.hpp"
 #include "algo/morphology.hpp"
 #include "algo/pipeline.hpp"
 #include "hal/sim/simple_scene.hpp"
@@ -161,7 +162,8 @@ TEST(Morphology, ErodeAndDilateMatchBruteForce)
 			in.data()[i] = on(rng) ? 255 : 0;
 		for (int r = 0; r <= 5; ++r)
 			for (bool erode : { true, false }) {
-				(erode ? erodeSquare : dilateSquare)(in, r, out, scratch);
+				KernelPath path = trial % 2 ? KernelPath::C : KernelPath::Sse2;
+				(erode ? erodeSquare : dilateSquare)(in, r, out, scratch, path);
 				for (int y = 0; y < in.height(); ++y)
 					for (int x = 0; x < in.width(); ++x) {
 						bool all = true, any = false;
@@ -173,6 +175,29 @@ TEST(Morphology, ErodeAndDilateMatchBruteForce)
 						ASSERT_EQ(out.at(x, y), (erode ? all : any) ? 255 : 0) << r << " " << x << "," << y;
 					}
 			}
+	}
+}
+
+// The SSE2 mask rows against the C rows, bit for bit, for odd widths and
+// unaligned pointers.
+TEST(Morphology, Sse2MaskRowsEqualTheCRows)
+{
+	std::mt19937 rng(4);
+	std::uniform_int_distribution<int> byte(0, 255);
+	for (int width : { 0, 1, 15, 16, 17, 33, 160, 161 }) {
+		for (int offset : { 0, 1, 3 }) {
+			std::vector<uint8_t> acc(width + offset), src(width + offset);
+			for (int i = 0; i < width + offset; ++i) {
+				acc[i] = uint8_t(byte(rng));
+				src[i] = uint8_t(byte(rng));
+			}
+			for (bool erode : { false, true }) {
+				std::vector<uint8_t> c = acc, sse = acc;
+				maskRow(KernelPath::C, erode)(c.data() + offset, src.data() + offset, width);
+				maskRow(KernelPath::Sse2, erode)(sse.data() + offset, src.data() + offset, width);
+				ASSERT_EQ(c, sse) << "width " << width << " offset " << offset << " erode " << erode;
+			}
+		}
 	}
 }
 

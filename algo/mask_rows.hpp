@@ -1,0 +1,22 @@
+// Row kernels of 0 / 255 masks for the morphology: acc = acc | src (dilate)
+// or acc = acc & src (erode), byte by byte. A plain C reference (_C) and
+// SSE2 (16 bytes per instruction, unaligned, tail in C) that give the same
+// bytes (tests/pipeline_test.cpp compares them).
+#pragma once
+
+#include "algo/kernel_path.hpp"
+
+#include <cstdint>
+
+namespace depthkey {
+
+void maskOrRow_C(uint8_t *acc, const uint8_t *src, int width);
+void maskAndRow_C(uint8_t *acc, const uint8_t *src, int width);
+void maskOrRow_SSE2(uint8_t *acc, const uint8_t *src, int width);
+void maskAndRow_SSE2(uint8_t *acc, const uint8_t *src, int width);
+
+// One of the four, chosen once per image.
+using MaskRowFn = void (*)(uint8_t *acc, const uint8_t *src, int width);
+MaskRowFn maskRow(KernelPath path, bool erode);
+
+} // namespace depthkey
