@@ -20,26 +20,30 @@ void maskAndRow_C(uint8_t *acc, const uint8_t *src, int width)
 
 #if defined(__SSE2__)
 
-void maskOrRow_SSE2(uint8_t *acc, const uint8_t *src, int width)
+namespace {
+
+template<typename VectorOp>
+void combineRow(uint8_t *acc, const uint8_t *src, int width, VectorOp op, void (*tail)(uint8_t *, const uint8_t *, int))
 {
 	int x = 0;
 	for (; x + 16 <= width; x += 16) {
 		__m128i *a = reinterpret_cast<__m128i *>(acc + x);
 		__m128i s = _mm_loadu_si128(reinterpret_cast<const __m128i *>(src + x));
-		_mm_storeu_si128(a, _mm_or_si128(_mm_loadu_si128(a), s));
+		_mm_storeu_si128(a, op(_mm_loadu_si128(a), s));
 	}
-	maskOrRow_C(acc + x, src + x, width - x);
+	tail(acc + x, src + x, width - x);
+}
+
+} // namespace
+
+void maskOrRow_SSE2(uint8_t *acc, const uint8_t *src, int width)
+{
+	combineRow(acc, src, width, [](__m128i a, __m128i b) { return _mm_or_si128(a, b); }, maskOrRow_C);
 }
 
 void maskAndRow_SSE2(uint8_t *acc, const uint8_t *src, int width)
 {
-	int x = 0;
-	for (; x + 16 <= width; x += 16) {
-		__m128i *a = reinterpret_cast<__m128i *>(acc + x);
-		__m128i s = _mm_loadu_si128(reinterpret_cast<const __m128i *>(src + x));
-		_mm_storeu_si128(a, _mm_and_si128(_mm_loadu_si128(a), s));
-	}
-	maskAndRow_C(acc + x, src + x, width - x);
+	combineRow(acc, src, width, [](__m128i a, __m128i b) { return _mm_and_si128(a, b); }, maskAndRow_C);
 }
 
 #else
