@@ -11,6 +11,13 @@ void DepthMapper::configure(const MappingModel &model)
 	colourWidth_ = model.colourWidth;
 	colourHeight_ = model.colourHeight;
 	terms_.resize(static_cast<size_t>(tofWidth_) * tofHeight_);
+	if (reciprocal_.empty()) {
+		reciprocal_.resize(65536);
+		reciprocal_[0] = 0; // z = 0 is no measurement; callers never map it
+		reciprocal_[1] = UINT32_MAX;
+		for (uint32_t z = 2; z < 65536; ++z)
+			reciprocal_[z] = uint32_t(((uint64_t(1) << 32) + z / 2) / z);
+	}
 	auto q = [](double v) { return static_cast<int64_t>(std::llround(v)); };
 	for (int v = 0; v < tofHeight_; ++v) {
 		for (int u = 0; u < tofWidth_; ++u) {

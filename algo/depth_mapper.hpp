@@ -5,10 +5,13 @@
 //   s    = S * 256                      (Q8 colour pixels)
 //   tz   = Tz * 256 * 2^16 / 1000       (Q8 px per mm, 16 extra fraction bits)
 //   tinv = Tinv * 1000 * 256            (Q8 px * mm)
-// and map() costs two multiplies and two divisions, in 64-bit integers:
-//   x2 (Q8) = s + (tz * zMm) >> 16 + tinv / zMm.
-// Rounding keeps the result within 1/256 px of the model (tests assert the
-// issue's 0.5 px over the whole image and working range).
+// and map() costs four multiplies and no division, in 64-bit integers:
+//   x2 (Q8) = s + (tz * zMm) >> 16 + (tinv * r(zMm)) >> 32,
+// with r(z) = round(2^32 / z) from a table of every depth (256 KiB, built
+// once), since a 64-bit division costs tens of cycles per axis and pixel.
+// The reciprocal's rounding adds at most |tinv| / 2^33 Q8 units, far below
+// 1/256 px for any real stereo term; the result stays within 1/256 px of the
+// model (tests assert the 0.5 px over the whole image and range).
 #pragma once
 
 #include "algo/mapping_model.hpp"
@@ -30,24 +33,28 @@ public:
 	int colourHeight() const { return colourHeight_; }
 
 	// Colour position of ToF pixel index i (v * tofWidth + u) at depth zMm
-	// (> 0), in Q8 colour pixels.
+	// (> 0, at most 65535), in Q8 colour pixels.
 	void map(int i, int zMm, int32_t &xQ8, int32_t &yQ8) const
 	{
 		const Terms &t = terms_[i];
-		xQ8 = int32_t(t.sx + ((t.tzx * zMm) >> 16) + roundedDivide(t.tinvx, zMm));
-		yQ8 = int32_t(t.sy + ((t.tzy * zMm) >> 16) + roundedDivide(t.tinvy, zMm));
+		const int64_t r = reciprocal_[zMm];
+		xQ8 = int32_t(t.sx + ((t.tzx * zMm) >> 16) + timesReciprocal(t.tinvx, r));
+		yQ8 = int32_t(t.sy + ((t.tzy * zMm) >> 16) + timesReciprocal(t.tinvy, r));
 	}
 
 private:
 	struct Terms {
 		int64_t sx, tzx, tinvx, sy, tzy, tinvy;
 	};
-	static int64_t roundedDivide(int64_t n, int64_t d)
+	// round(n / z) as (n * round(2^32 / z) + 2^31) >> 32, in 128 bits so
+	// that no tinv can overflow.
+	static int64_t timesReciprocal(int64_t n, int64_t r)
 	{
-		return n >= 0 ? (n + d / 2) / d : -((-n + d / 2) / d);
+		return int64_t((static_cast<__int128>(n) * r + (int64_t(1) << 31)) >> 32);
 	}
 
 	std::vector<Terms> terms_;
+	std::vector<uint32_t> reciprocal_;  // round(2^32 / z) for z = 1..65535 (z = 1: 2^32 - 1)
 	int tofWidth_ = 0, tofHeight_ = 0, colourWidth_ = 0, colourHeight_ = 0;
 };
 

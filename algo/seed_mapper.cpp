@@ -51,8 +51,14 @@ void SeedMapper::map(const DepthSeeds &seeds, const Gray16Image &depthMm, Gray8I
 		int y1 = std::min(ch, ((yQ8 - halfH + 128) >> 8) + footprintH_);
 		if (x0 >= x1 || y0 >= y1)
 			continue;
+		// Lecturer is the highest label: max() with it is a plain store,
+		// with no read of what overlapping blocks painted before.
 		for (int y = y0; y < y1; ++y) {
 			uint8_t *row = trimap.row(y);
+			if (label == kTrimapLecturer) {
+				std::memset(row + x0, kTrimapLecturer, size_t(x1 - x0));
+				continue;
+			}
 			for (int x = x0; x < x1; ++x)
 				row[x] = std::max(row[x], label);
 		}

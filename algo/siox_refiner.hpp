@@ -14,6 +14,11 @@
 //   5. soft alpha: band pixels on the final boundary take their colour's
 //      confidence (the distance ratio), kept on the side of the decision so
 //      that thresholding the alpha at 128 gives back the mask.
+//
+// The band is kept as a list of horizontal spans (row, first, last), found
+// once per frame; every later step walks the spans. The working mask has a
+// one-pixel frame of kOutside around the image, so neighbours are read
+// without bounds checks and no pixel index is ever divided back into x, y.
 #pragma once
 
 #include "algo/image.hpp"
@@ -38,9 +43,14 @@ public:
 		    SioxClassifier &classifier, Gray8Image &alpha);
 
 	// The band pixels of the last refine(), for previews and tests.
-	size_t bandPixels() const { return band_.size(); }
+	size_t bandPixels() const { return bandPixels_; }
 
 private:
+	struct Span {
+		int y, x0, x1;   // pixels [x0, x1) of row y
+		int first;       // index of its first pixel in the band arrays
+	};
+
 	void collectAndClassify(const RgbImage &colour, const Gray8Image &trimap, const Roi &roi,
 				SioxClassifier &classifier);
 	void smooth();
@@ -48,10 +58,22 @@ private:
 	void fillHoles();
 	void writeAlpha(const Roi &roi, Gray8Image &alpha) const;
 
+	// Index of image pixel (x, y) in work_.
+	int at(int x, int y) const { return (y + 1) * stride_ + x + 1; }
+	// Calls f(index in work_, index in the band arrays) for every band pixel.
+	template<typename F>
+	void forEachBandPixel(F f) const
+	{
+		for (const Span &s : spans_)
+			for (int x = s.x0, p = at(s.x0, s.y), k = s.first; x < s.x1; ++x, ++p, ++k)
+				f(p, k);
+	}
+
 	SioxSettings settings_;
-	int width_ = 0, height_ = 0;
-	Gray8Image work_;             // seeds as in the trimap, band pixels 0 / 255
-	std::vector<int32_t> band_;   // indices of the band pixels
+	int width_ = 0, height_ = 0, stride_ = 0;
+	Gray8Image work_;             // (w+2) x (h+2): seeds, band pixels 0 / 255, kOutside around
+	std::vector<Span> spans_;
+	size_t bandPixels_ = 0;
 	std::vector<uint8_t> colourConfidence_, next_;
 	std::vector<int32_t> stack_;
 };
