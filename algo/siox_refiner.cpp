@@ -40,6 +40,25 @@ int nextUndecided(const uint8_t *labels, int x, int end)
 	return x;
 }
 
+// Floods from the pixels on the stack through 4-neighbours marked `from`,
+// re-marking them `to`. Every pixel is pushed at most once.
+void flood(uint8_t *m, int stride, int32_t *stack, size_t top, uint8_t from, uint8_t to)
+{
+	while (top) {
+		const int p = stack[--top];
+		auto visit = [&](int q) {
+			if (m[q] == from) {
+				m[q] = to;
+				stack[top++] = q;
+			}
+		};
+		visit(p - 1);
+		visit(p + 1);
+		visit(p - stride);
+		visit(p + stride);
+	}
+}
+
 } // namespace
 
 void SioxRefiner::refine(const RgbImage &colour, const Gray8Image &trimap, const Roi &roi,
@@ -147,15 +166,7 @@ void SioxRefiner::keepComponentsTouchingLecturer()
 			stack_[top++] = p;
 		}
 	});
-	while (top) {
-		const int p = stack_[--top];
-		for (int q : { p - 1, p + 1, p - stride, p + stride }) {
-			if (m[q] == kUnreachedLecturer) {
-				m[q] = 255;
-				stack_[top++] = q;
-			}
-		}
-	}
+	flood(m, stride, stack_.data(), top, kUnreachedLecturer, 255);
 	forEachBandPixel([&](int p, int) {
 		if (m[p] == kUnreachedLecturer)
 			m[p] = 0;
@@ -180,15 +191,7 @@ void SioxRefiner::fillHoles()
 			stack_[top++] = p;
 		}
 	});
-	while (top) {
-		const int p = stack_[--top];
-		for (int q : { p - 1, p + 1, p - stride, p + stride }) {
-			if (m[q] == kUnreachedBoard) {
-				m[q] = 0;
-				stack_[top++] = q;
-			}
-		}
-	}
+	flood(m, stride, stack_.data(), top, kUnreachedBoard, 0);
 	forEachBandPixel([&](int p, int) {
 		if (m[p] == kUnreachedBoard)
 			m[p] = 255;
