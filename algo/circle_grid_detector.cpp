@@ -9,6 +9,8 @@
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include <Eigen/Dense>
+
 namespace depthkey {
 
 namespace {
@@ -64,6 +66,85 @@ int findGrid(const cv::Mat &gray, GridSize grid, double minArea, double scale,
 	return 0;
 }
 
+// Mean distance between neighbouring centres along the rows (step 1) or
+// the columns (step grid.cols).
+double gridSpacing(const std::vector<ImagePoint> &c, GridSize grid, bool columns)
+{
+	int step = columns ? grid.cols : 1;
+	double sum = 0;
+	int n = 0;
+	for (int i = 0; i + step < grid.count(); i++) {
+		if (!columns && (i + 1) % grid.cols == 0)
+			continue;
+		sum += std::hypot(c[i + step].x - c[i].x, c[i + step].y - c[i].y);
+		n++;
+	}
+	return sum / n;
+}
+
+// The blob detector's centres come from threshold contours, which a
+// brightness gradient across a circle (the ToF's vignetting and distance
+// fall-off, uneven room light) pulls towards the darker side: a scale error
+// of a few tenths of a pixel at the image edges. Each centre is refined as
+// the centroid of the circle's darkness below the paper around it, the
+// paper's brightness fitted as a plane to the ring between the circle and
+// its neighbours, so a linear gradient cancels, and the darkness taken
+// relative to that paper.
+template<typename Pixel>
+void refineCentres(const cv::Mat &image, GridSize grid, std::vector<ImagePoint> &centres)
+{
+	// In units of the spacing along each axis (the SR-2's pixels are not
+	// square): the circle (diameter at most 0.6 of the spacing) lies within
+	// kInner, the ring out to kOuter is paper only.
+	constexpr double kInner = 0.36, kOuter = 0.46;
+	double sx = gridSpacing(centres, grid, false), sy = gridSpacing(centres, grid, true);
+	for (ImagePoint &c : centres) {
+		int x0 = std::max(0, static_cast<int>(std::floor(c.x - kOuter * sx)));
+		int x1 = std::min(image.cols - 1, static_cast<int>(std::ceil(c.x + kOuter * sx)));
+		int y0 = std::max(0, static_cast<int>(std::floor(c.y - kOuter * sy)));
+		int y1 = std::min(image.rows - 1, static_cast<int>(std::ceil(c.y + kOuter * sy)));
+		auto radius = [&](double dx, double dy) { return std::hypot(dx / sx, dy / sy); };
+
+		// Plane a + b dx + c dy through the ring's pixels.
+		Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+		Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+		for (int y = y0; y <= y1; y++)
+			for (int x = x0; x <= x1; x++) {
+				double dx = x - c.x, dy = y - c.y, r = radius(dx, dy);
+				if (r < kInner || r > kOuter)
+					continue;
+				Eigen::Vector3d row(1.0, dx, dy);
+				normal += row * row.transpose();
+				rhs += row * static_cast<double>(image.at<Pixel>(y, x));
+			}
+		if (std::abs(normal.determinant()) < 1e-9)
+			continue;
+		Eigen::Vector3d plane = normal.ldlt().solve(rhs);
+
+		double sum = 0, mx = 0, my = 0;
+		for (int y = y0; y <= y1; y++)
+			for (int x = x0; x <= x1; x++) {
+				double dx = x - c.x, dy = y - c.y;
+				if (radius(dx, dy) > kInner)
+					continue;
+				// Relative darkness: ink reflects a fixed share of what
+				// paper would, so the weight is even across the circle
+				// whatever the light falling on it.
+				double paper = plane(0) + plane(1) * dx + plane(2) * dy;
+				if (paper <= 0)
+					continue;
+				double dark = 1.0 - static_cast<double>(image.at<Pixel>(y, x)) / paper;
+				sum += dark;
+				mx += dark * dx;
+				my += dark * dy;
+			}
+		if (sum <= 0)
+			continue;
+		c.x += mx / sum;
+		c.y += my / sum;
+	}
+}
+
 double median(std::vector<double> &values)
 {
 	auto mid = values.begin() + static_cast<long>(values.size() / 2);
@@ -113,7 +194,10 @@ int findColourGrid(const RgbImage &rgb, GridSize grid, std::vector<ImagePoint> &
 	cv::Mat src(rgb.height(), rgb.width(), CV_8UC3, const_cast<Rgb8 *>(rgb.data()));
 	cv::Mat gray;
 	cv::cvtColor(src, gray, cv::COLOR_RGB2GRAY);
-	return findGrid(gray, grid, 12.0, 1.0, centres);
+	if (int ret = findGrid(gray, grid, 12.0, 1.0, centres); ret < 0)
+		return ret;
+	refineCentres<uint8_t>(gray, grid, centres);
+	return 0;
 }
 
 int findAmplitudeGrid(const Gray16Image &amplitude, GridSize grid, std::vector<ImagePoint> &centres)
@@ -122,7 +206,12 @@ int findAmplitudeGrid(const Gray16Image &amplitude, GridSize grid, std::vector<I
 	cv::Mat gray(scaled.height(), scaled.width(), CV_8UC1, scaled.data());
 	// A circle two ToF pixels across is the smallest that still has a centre.
 	constexpr double kMinArea = 3.0 * kAmplitudeScale * kAmplitudeScale;
-	return findGrid(gray, grid, kMinArea, kAmplitudeScale, centres);
+	if (int ret = findGrid(gray, grid, kMinArea, kAmplitudeScale, centres); ret < 0)
+		return ret;
+	// Refined on the measured amplitudes, not the stretched 8-bit copy.
+	cv::Mat raw(amplitude.height(), amplitude.width(), CV_16UC1, const_cast<uint16_t *>(amplitude.data()));
+	refineCentres<uint16_t>(raw, grid, centres);
+	return 0;
 }
 
 double depthAround(const DepthFrame &depth, ImagePoint centre, double radiusPx)
@@ -174,13 +263,7 @@ int pairView(const ColourFrame &colour, const DepthFrame &depth, GridSize grid,
 
 	// Half the distance between neighbouring circles: the disc around a
 	// centre that holds its circle and the paper around it, no other circle.
-	double spacing = 0;
-	for (int r = 0; r < grid.rows; r++)
-		for (int c = 1; c < grid.cols; c++) {
-			const ImagePoint &a = inTof[r * grid.cols + c - 1], &b = inTof[r * grid.cols + c];
-			spacing += std::hypot(b.x - a.x, b.y - a.y);
-		}
-	spacing /= grid.rows * (grid.cols - 1);
+	double spacing = gridSpacing(inTof, grid, false);
 
 	view.points.clear();
 	std::vector<double> depths;
