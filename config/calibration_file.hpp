@@ -12,28 +12,12 @@
 #include <string_view>
 #include <vector>
 
-#include "algo/mapping_model.hpp"
-#include "algo/residual_stats.hpp"
+#include "algo/calibration_fit.hpp"
 #include "config/config_error.hpp"
 
 namespace depthkey {
 
 constexpr int kCalibrationFormat = 1;
-
-// One model's residuals on the views it was fitted on and on the held-out ones.
-struct CalibrationSummary {
-	MappingKind model = MappingKind::Parallax;
-	ResidualStats fit;
-	ResidualStats heldOut;
-};
-
-// One model's residuals at one depth, on the fitted or the held-out views.
-struct CalibrationResidual {
-	MappingKind model = MappingKind::Parallax;
-	bool heldOut = false;
-	double depthM = 0;
-	ResidualStats stats;
-};
 
 struct Calibration {
 	MappingModel mapping;           // kind, image sizes and coefficients

@@ -127,8 +127,36 @@ struct LedSettings {
 	bool operator==(const LedSettings &) const = default;
 };
 
+// The simulated lecture scene and camera pair (backend "sim", depthkey-eval
+// --sim). Every artefact has its own switch so a test can isolate it.
 struct SimSettings {
-	uint64_t seed = 1;
+	uint64_t seed = 1;                  // same seed, same frames
+	// Scene
+	int boardDistanceMm = 2200;         // 1500..2500, board plane from the colour camera
+	double walkSpeedMps = 1.0;          // 0.1..3, lecturer's walking speed
+	bool table = true;                  // a table (with a monitor) at lecturer depth
+	bool boardChanges = true;           // strokes written and erased, slide changes
+	bool lightingChange = true;         // slow variation of the room light
+	double lightingAmplitude = 0.15;    // 0..0.5, relative brightness swing
+	double lightingPeriodS = 23.0;      // 1..600
+	// Colour camera
+	double colourNoise = 3.0;           // 0..30, sensor noise sigma in 8-bit levels; 0 = off
+	double colourJitterMs = 2.0;        // 0..20, frame time jitter (uniform +-)
+	// Both lenses
+	bool distortion = true;             // radial distortion of both lenses; false = pinholes
+	int baselineMm = 60;                // 0..200, ToF optical centre beside the colour camera's
+	// ToF camera
+	bool depthNoise = true;             // sigma = L/sqrt(8) * sqrt(I) / (2A)
+	double tofAmplitude = 6000;         // 500..30000, amplitude of the board at the centre
+	double tofCornerAmplitude = 0.06;   // 0.01..1, amplitude at the corner relative to centre
+	double tofAmbient = 3000;           // 0..30000, background light in the intensity image
+	int haloWidthPx = 4;                // 0..20, scatter halo around the lecturer; 0 = off
+	double haloStrength = 0.5;          // 0..1, share of scattered light at the silhouette
+	int saturationMm = 750;             // 0..2000, nearer saturates (no depth); 0 = off
+	bool motionBlur = true;             // depth of moving parts mixes over the exposure
+	double tofExposureMs = 30.0;        // 1..100, integration time
+	double depthLatencyMs = 40.0;       // 0..300, capture before the depth timestamp
+	double depthJitterMs = 5.0;         // 0..50, depth frame time jitter (uniform +-)
 	bool operator==(const SimSettings &) const = default;
 };
 
