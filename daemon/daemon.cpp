@@ -56,6 +56,10 @@ int Daemon::start(const Settings &settings)
 	ret = EventLoop::blockSignals({ SIGTERM, SIGINT, SIGHUP, SIGUSR1 });
 	if (ret < 0)
 		return ret;
+	// SIGUSR2 keeps its default action (terminate) unless a test armed a fault.
+	testFault_ = testFaultFromEnvironment();
+	if (testFault_ != TestFault::None && EventLoop::blockSignals({ SIGUSR2 }) == 0)
+		loop_.addSignal(SIGUSR2, [this] { injectTestFault(); }, sigusr2_);
 	loop_.addSignal(SIGTERM, [this] { stop(); }, sigterm_);
 	loop_.addSignal(SIGINT, [this] { stop(); }, sigint_);
 	loop_.addSignal(SIGHUP, [this] { reload(); }, sighup_);
@@ -182,6 +186,8 @@ bool Daemon::depthFresh(uint64_t nowNs) const
 
 void Daemon::publish(uint64_t captureNs, uint32_t flags)
 {
+	if (framesStalled_)
+		return;
 	if (!sinkOpen_ && openOutput() < 0)
 		return;
 	int ret = sink_->publishComposite(output_.composite, captureNs, flags);
@@ -250,13 +256,14 @@ void Daemon::onStatusTick()
 		return r;
 	};
 	char text[512];
-	std::snprintf(text, sizeof(text), "colour %s %s %.1f fps; depth %s %s %.1f fps; output %.1f fps",
+	std::snprintf(text, sizeof(text), "colour %s %s %.1f fps; depth %s %s %.1f fps; output %.1f fps; %s",
 		      colour_ ? colour_->name().c_str() : "-",
 		      colour_ ? deviceStateName(colour_->status().state) : "none",
 		      rate(colourFrames_, colourFramesAtStatus_),
 		      depth_ ? depth_->name().c_str() : "-",
 		      depth_ ? deviceStateName(depth_->status().state) : "none",
-		      rate(depthFrames_, depthFramesAtStatus_), rate(published_, publishedAtStatus_));
+		      rate(depthFrames_, depthFramesAtStatus_), rate(published_, publishedAtStatus_),
+		      summary().calibrated ? "calibrated" : "not calibrated (identity mapping)");
 	statusAtUs_ = now;
 	notifier_.status(text);
 	// In a terminal there is no STATUS= to look at: say it every few seconds.
@@ -325,6 +332,19 @@ void Daemon::apply(const Settings &next)
 		leds_->close();
 		leds_ = createStatusLeds(next);
 		leds_->open(loop_, next.leds);
+	}
+}
+
+void Daemon::injectTestFault()
+{
+	if (testFault_ == TestFault::Stall) {
+		logger().warning("TEST FAULT: frames stalled, the watchdog is no longer fed",
+				 { { "TEST_FAULT", "stall" } });
+		framesStalled_ = true;
+	} else if (testFault_ == TestFault::Hang) {
+		logger().warning("TEST FAULT: event loop hanging, the watchdog is no longer fed",
+				 { { "TEST_FAULT", "hang" } });
+		hangForever();
 	}
 }
 
