@@ -1,7 +1,6 @@
 #include "daemon/daemon.hpp"
 
 #include "config/config_loader.hpp"
-#include "daemon/device_factory.hpp"
 #include "daemon/log.hpp"
 #include "daemon/snapshot_writer.hpp"
 #include "algo/no_signal_frame.hpp"
@@ -65,7 +64,7 @@ int Daemon::start(const Settings &settings)
 	pipeline_.configure(settings_.segmentation, settings_.composite);
 	underSystemd_ = std::getenv("NOTIFY_SOCKET") != nullptr;
 
-	leds_ = createStatusLeds(settings_);
+	leds_ = factory_.statusLeds(settings_);
 	if (leds_->open(loop_, settings_.leds) < 0)
 		logger().errorOnce("leds", "status LEDs unavailable, running without them",
 				   { { "DEVICE", "leds" } });
@@ -102,7 +101,7 @@ void Daemon::stop()
 int Daemon::openOutput()
 {
 	if (!sink_)
-		sink_ = createFrameSink(settings_);
+		sink_ = factory_.frameSink(settings_);
 	int ret = sink_->open(settings_.output, settings_.colour.width, settings_.colour.height);
 	sinkOpen_ = ret >= 0;
 	if (ret < 0)
@@ -115,8 +114,8 @@ int Daemon::openOutput()
 
 void Daemon::startCameras()
 {
-	colour_ = createColourCamera(settings_);
-	depth_ = createDepthCamera(settings_);
+	colour_ = factory_.colourCamera(settings_);
+	depth_ = factory_.depthCamera(settings_);
 	std::string colourName = colour_->name(), depthName = depth_->name();
 	int ret = colour_->start(
 		loop_, [this](const ColourFrame &f) { onColourFrame(f); },
@@ -323,7 +322,7 @@ void Daemon::apply(const Settings &next)
 		loop_.addPeriodic(1000000u / next.colour.fps, [this] { onFrameTick(); }, frameTick_);
 	if (!(previous.leds == next.leds)) {
 		leds_->close();
-		leds_ = createStatusLeds(next);
+		leds_ = factory_.statusLeds(next);
 		leds_->open(loop_, next.leds);
 	}
 }

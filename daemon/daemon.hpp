@@ -5,6 +5,7 @@
 
 #include "algo/pipeline.hpp"
 #include "config/settings.hpp"
+#include "daemon/device_factory.hpp"
 #include "daemon/service_notifier.hpp"
 #include "hal/camera.hpp"
 #include "hal/event_loop.hpp"
@@ -25,8 +26,9 @@ struct CommandLineOverrides {
 class Daemon
 {
 public:
-	Daemon(std::string configPath, CommandLineOverrides overrides)
-		: configPath_(std::move(configPath)), overrides_(std::move(overrides)) {}
+	Daemon(std::string configPath, CommandLineOverrides overrides, DeviceFactory factory = {})
+		: configPath_(std::move(configPath)), overrides_(std::move(overrides)),
+		  factory_(std::move(factory)) {}
 	~Daemon();
 
 	// Sets up the loop, signals, devices and output. A negative errno means
@@ -34,6 +36,9 @@ public:
 	// fail here, they are reported and retried.
 	int start(const Settings &settings);
 	int run(); // until SIGTERM/SIGINT; returns the exit status
+
+	// For tests that drive the daemon from its own loop.
+	EventLoop &loop() { return loop_; }
 
 private:
 	void onColourFrame(const ColourFrame &frame);
@@ -57,6 +62,7 @@ private:
 
 	std::string configPath_;
 	CommandLineOverrides overrides_;
+	DeviceFactory factory_;
 	Settings settings_;
 	EventLoop loop_;
 	ServiceNotifier notifier_;
