@@ -6,6 +6,7 @@
 #   make bench      run the Google Benchmark suite (medians)
 #   make deps       install missing Debian 12 packages (idempotent, quiet when all there)
 #   make deb        build the Debian package into build/deb/ (see debian/)
+#   make boot-test  boot the package with systemd in the QEMU VM (in `make test` too)
 #   make install DESTDIR=... PREFIX=...
 #   make clean
 #   make SAN=1 ... build with AddressSanitizer + UndefinedBehaviorSanitizer (in build/san/)
@@ -62,7 +63,7 @@ JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 # Keep tool objects (intermediates of the pattern rule) so nothing rebuilds twice.
 .SECONDARY:
 
-.PHONY: all run test check bench deps deb deb-deps install clean
+.PHONY: all run test check bench deps deb deb-deps package-test boot-test install clean
 .DEFAULT_GOAL := all
 
 all: $(DAEMON) $(TOOLS)
@@ -78,6 +79,9 @@ run: deps
 
 test: deps
 	@$(MAKE) --no-print-directory -j$(JOBS) check
+ifneq ($(SAN),1)
+	@$(MAKE) --no-print-directory package-test
+endif
 
 check: all $(TESTS)
 	@$(TESTS) --gtest_brief=1
@@ -155,6 +159,17 @@ deb: deb-deps
 
 deb-deps:
 	@packaging/install-deps.sh packaging/deb-deps.txt
+
+# The package's tests (in `make test`, not repeated by SAN=1): offline checks
+# of the unit and lintian on the host, then the boot test in the QEMU VM.
+DEB_FILE = build/deb/depthkey_$(VERSION)_$(shell dpkg --print-architecture).deb
+
+package-test: deb
+	@tests/package/offline_checks.sh $(DEB_FILE)
+	@tests/boot/boot_test.sh $(DEB_FILE)
+
+boot-test: deb
+	@tests/boot/boot_test.sh $(DEB_FILE)
 
 clean:
 	rm -rf build

@@ -126,11 +126,15 @@ void Daemon::startCameras()
 		[this, colourName](const DeviceStatus &s) { onDeviceStatus(colourName, s); });
 	if (ret < 0)
 		onDeviceStatus(colourName, { DeviceState::Lost, ret, "cannot start" });
+	else
+		logger().info("colour camera " + colourName + " started", { { "DEVICE", colourName } });
 	ret = depth_->start(
 		loop_, [this](const DepthFrame &f) { onDepthFrame(f); },
 		[this, depthName](const DeviceStatus &s) { onDeviceStatus(depthName, s); });
 	if (ret < 0)
 		onDeviceStatus(depthName, { DeviceState::Lost, ret, "cannot start" });
+	else
+		logger().info("depth camera " + depthName + " started", { { "DEVICE", depthName } });
 }
 
 void Daemon::stopCameras()
