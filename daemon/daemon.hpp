@@ -3,6 +3,7 @@
 // no algorithm; it decides what to run when, and degrades instead of dying.
 #pragma once
 
+#include "algo/frame_pairer.hpp"
 #include "algo/pipeline.hpp"
 #include "config/settings.hpp"
 #include "daemon/device_factory.hpp"
@@ -60,6 +61,7 @@ private:
 	void publish(uint64_t captureNs, uint32_t flags);
 	void publishNoSignal(uint64_t nowNs);
 	bool depthFresh(uint64_t nowNs) const;
+	void configurePairing();
 	StatusSummary summary() const;
 
 	std::string configPath_;
@@ -80,9 +82,8 @@ private:
 
 	Pipeline pipeline_;
 	PipelineOutput output_;
-	DepthFrame depthLatest_;
+	FramePairer pairer_;
 	ColourFrame colourLatest_;
-	bool haveDepth_ = false;
 	bool haveColour_ = false;
 	uint64_t lastColourNs_ = 0;
 	RgbImage noSignal_;
