@@ -42,7 +42,7 @@ check "READY=1 reached (ActiveEnterTimestamp set)" test "${ready_us:-0}" -gt 0
 status=$(prop StatusText)
 echo "  STATUS: $status"
 check "STATUS= names both cameras, fps and calibration" \
-	bash -c '[[ "$1" == *"colour "*" fps; depth "*" fps; output "*" fps; "*calibrat* ]]' _ "$status"
+	bash -c '[[ "$1" == "colour "*" fps"*"; depth "*" fps"*"; output "*" fps"*calibrat* ]]' _ "$status"
 out=$(systemd-analyze verify depthkeyd.service 2>&1)
 check "systemd-analyze verify of the installed unit prints nothing" test -z "$out"
 [ -z "$out" ] || echo "$out"
