@@ -11,11 +11,12 @@ namespace depthkey {
 struct DaemonSettings {
 	std::string logLevel = "info";      // error | warning | info | debug
 	std::string snapshotDir = "";       // where SIGUSR1 stage snapshots go; "" = off
+	std::string recordDir = "";         // record the camera inputs here; "" = off
 	bool operator==(const DaemonSettings &) const = default;
 };
 
 struct ColourCameraSettings {
-	std::string backend = "sim";        // sim
+	std::string backend = "sim";        // sim | replay
 	std::string device = "/dev/video0";
 	int width = 640;                    // 16..1920
 	int height = 480;                   // 16..1080
@@ -24,7 +25,7 @@ struct ColourCameraSettings {
 };
 
 struct DepthCameraSettings {
-	std::string backend = "sim";        // sim
+	std::string backend = "sim";        // sim | replay
 	int fps = 10;                       // 1..60
 	bool operator==(const DepthCameraSettings &) const = default;
 };
@@ -59,7 +60,7 @@ struct LedSettings {
 struct SimSettings {
 	uint64_t seed = 1;                  // same seed, same frames
 	// Scene
-	int boardDistanceMm = 2200;         // 1500..2500, board plane from the colour camera
+	int boardDistanceMm = 2000;         // 1500..2500, board plane from the colour camera
 	double walkSpeedMps = 1.0;          // 0.1..3, lecturer's walking speed
 	bool table = true;                  // a table (with a monitor) at lecturer depth
 	bool boardChanges = true;           // strokes written and erased, slide changes
@@ -75,7 +76,7 @@ struct SimSettings {
 	// ToF camera
 	bool depthNoise = true;             // sigma = L/sqrt(8) * sqrt(I) / (2A)
 	double tofAmplitude = 6000;         // 500..30000, amplitude of the board at the centre
-	double tofCornerAmplitude = 0.06;   // 0.01..1, amplitude at the corner relative to centre
+	double tofCornerAmplitude = 0.045;  // 0.01..1, amplitude at the corner relative to centre
 	double tofAmbient = 3000;           // 0..30000, background light in the intensity image
 	int haloWidthPx = 4;                // 0..20, scatter halo around the lecturer; 0 = off
 	double haloStrength = 0.5;          // 0..1, share of scattered light at the silhouette
@@ -87,6 +88,14 @@ struct SimSettings {
 	bool operator==(const SimSettings &) const = default;
 };
 
+// The "replay" backend: a recorded sequence folder played back.
+struct ReplaySettings {
+	std::string path = "";              // absolute folder; required by a "replay" backend
+	bool realtime = true;               // false: as fast as the daemon takes frames
+	bool loop = true;                   // start again at the end
+	bool operator==(const ReplaySettings &) const = default;
+};
+
 struct Settings {
 	DaemonSettings daemon;
 	ColourCameraSettings colour;
@@ -96,6 +105,7 @@ struct Settings {
 	OutputSettings output;
 	LedSettings leds;
 	SimSettings sim;
+	ReplaySettings replay;
 	bool operator==(const Settings &) const = default;
 };
 
