@@ -1,7 +1,9 @@
 #include "daemon/daemon.hpp"
 
 #include "config/config_loader.hpp"
+#include "algo/pipeline_stages.hpp"
 #include "daemon/device_factory.hpp"
+#include "daemon/pipeline_setup.hpp"
 #include "daemon/log.hpp"
 #include "daemon/snapshot_writer.hpp"
 #include "algo/no_signal_frame.hpp"
@@ -24,6 +26,9 @@ constexpr uint64_t kColourStalePeriods = 3;
 // that systemd's start job does not hang on a box with a camera unplugged.
 constexpr uint64_t kDegradedReadyUs = 5'000'000;
 constexpr uint64_t kTerminalStatusEvery = 5; // status ticks (seconds)
+// --preview: stage images of this many keyed frames, this many frames apart.
+constexpr int kPreviewCount = 3;
+constexpr uint64_t kPreviewEveryFrames = 50;
 
 } // namespace
 
@@ -31,10 +36,13 @@ void CommandLineOverrides::applyTo(Settings &settings) const
 {
 	if (!snapshotDir.empty())
 		settings.daemon.snapshotDir = snapshotDir;
+	if (!recordDir.empty())
+		settings.daemon.recordDir = recordDir;
 }
 
 Daemon::~Daemon()
 {
+	recorder_.stop();
 	stopCameras();
 	if (sink_)
 		sink_->close();
@@ -62,7 +70,7 @@ int Daemon::start(const Settings &settings)
 	loop_.addSignal(SIGUSR1, [this] { writeSnapshot(); }, sigusr1_);
 
 	startedUs_ = statusAtUs_ = loop_.nowUs();
-	pipeline_.configure(settings_.segmentation, settings_.composite);
+	configurePipeline(pipeline_, settings_);
 	underSystemd_ = std::getenv("NOTIFY_SOCKET") != nullptr;
 
 	leds_ = createStatusLeds(settings_);
@@ -71,6 +79,7 @@ int Daemon::start(const Settings &settings)
 				   { { "DEVICE", "leds" } });
 
 	openOutput();
+	updateRecording();
 	startCameras();
 
 	loop_.addPeriodic(1000000u / settings_.colour.fps, [this] { onFrameTick(); }, frameTick_);
@@ -87,6 +96,7 @@ int Daemon::run()
 	int ret = loop_.run();
 	notifier_.stopping();
 	stopCameras();
+	recorder_.stop();
 	if (sink_)
 		sink_->close();
 	logger().info("depthkeyd stopped");
@@ -154,6 +164,7 @@ void Daemon::onDepthFrame(const DepthFrame &frame)
 {
 	depthLatest_ = frame; // same-size copy: no allocation after the first
 	haveDepth_ = true;
+	recorder_.recordDepth(frame);
 	depthFrames_++;
 }
 
@@ -161,6 +172,7 @@ void Daemon::onColourFrame(const ColourFrame &frame)
 {
 	colourFrames_++;
 	haveColour_ = true;
+	recorder_.recordColour(frame);
 	lastColourNs_ = frame.timestampNs;
 	uint32_t flags = DK_SHM_FLAG_COLOUR_OK;
 	if (haveDepth_ && depthFresh(frame.timestampNs)) {
@@ -169,8 +181,10 @@ void Daemon::onColourFrame(const ColourFrame &frame)
 	} else {
 		pipeline_.passThrough(frame, output_);
 	}
-	if (settings_.daemon.snapshotDir.size())
+	if (settings_.daemon.snapshotDir.size() || overrides_.previewDir.size())
 		colourLatest_ = frame; // kept only for snapshots
+	if (flags & DK_SHM_FLAG_ONLINE)
+		maybeWritePreview(colourFrames_);
 	publish(frame.timestampNs, flags);
 }
 
@@ -259,6 +273,7 @@ void Daemon::onStatusTick()
 		      rate(depthFrames_, depthFramesAtStatus_), rate(published_, publishedAtStatus_));
 	statusAtUs_ = now;
 	notifier_.status(text);
+	checkRecording();
 	// In a terminal there is no STATUS= to look at: say it every few seconds.
 	if (!underSystemd_ && ++statusTicks_ % kTerminalStatusEvery == 0)
 		logger().info(text);
@@ -306,7 +321,9 @@ void Daemon::apply(const Settings &next)
 	LogLevel level;
 	if (parseLogLevel(next.daemon.logLevel, level))
 		logger().setLevel(level);
-	pipeline_.configure(next.segmentation, next.composite);
+	configurePipeline(pipeline_, next);
+	if (previous.daemon.recordDir != next.daemon.recordDir)
+		updateRecording();
 
 	bool sizeChanged = previous.colour.width != next.colour.width ||
 			   previous.colour.height != next.colour.height;
@@ -328,6 +345,17 @@ void Daemon::apply(const Settings &next)
 	}
 }
 
+int Daemon::writeStages(const std::string &dir, const std::string &prefix)
+{
+	StageImages stages;
+	collectPipelineStages(colourLatest_, depthLatest_, output_, stages);
+	std::string error;
+	int ret = writeStageImages(dir, prefix, stages, error);
+	if (ret < 0)
+		logger().error("stage images failed: " + error, { { "SNAPSHOT_DIR", dir } });
+	return ret;
+}
+
 void Daemon::writeSnapshot()
 {
 	const std::string &dir = settings_.daemon.snapshotDir;
@@ -335,12 +363,57 @@ void Daemon::writeSnapshot()
 		logger().warning("snapshot requested but daemon.snapshot_dir is not set");
 		return;
 	}
-	SnapshotImages images{ colourLatest_.rgb, depthLatest_.depthMm, output_.alpha, output_.composite };
-	std::string error;
-	if (writeSnapshotImages(dir, images, error) < 0)
-		logger().error("snapshot failed: " + error, { { "SNAPSHOT_DIR", dir } });
-	else
+	if (writeStages(dir, "") >= 0)
 		logger().info("snapshot written to " + dir, { { "SNAPSHOT_DIR", dir } });
+}
+
+// --preview: the first keyed frame and a few more, 2 s apart, each as
+// frameNNNNNN-<stage>.png, so a technician sees the stages without a signal.
+void Daemon::maybeWritePreview(uint64_t frameNumber)
+{
+	if (overrides_.previewDir.empty() || previewsWritten_ >= kPreviewCount)
+		return;
+	if (previewsWritten_ > 0 && frameNumber < lastPreviewFrame_ + kPreviewEveryFrames)
+		return;
+	// The stages are those of this frame: process() has run, publish() not yet.
+	char prefix[32];
+	std::snprintf(prefix, sizeof(prefix), "frame%06llu-", static_cast<unsigned long long>(frameNumber));
+	previewsWritten_++;
+	lastPreviewFrame_ = frameNumber;
+	if (writeStages(overrides_.previewDir, prefix) >= 0)
+		logger().info(std::string("stage preview written: ") + overrides_.previewDir + "/" + prefix + "*.png",
+			      { { "SNAPSHOT_DIR", overrides_.previewDir } });
+}
+
+void Daemon::updateRecording()
+{
+	recorder_.stop();
+	const std::string &dir = settings_.daemon.recordDir;
+	if (dir.empty())
+		return;
+	std::string error;
+	int ret = recorder_.start(dir, error);
+	if (ret < 0)
+		logger().errorOnce("record", "cannot record: " + error,
+				   { { "DEVICE", "recorder" }, { "ERROR", errnoText(ret) } });
+	else
+		logger().info("recording camera frames to " + dir, { { "RECORD_DIR", dir } });
+}
+
+// On the status tick: the worker's write errors and dropped frames.
+void Daemon::checkRecording()
+{
+	if (!recorder_.running())
+		return;
+	std::string error = recorder_.takeError();
+	if (!error.empty())
+		logger().errorOnce("record", "recording: " + error, { { "DEVICE", "recorder" } });
+	uint64_t dropped = recorder_.dropped();
+	if (dropped > recorderDropsLogged_) {
+		logger().warning("recording fell behind: " + std::to_string(dropped) + " frames dropped so far",
+				 { { "DEVICE", "recorder" } });
+		recorderDropsLogged_ = dropped;
+	}
 }
 
 } // namespace depthkey

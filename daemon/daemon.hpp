@@ -5,6 +5,7 @@
 
 #include "algo/pipeline.hpp"
 #include "config/settings.hpp"
+#include "daemon/frame_recorder.hpp"
 #include "daemon/service_notifier.hpp"
 #include "hal/camera.hpp"
 #include "hal/event_loop.hpp"
@@ -19,6 +20,8 @@ namespace depthkey {
 // Command-line options that win over the config file, on start and reload.
 struct CommandLineOverrides {
 	std::string snapshotDir;
+	std::string recordDir;   // --record DIR
+	std::string previewDir;  // --preview DIR: stage images of a few frames
 	void applyTo(Settings &settings) const;
 };
 
@@ -44,6 +47,10 @@ private:
 	void onWatchdogTick();
 	void reload();
 	void writeSnapshot();
+	int writeStages(const std::string &dir, const std::string &prefix);
+	void maybeWritePreview(uint64_t frameNumber);
+	void updateRecording();
+	void checkRecording();
 	void stop();
 
 	int openOutput();
@@ -69,6 +76,11 @@ private:
 
 	EventSource sigterm_, sigint_, sighup_, sigusr1_;
 	EventSource frameTick_, statusTick_, watchdogTick_;
+
+	FrameRecorder recorder_;
+	uint64_t recorderDropsLogged_ = 0;
+	int previewsWritten_ = 0;
+	uint64_t lastPreviewFrame_ = 0;
 
 	Pipeline pipeline_;
 	PipelineOutput output_;

@@ -20,13 +20,15 @@ constexpr const char *kSystemConfig = "/etc/depthkey/depthkey.toml";
 void usage(FILE *out)
 {
 	std::fprintf(out,
-		     "usage: depthkeyd [--config FILE] [--snapshot-dir DIR]\n"
+		     "usage: depthkeyd [--config FILE] [--snapshot-dir DIR] [--record DIR] [--preview DIR]\n"
 		     "       depthkeyd --check-config FILE\n"
 		     "       depthkeyd --version\n"
 		     "\n"
 		     "Without --config: %s, or config/depthkey.toml of the source tree\n"
 		     "when run from build/bin/. Signals: SIGHUP re-reads the config,\n"
-		     "SIGUSR1 writes stage snapshots, SIGTERM/SIGINT stop.\n",
+		     "SIGUSR1 writes stage snapshots, SIGTERM/SIGINT stop.\n"
+		     "--record DIR records the camera frames (see the README's format);\n"
+		     "--preview DIR writes stage images of the first few keyed frames.\n",
 		     kSystemConfig);
 }
 
@@ -86,6 +88,10 @@ int main(int argc, char **argv)
 			configPath = argv[++i];
 		} else if (arg == "--snapshot-dir" && i + 1 < argc) {
 			overrides.snapshotDir = argv[++i];
+		} else if (arg == "--record" && i + 1 < argc) {
+			overrides.recordDir = argv[++i];
+		} else if (arg == "--preview" && i + 1 < argc) {
+			overrides.previewDir = argv[++i];
 		} else {
 			std::fprintf(stderr, "depthkeyd: unknown or incomplete argument '%s'\n", arg.c_str());
 			usage(stderr);
