@@ -5,6 +5,7 @@
 #include <cstring>
 #include <limits>
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "config/toml_binder.hpp"
@@ -177,6 +178,25 @@ void bindSettings(TomlSection &root, Settings &s)
 	root.table("sim", [&](TomlSection &sec) { bindSim(sec, s.sim); });
 	bool replayUsed = s.colour.backend == "replay" || s.depth.backend == "replay";
 	root.table("replay", [&](TomlSection &sec) { bindReplay(sec, s.replay, replayUsed); });
+}
+
+std::string findDefaultConfig()
+{
+	constexpr const char *kSystemConfig = "/etc/depthkey/depthkey.toml";
+	struct stat st;
+	auto exists = [&st](const std::string &path) { return stat(path.c_str(), &st) == 0; };
+	if (exists(kSystemConfig))
+		return kSystemConfig;
+	char buf[4096];
+	ssize_t n = readlink("/proc/self/exe", buf, sizeof(buf) - 1);
+	if (n > 0) {
+		std::string exe(buf, static_cast<size_t>(n));
+		std::string dir = exe.substr(0, exe.rfind('/'));
+		for (const char *up : { "/../../config/depthkey.toml", "/../../../config/depthkey.toml" })
+			if (exists(dir + up))
+				return dir + up;
+	}
+	return kSystemConfig;
 }
 
 ConfigResult parseConfig(std::string_view text, const std::string &sourceName)

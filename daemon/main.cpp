@@ -15,8 +15,6 @@ using namespace depthkey;
 
 namespace {
 
-constexpr const char *kSystemConfig = "/etc/depthkey/depthkey.toml";
-
 void usage(FILE *out)
 {
 	std::fprintf(out,
@@ -29,32 +27,7 @@ void usage(FILE *out)
 		     "SIGUSR1 writes stage snapshots, SIGTERM/SIGINT stop.\n"
 		     "--record DIR records the camera frames (see the README's format);\n"
 		     "--preview DIR writes stage images of the first few keyed frames.\n",
-		     kSystemConfig);
-}
-
-bool fileExists(const std::string &path)
-{
-	struct stat st;
-	return stat(path.c_str(), &st) == 0;
-}
-
-// /etc first (an installed box); else the tree this binary was built in.
-std::string defaultConfigPath()
-{
-	if (fileExists(kSystemConfig))
-		return kSystemConfig;
-	char buf[4096];
-	ssize_t n = readlink("/proc/self/exe", buf, sizeof(buf) - 1);
-	if (n > 0) {
-		std::string exe(buf, static_cast<size_t>(n));
-		std::string dir = exe.substr(0, exe.rfind('/'));
-		for (const char *up : { "/../../config/depthkey.toml", "/../../../config/depthkey.toml" }) {
-			std::string candidate = dir + up;
-			if (fileExists(candidate))
-				return candidate;
-		}
-	}
-	return kSystemConfig;
+		     "/etc/depthkey/depthkey.toml");
 }
 
 int checkConfig(const std::string &path)
@@ -99,7 +72,7 @@ int main(int argc, char **argv)
 		}
 	}
 	if (configPath.empty())
-		configPath = defaultConfigPath();
+		configPath = findDefaultConfig();
 
 	ConfigResult config = loadConfig(configPath);
 	if (!config.ok()) {
