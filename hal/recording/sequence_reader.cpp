@@ -6,6 +6,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
+#include <unistd.h>
 
 namespace depthkey {
 
@@ -117,6 +118,12 @@ int SequenceReader::readImage(Stream stream, size_t i, Image<Pixel> &out)
 		return -ERANGE;
 	}
 	std::string path = dir_ + "/" + index[i].file;
+	// Checked first: OpenCV would only log a warning of its own.
+	if (access(path.c_str(), R_OK) < 0) {
+		int err = errno;
+		error_ = path + ": cannot open: " + std::strerror(err);
+		return -err;
+	}
 	cv::Mat mat;
 	try {
 		mat = cv::imread(path, cv::IMREAD_UNCHANGED);

@@ -63,6 +63,14 @@ void LectureSimulator::setCalibrationTarget(const std::optional<sim::Calibration
 	colourReady_ = depthReady_ = false;
 }
 
+void LectureSimulator::poseLecturer(double timeS, std::vector<sim::Capsule> &out) const
+{
+	if (target_ || !lecturerVisible_)
+		out.clear();
+	else
+		sim::poseLecturer(script_, look_, timeS, out);
+}
+
 void LectureSimulator::ensureColourGrid()
 {
 	if (colourReady_)
@@ -131,10 +139,7 @@ void LectureSimulator::renderColour(double timeS, ColourFrame &out, GroundTruth 
 {
 	ensureColourGrid();
 	ensureBoard(timeS);
-	if (target_)
-		capsules_.clear();
-	else
-		sim::poseLecturer(script_, look_, timeS, capsules_);
+	poseLecturer(timeS, capsules_);
 	colourGrid_.drawCapsules(capsules_);
 
 	const int w = colourWidth_, h = colourHeight_;
@@ -215,10 +220,7 @@ void LectureSimulator::renderDepth(double timeS, DepthFrame &out)
 	const auto &lecRefl = depthGrid_.lecturerReflectivity();
 	for (int ti = 0; ti < times; ++ti) {
 		double t = times == 1 ? timeS : timeS + exposure * (ti / (times - 1.0) - 0.5);
-		if (target_)
-			capsules_.clear();
-		else
-			sim::poseLecturer(script_, look_, t, capsules_);
+		poseLecturer(t, capsules_);
 		depthGrid_.drawCapsules(capsules_);
 		for (int j = 0; j < depthGrid_.height(); ++j)
 			for (int i = 0; i < sw; ++i) {

@@ -52,6 +52,12 @@ public:
 	// target stands at its pose in front of the board, seen by both cameras
 	// (colour picture and ToF amplitude); nullopt brings the lecture back.
 	void setCalibrationTarget(const std::optional<sim::CalibrationTarget> &target);
+	// An empty room (the board, the desk), e.g. to measure the ToF's noise.
+	void setLecturerVisible(bool visible) { lecturerVisible_ = visible; }
+
+	// The lecturer's capsules at timeS (colour frame), for tests and tools.
+	void poseLecturer(double timeS, std::vector<sim::Capsule> &out) const;
+	const sim::LectureScript &script() const { return script_; }
 
 private:
 	void ensureColourGrid();
@@ -67,6 +73,7 @@ private:
 	std::optional<sim::CalibrationTarget> target_;
 	sim::RayGrid colourGrid_, depthGrid_;
 	bool colourReady_ = false, depthReady_ = false;
+	bool lecturerVisible_ = true;
 	std::vector<sim::Capsule> capsules_;
 	std::vector<sim::BoardTexel> board_;
 	uint64_t boardCycle_ = ~0ull;

@@ -41,6 +41,13 @@ void RayGrid::configure(const LensModel &lens, int samplesPerPixel, const Eigen:
 	dirtyY1_ = height_;
 
 	const int columns = BoardGeometry::texelColumns(), rows = BoardGeometry::texelRows();
+	struct Prepared {
+		Eigen::Vector3d normal, toOrigin, u, v; // u, v: edges over their squared length
+	};
+	std::vector<Prepared> prepared;
+	for (const Quad &q : scene.quads)
+		prepared.push_back({ q.edgeU.cross(q.edgeV), q.origin - cameraOrigin, q.edgeU / q.edgeU.squaredNorm(),
+				     q.edgeV / q.edgeV.squaredNorm() });
 	for (int j = 0; j < height_; ++j)
 		for (int i = 0; i < width_; ++i) {
 			size_t k = static_cast<size_t>(j) * width_ + i;
@@ -52,17 +59,18 @@ void RayGrid::configure(const LensModel &lens, int samplesPerPixel, const Eigen:
 			rayZ_[k] = static_cast<float>(ray.z());
 			Eigen::Vector3d dir = cameraRotation * ray;
 			double best = std::numeric_limits<double>::max();
-			for (const Quad &q : scene.quads) {
-				Eigen::Vector3d normal = q.edgeU.cross(q.edgeV);
-				double denom = normal.dot(dir);
+			for (size_t qi = 0; qi < scene.quads.size(); ++qi) {
+				const Quad &q = scene.quads[qi];
+				const Prepared &p = prepared[qi];
+				double denom = p.normal.dot(dir);
 				if (std::fabs(denom) < 1e-12)
 					continue;
-				double t = normal.dot(q.origin - cameraOrigin) / denom;
+				double t = p.normal.dot(p.toOrigin) / denom;
 				if (t <= 0 || t >= best)
 					continue;
-				Eigen::Vector3d rel = cameraOrigin + dir * t - q.origin;
-				double s = rel.dot(q.edgeU) / q.edgeU.squaredNorm();
-				double u = rel.dot(q.edgeV) / q.edgeV.squaredNorm();
+				Eigen::Vector3d rel = dir * t - p.toOrigin;
+				double s = rel.dot(p.u);
+				double u = rel.dot(p.v);
 				if (s < 0 || s > 1 || u < 0 || u > 1)
 					continue;
 				best = t;
