@@ -85,7 +85,7 @@ void LectureScript::walkTo(double x, double z)
 	double distance = std::hypot(x - last.x1, z - last.z1);
 	// Facing the way they walk: yaw -pi/2 walks towards +x.
 	double yaw = x >= last.x1 ? -kPi / 2 : kPi / 2;
-	addPhase(LecturerAction::Walk, std::max(0.5, distance / walkSpeed_), x, z, yaw, -1);
+	addPhase(LecturerAction::Walk, std::max(0.8, distance / walkSpeed_), x, z, yaw, -1);
 }
 
 double LectureScript::writeDuration() const

@@ -18,7 +18,7 @@ constexpr float kHipHeight = 0.93f, kHipHalf = 0.09f;
 constexpr float kHeadHeight = 1.63f, kHeadRadius = 0.10f;
 constexpr float kUpperArm = 0.30f, kForearm = 0.30f;
 constexpr float kStepM = 0.7f;          // a stride, for the leg swing
-constexpr double kTurnS = 0.5;          // how long a turn takes
+constexpr double kTurnS = 0.8;          // how long a turn takes
 
 struct Body {
 	Vec floor, right, up, forward;
@@ -68,6 +68,30 @@ Capsule capsule(const Vec &a, const Vec &b, float radius, Rgb8 colour, float ref
 	return c;
 }
 
+// Where the hands go in a phase at cycle time t: the right one on the
+// board, gesturing to the audience or swinging; the left one resting.
+void handTargets(const LectureScript &script, const ScriptPhase &phase, double t, const Body &body, float swing,
+		 Vec &right, Vec &left)
+{
+	const double local = t - phase.start;
+	double boardX = 0, boardY = 0;
+	bool onBoard = script.handOnBoard(phase, t, boardX, boardY);
+	if (phase.action == LecturerAction::Write || phase.action == LecturerAction::Erase) {
+		float lift = onBoard ? 0.05f : 0.10f; // hand centre off the board surface
+		right = Vec(static_cast<float>(boardX), static_cast<float>(boardY),
+			    static_cast<float>(script.boardDistance()) - lift);
+	} else if (phase.action == LecturerAction::Talk) {
+		// Circles in front of the chest at 0.9 Hz (0.6 m/s): a fast hand.
+		double w = 2 * kPi * 0.9 * local;
+		right = body.at(0.22f + 0.10f * static_cast<float>(std::cos(w)),
+				1.25f + 0.10f * static_cast<float>(std::sin(w)), 0.35f);
+	} else {
+		right = body.at(0.24f, 0.82f, 0.15f * swing);
+	}
+	left = phase.action == LecturerAction::Talk ? body.at(-0.26f, 1.02f, 0.20f)
+						     : body.at(-0.24f, 0.82f, -0.15f * swing);
+}
+
 } // namespace
 
 LecturerLook LecturerLook::fromSeed(uint64_t seed)
@@ -96,7 +120,7 @@ void poseLecturer(const LectureScript &script, const LecturerLook &look, double 
 
 	// Where the writing hand goes decides where the body stands.
 	double boardX = 0, boardY = 0;
-	bool onBoard = script.handOnBoard(phase, t, boardX, boardY);
+	script.handOnBoard(phase, t, boardX, boardY);
 	double x = phase.x0 + (phase.x1 - phase.x0) * q;
 	double z = phase.z0 + (phase.z1 - phase.z0) * q;
 	if (phase.action == LecturerAction::Write || phase.action == LecturerAction::Erase)
@@ -121,23 +145,17 @@ void poseLecturer(const LectureScript &script, const LecturerLook &look, double 
 	const Vec shoulderR = body.at(kShoulderHalf, kShoulderHeight);
 	const Vec pole = body.up * -1.0f - body.forward * 0.4f; // elbows down and back
 
-	// Right hand: on the board, gesturing to the audience, or swinging.
-	Vec handTargetR;
-	const float boardZ = static_cast<float>(script.boardDistance());
-	if (phase.action == LecturerAction::Write || phase.action == LecturerAction::Erase) {
-		float lift = onBoard ? 0.05f : 0.10f; // hand centre off the board surface
-		handTargetR = Vec(static_cast<float>(boardX), static_cast<float>(boardY), boardZ - lift);
-	} else if (phase.action == LecturerAction::Talk) {
-		// Circles in front of the chest at 1.3 Hz: a fast hand.
-		double w = 2 * kPi * 1.3 * local;
-		handTargetR = body.at(0.22f + 0.12f * static_cast<float>(std::cos(w)),
-				      1.25f + 0.12f * static_cast<float>(std::sin(w)), 0.35f);
-	} else {
-		handTargetR = body.at(0.24f, 0.82f, 0.22f * swing);
+	// Hands: the targets of this phase, blended in from the last phase's
+	// over a turn's time, so a hand never jumps.
+	const double blend = smoothstep(local / kTurnS);
+	Vec handTargetR, handTargetL, prevR, prevL;
+	handTargets(script, phase, t, body, swing, handTargetR, handTargetL);
+	if (blend < 1.0) {
+		handTargets(script, prev, prev.end - 1e-6, body, 0.0f, prevR, prevL);
+		float b = static_cast<float>(blend);
+		handTargetR = prevR + (handTargetR - prevR) * b;
+		handTargetL = prevL + (handTargetL - prevL) * b;
 	}
-	Vec handTargetL = body.at(-0.24f, 0.82f, -0.22f * swing);
-	if (phase.action == LecturerAction::Talk)
-		handTargetL = body.at(-0.26f, 1.02f, 0.20f);
 
 	Vec elbowR, handR, elbowL, handL;
 	reach(shoulderR, handTargetR, pole + body.right * 0.5f, elbowR, handR);
