@@ -71,6 +71,7 @@ void bindDaemon(TomlSection &sec, DaemonSettings &s)
 	sec.string("log_level", s.logLevel, kLogLevels);
 	sec.string("snapshot_dir", s.snapshotDir, checkOptionalAbsolutePath);
 	sec.string("record_dir", s.recordDir, checkOptionalAbsolutePath);
+	sec.integer("record_compression", s.recordCompression, 0, 9);
 }
 
 void bindColour(TomlSection &sec, ColourCameraSettings &s)

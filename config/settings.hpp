@@ -12,6 +12,7 @@ struct DaemonSettings {
 	std::string logLevel = "info";      // error | warning | info | debug
 	std::string snapshotDir = "";       // where SIGUSR1 stage snapshots go; "" = off
 	std::string recordDir = "";         // record the camera inputs here; "" = off
+	int recordCompression = 1;          // PNG zlib level 0..9 of the recording
 	bool operator==(const DaemonSettings &) const = default;
 };
 

@@ -322,7 +322,8 @@ void Daemon::apply(const Settings &next)
 	if (parseLogLevel(next.daemon.logLevel, level))
 		logger().setLevel(level);
 	configurePipeline(pipeline_, next);
-	if (previous.daemon.recordDir != next.daemon.recordDir)
+	if (previous.daemon.recordDir != next.daemon.recordDir ||
+	    previous.daemon.recordCompression != next.daemon.recordCompression)
 		updateRecording();
 
 	bool sizeChanged = previous.colour.width != next.colour.width ||
@@ -392,7 +393,7 @@ void Daemon::updateRecording()
 	if (dir.empty())
 		return;
 	std::string error;
-	int ret = recorder_.start(dir, error);
+	int ret = recorder_.start(dir, settings_.daemon.recordCompression, error);
 	if (ret < 0)
 		logger().errorOnce("record", "cannot record: " + error,
 				   { { "DEVICE", "recorder" }, { "ERROR", errnoText(ret) } });

@@ -2,9 +2,10 @@
 
 namespace depthkey {
 
-int FrameRecorder::start(const std::string &dir, std::string &error)
+int FrameRecorder::start(const std::string &dir, int pngCompression, std::string &error)
 {
 	stop();
+	writer_.setCompression(pngCompression);
 	int ret = writer_.open(dir);
 	if (ret < 0) {
 		error = writer_.describeError();

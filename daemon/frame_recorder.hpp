@@ -28,7 +28,7 @@ public:
 
 	// Creates the folder and starts the worker. Negative errno; error says
 	// what and where.
-	int start(const std::string &dir, std::string &error);
+	int start(const std::string &dir, int pngCompression, std::string &error);
 	// Writes what is queued, then stops the worker.
 	void stop();
 	bool running() const { return worker_.joinable(); }

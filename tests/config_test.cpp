@@ -78,6 +78,8 @@ TEST(ConfigLoader, CustomFileSetsEveryField)
 [daemon]
 log_level = "debug"
 snapshot_dir = "/var/lib/depthkey/snapshots"
+record_dir = "/srv/recordings/today"
+record_compression = 6
 [colour]
 backend = "sim"
 device = "/dev/v4l/by-id/usb-cam"
@@ -134,7 +136,7 @@ loop = false
 		ADD_FAILURE() << e.toString();
 
 	Settings expected;
-	expected.daemon = { "debug", "/var/lib/depthkey/snapshots" };
+	expected.daemon = { "debug", "/var/lib/depthkey/snapshots", "/srv/recordings/today", 6 };
 	expected.colour = { "sim", "/dev/v4l/by-id/usb-cam", 1280, 720, 30 };
 	expected.depth = { "sim", 15 };
 	expected.segmentation = { 800, 2500 };

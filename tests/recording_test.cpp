@@ -132,7 +132,7 @@ TEST(Recording, DaemonRecorderWritesEverythingItWasGiven)
 	std::string dir = temp + "/rec";
 	FrameRecorder recorder;
 	std::string error;
-	ASSERT_EQ(recorder.start(dir, error), 0) << error;
+	ASSERT_EQ(recorder.start(dir, 1, error), 0) << error;
 	size_t d = 0;
 	for (const ColourFrame &c : sim.colour) {
 		while (d < sim.depth.size() && sim.depth[d].timestampNs <= c.timestampNs)

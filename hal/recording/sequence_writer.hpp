@@ -20,6 +20,8 @@ public:
 	SequenceWriter(const SequenceWriter &) = delete;
 	SequenceWriter &operator=(const SequenceWriter &) = delete;
 
+	void setCompression(int pngCompression) { compression_ = pngCompression; }
+
 	// Creates dir and its stream folders; an existing recording there is
 	// appended to. Negative errno, with describeError() naming the path.
 	int open(const std::string &dir);
