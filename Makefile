@@ -29,7 +29,7 @@ endif
 BIN := $(BUILD)/bin
 OBJ := $(BUILD)/obj
 
-PKGS := libsystemd tomlplusplus libusb-1.0 libgpiodcxx eigen3
+PKGS := libsystemd tomlplusplus libusb-1.0 libgpiodcxx libturbojpeg eigen3
 OPENCV_LIBS := -lopencv_calib3d -lopencv_features2d -lopencv_imgcodecs -lopencv_imgproc -lopencv_core
 
 # Recursive (=) so pkg-config runs only when a recipe needs it, i.e. after `deps`.
@@ -52,6 +52,11 @@ TESTS := $(BIN)/depthkey-tests
 BENCH := $(BIN)/depthkey-bench
 
 obj = $(patsubst %.cpp,$(OBJ)/%.o,$(1))
+# Builds started by run/test/bench use every core unless told otherwise.
+JOBS ?= $(shell nproc 2>/dev/null || echo 2)
+
+# Keep tool objects (intermediates of the pattern rule) so nothing rebuilds twice.
+.SECONDARY:
 
 .PHONY: all run test check bench deps install clean
 .DEFAULT_GOAL := all
@@ -64,17 +69,17 @@ deps:
 # run/test/bench first install packages, then build in a fresh make so that
 # pkg-config sees the newly installed libraries.
 run: deps
-	@$(MAKE) --no-print-directory all
+	@$(MAKE) --no-print-directory -j$(JOBS) all
 	@sh daemon/run-sim.sh $(BIN)
 
 test: deps
-	@$(MAKE) --no-print-directory check
+	@$(MAKE) --no-print-directory -j$(JOBS) check
 
 check: all $(TESTS)
 	@$(TESTS) --gtest_brief=1
 
 bench: deps
-	@$(MAKE) --no-print-directory $(BENCH)
+	@$(MAKE) --no-print-directory -j$(JOBS) $(BENCH)
 	@$(BENCH) --benchmark_repetitions=9 --benchmark_report_aggregates_only=true \
 	    --benchmark_display_aggregates_only=true $(BENCH_ARGS)
 

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace depthkey {
 
@@ -17,18 +18,51 @@ struct DaemonSettings {
 };
 
 struct ColourCameraSettings {
-	std::string backend = "sim";        // sim | replay
+	std::string backend = "sim";        // sim | v4l2 | replay
 	std::string device = "/dev/video0";
 	int width = 640;                    // 16..1920
 	int height = 480;                   // 16..1080
 	int fps = 25;                       // 1..60
+	std::string pixelFormat = "auto";   // auto | yuyv | nv12 | mjpeg
+	int timeoutMs = 1000;               // no frame this long: device lost
 	bool operator==(const ColourCameraSettings &) const = default;
 };
 
+// A raw SR-2 register write from the config, applied after the built-in ones.
+struct Sr2RegisterWrite {
+	int address = 0;                    // 0..255
+	int value = 0;                      // 0..255
+	bool operator==(const Sr2RegisterWrite &) const = default;
+};
+
 struct DepthCameraSettings {
-	std::string backend = "sim";        // sim | replay
+	std::string backend = "sim";        // sim | sr2 | v4l2 | replay
 	int fps = 10;                       // 1..60
+	int timeoutMs = 1000;               // transfer / frame timeout
+	int minMm = 300;                    // valid depth range; outside = no measurement
+	int maxMm = 7500;
+	// sr2
+	std::string usbPath = "";           // "" = first 0852:0071, else "BUS-PORT[.PORT...]"
+	int integrationTime = 40;           // register 0x09, 0..255
+	bool autoIntegration = false;
+	int intensityLow = 14000;           // auto integration window (mean intensity)
+	int intensityHigh = 18000;
+	std::vector<Sr2RegisterWrite> sr2Registers;
+	// v4l2
+	std::string device = "/dev/video1";
+	int width = 640;
+	int height = 480;
+	std::string pixelFormat = "z16";    // z16 | y16
+	double scaleMm = 1.0;               // millimetres per count
 	bool operator==(const DepthCameraSettings &) const = default;
+};
+
+// Soft synchronisation of the two free-running cameras (Friedland et al.):
+// depth frames are matched to colour frames by capture time.
+struct PairingSettings {
+	int offsetMs = 0;                   // added to depth timestamps (depth latency)
+	int maxSkewMs = 150;                // farther apart: colour goes out unkeyed
+	bool operator==(const PairingSettings &) const = default;
 };
 
 struct SegmentationSettings {
@@ -52,7 +86,16 @@ struct OutputSettings {
 };
 
 struct LedSettings {
-	std::string backend = "none";       // none
+	std::string backend = "none";       // none | gpiod
+	std::string chip = "gpiochip0";     // name, /dev path, label or number
+	bool activeLow = false;
+	// Line offsets on the chip, -1 = not wired.
+	int powerLine = 0;
+	int depthLine = 1;
+	int colourLine = 2;
+	int calibrationLine = 3;
+	int readerLine = 4;
+	int errorLine = 5;
 	bool operator==(const LedSettings &) const = default;
 };
 
@@ -101,6 +144,7 @@ struct Settings {
 	DaemonSettings daemon;
 	ColourCameraSettings colour;
 	DepthCameraSettings depth;
+	PairingSettings pairing;
 	SegmentationSettings segmentation;
 	CompositeSettings composite;
 	OutputSettings output;

@@ -2,7 +2,6 @@
 
 #include "config/config_loader.hpp"
 #include "algo/pipeline_stages.hpp"
-#include "daemon/device_factory.hpp"
 #include "daemon/pipeline_setup.hpp"
 #include "daemon/log.hpp"
 #include "daemon/snapshot_writer.hpp"
@@ -17,9 +16,9 @@ namespace depthkey {
 
 namespace {
 
-// A depth frame older than this is not paired with colour any more: the
-// lecturer may have moved a metre since (the SR-2 runs at ~10 fps).
-constexpr uint64_t kDepthStaleNs = 500'000'000;
+// Depth counts as delivering (DEPTH_OK on NO SIGNAL frames) while its newest
+// frame is younger than this; pairing itself uses pairing.max_skew_ms.
+constexpr int64_t kDepthStaleNs = 500'000'000;
 // Without a colour frame for this many frame periods, publish NO SIGNAL.
 constexpr uint64_t kColourStalePeriods = 3;
 // In a degraded mode (a camera missing) READY=1 is sent after this long, so
@@ -71,9 +70,10 @@ int Daemon::start(const Settings &settings)
 
 	startedUs_ = statusAtUs_ = loop_.nowUs();
 	configurePipeline(pipeline_, settings_);
+	configurePairing();
 	underSystemd_ = std::getenv("NOTIFY_SOCKET") != nullptr;
 
-	leds_ = createStatusLeds(settings_);
+	leds_ = factory_.statusLeds(settings_);
 	if (leds_->open(loop_, settings_.leds) < 0)
 		logger().errorOnce("leds", "status LEDs unavailable, running without them",
 				   { { "DEVICE", "leds" } });
@@ -112,7 +112,7 @@ void Daemon::stop()
 int Daemon::openOutput()
 {
 	if (!sink_)
-		sink_ = createFrameSink(settings_);
+		sink_ = factory_.frameSink(settings_);
 	int ret = sink_->open(settings_.output, settings_.colour.width, settings_.colour.height);
 	sinkOpen_ = ret >= 0;
 	if (ret < 0)
@@ -125,8 +125,8 @@ int Daemon::openOutput()
 
 void Daemon::startCameras()
 {
-	colour_ = createColourCamera(settings_);
-	depth_ = createDepthCamera(settings_);
+	colour_ = factory_.colourCamera(settings_);
+	depth_ = factory_.depthCamera(settings_);
 	std::string colourName = colour_->name(), depthName = depth_->name();
 	int ret = colour_->start(
 		loop_, [this](const ColourFrame &f) { onColourFrame(f); },
@@ -146,7 +146,13 @@ void Daemon::stopCameras()
 		colour_->stop();
 	if (depth_)
 		depth_->stop();
-	haveDepth_ = haveColour_ = false;
+	haveColour_ = false;
+	pairer_.clear();
+}
+
+void Daemon::configurePairing()
+{
+	configurePairer(pairer_, settings_);
 }
 
 void Daemon::onDeviceStatus(const std::string &device, const DeviceStatus &status)
@@ -162,8 +168,7 @@ void Daemon::onDeviceStatus(const std::string &device, const DeviceStatus &statu
 
 void Daemon::onDepthFrame(const DepthFrame &frame)
 {
-	depthLatest_ = frame; // same-size copy: no allocation after the first
-	haveDepth_ = true;
+	pairer_.addDepth(frame); // same-size copy: no allocation after the first
 	recorder_.recordDepth(frame);
 	depthFrames_++;
 }
@@ -175,23 +180,27 @@ void Daemon::onColourFrame(const ColourFrame &frame)
 	recorder_.recordColour(frame);
 	lastColourNs_ = frame.timestampNs;
 	uint32_t flags = DK_SHM_FLAG_COLOUR_OK;
-	if (haveDepth_ && depthFresh(frame.timestampNs)) {
-		pipeline_.process(frame, depthLatest_, output_);
+	const DepthFrame *depth = pairer_.match(frame.timestampNs);
+	if (depth) {
+		pipeline_.process(frame, *depth, output_);
 		flags |= DK_SHM_FLAG_DEPTH_OK | DK_SHM_FLAG_ONLINE;
 	} else {
 		pipeline_.passThrough(frame, output_);
 	}
 	if (settings_.daemon.snapshotDir.size() || overrides_.previewDir.size())
 		colourLatest_ = frame; // kept only for snapshots
-	if (flags & DK_SHM_FLAG_ONLINE)
-		maybeWritePreview(colourFrames_);
+	if (depth)
+		maybeWritePreview(colourFrames_, *depth);
 	publish(frame.timestampNs, flags);
 }
 
 bool Daemon::depthFresh(uint64_t nowNs) const
 {
-	uint64_t ts = depthLatest_.timestampNs;
-	return ts + kDepthStaleNs >= nowNs && ts <= nowNs + kDepthStaleNs;
+	int64_t ts;
+	if (!pairer_.newestNs(ts))
+		return false;
+	int64_t d = ts - static_cast<int64_t>(nowNs);
+	return d <= kDepthStaleNs && d >= -kDepthStaleNs;
 }
 
 void Daemon::publish(uint64_t captureNs, uint32_t flags)
@@ -239,7 +248,7 @@ void Daemon::publishNoSignal(uint64_t nowNs)
 	std::fill(output_.alpha.data(), output_.alpha.data() + output_.alpha.size(), 0);
 	output_.lecturer.resize(w, h);
 	std::fill(output_.lecturer.data(), output_.lecturer.data() + output_.lecturer.size(), Rgba8{ 0, 0, 0, 0 });
-	publish(nowNs, depthFresh(nowNs) && haveDepth_ ? DK_SHM_FLAG_DEPTH_OK : 0);
+	publish(nowNs, depthFresh(nowNs) ? DK_SHM_FLAG_DEPTH_OK : 0);
 }
 
 StatusSummary Daemon::summary() const
@@ -263,14 +272,21 @@ void Daemon::onStatusTick()
 		before = count;
 		return r;
 	};
+	DeviceStatus cs = colour_ ? colour_->status() : DeviceStatus{};
+	DeviceStatus ds = depth_ ? depth_->status() : DeviceStatus{};
+	const PairingStats &ps = pairer_.stats();
 	char text[512];
-	std::snprintf(text, sizeof(text), "colour %s %s %.1f fps; depth %s %s %.1f fps; output %.1f fps",
-		      colour_ ? colour_->name().c_str() : "-",
-		      colour_ ? deviceStateName(colour_->status().state) : "none",
+	std::snprintf(text, sizeof(text),
+		      "colour %s %s %.1f fps %llu dropped; depth %s %s %.1f fps %llu dropped; "
+		      "paired %llu unpaired %llu; output %.1f fps",
+		      colour_ ? colour_->name().c_str() : "-", deviceStateName(cs.state),
 		      rate(colourFrames_, colourFramesAtStatus_),
-		      depth_ ? depth_->name().c_str() : "-",
-		      depth_ ? deviceStateName(depth_->status().state) : "none",
-		      rate(depthFrames_, depthFramesAtStatus_), rate(published_, publishedAtStatus_));
+		      static_cast<unsigned long long>(cs.droppedFrames),
+		      depth_ ? depth_->name().c_str() : "-", deviceStateName(ds.state),
+		      rate(depthFrames_, depthFramesAtStatus_),
+		      static_cast<unsigned long long>(ds.droppedFrames),
+		      static_cast<unsigned long long>(ps.paired),
+		      static_cast<unsigned long long>(ps.unpaired), rate(published_, publishedAtStatus_));
 	statusAtUs_ = now;
 	notifier_.status(text);
 	checkRecording();
@@ -322,6 +338,7 @@ void Daemon::apply(const Settings &next)
 	if (parseLogLevel(next.daemon.logLevel, level))
 		logger().setLevel(level);
 	configurePipeline(pipeline_, next);
+	configurePairing();
 	if (previous.daemon.recordDir != next.daemon.recordDir ||
 	    previous.daemon.recordCompression != next.daemon.recordCompression)
 		updateRecording();
@@ -341,15 +358,16 @@ void Daemon::apply(const Settings &next)
 		loop_.addPeriodic(1000000u / next.colour.fps, [this] { onFrameTick(); }, frameTick_);
 	if (!(previous.leds == next.leds)) {
 		leds_->close();
-		leds_ = createStatusLeds(next);
+		leds_ = factory_.statusLeds(next);
 		leds_->open(loop_, next.leds);
 	}
 }
 
-int Daemon::writeStages(const std::string &dir, const std::string &prefix)
+int Daemon::writeStages(const std::string &dir, const std::string &prefix, const DepthFrame *depth)
 {
+	static const DepthFrame kNoDepth;
 	StageImages stages;
-	collectPipelineStages(colourLatest_, depthLatest_, output_, stages);
+	collectPipelineStages(colourLatest_, depth ? *depth : kNoDepth, output_, stages);
 	std::string error;
 	int ret = writeStageImages(dir, prefix, stages, error);
 	if (ret < 0)
@@ -364,13 +382,13 @@ void Daemon::writeSnapshot()
 		logger().warning("snapshot requested but daemon.snapshot_dir is not set");
 		return;
 	}
-	if (writeStages(dir, "") >= 0)
+	if (writeStages(dir, "", pairer_.newest()) >= 0)
 		logger().info("snapshot written to " + dir, { { "SNAPSHOT_DIR", dir } });
 }
 
 // --preview: the first keyed frame and a few more, 2 s apart, each as
 // frameNNNNNN-<stage>.png, so a technician sees the stages without a signal.
-void Daemon::maybeWritePreview(uint64_t frameNumber)
+void Daemon::maybeWritePreview(uint64_t frameNumber, const DepthFrame &depth)
 {
 	if (overrides_.previewDir.empty() || previewsWritten_ >= kPreviewCount)
 		return;
@@ -381,7 +399,7 @@ void Daemon::maybeWritePreview(uint64_t frameNumber)
 	std::snprintf(prefix, sizeof(prefix), "frame%06llu-", static_cast<unsigned long long>(frameNumber));
 	previewsWritten_++;
 	lastPreviewFrame_ = frameNumber;
-	if (writeStages(overrides_.previewDir, prefix) >= 0)
+	if (writeStages(overrides_.previewDir, prefix, &depth) >= 0)
 		logger().info(std::string("stage preview written: ") + overrides_.previewDir + "/" + prefix + "*.png",
 			      { { "SNAPSHOT_DIR", overrides_.previewDir } });
 }

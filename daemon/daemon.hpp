@@ -3,8 +3,10 @@
 // no algorithm; it decides what to run when, and degrades instead of dying.
 #pragma once
 
+#include "algo/frame_pairer.hpp"
 #include "algo/pipeline.hpp"
 #include "config/settings.hpp"
+#include "daemon/device_factory.hpp"
 #include "daemon/frame_recorder.hpp"
 #include "daemon/service_notifier.hpp"
 #include "hal/camera.hpp"
@@ -28,8 +30,9 @@ struct CommandLineOverrides {
 class Daemon
 {
 public:
-	Daemon(std::string configPath, CommandLineOverrides overrides)
-		: configPath_(std::move(configPath)), overrides_(std::move(overrides)) {}
+	Daemon(std::string configPath, CommandLineOverrides overrides, DeviceFactory factory = {})
+		: configPath_(std::move(configPath)), overrides_(std::move(overrides)),
+		  factory_(std::move(factory)) {}
 	~Daemon();
 
 	// Sets up the loop, signals, devices and output. A negative errno means
@@ -37,6 +40,9 @@ public:
 	// fail here, they are reported and retried.
 	int start(const Settings &settings);
 	int run(); // until SIGTERM/SIGINT; returns the exit status
+
+	// For tests that drive the daemon from its own loop.
+	EventLoop &loop() { return loop_; }
 
 private:
 	void onColourFrame(const ColourFrame &frame);
@@ -47,8 +53,8 @@ private:
 	void onWatchdogTick();
 	void reload();
 	void writeSnapshot();
-	int writeStages(const std::string &dir, const std::string &prefix);
-	void maybeWritePreview(uint64_t frameNumber);
+	int writeStages(const std::string &dir, const std::string &prefix, const DepthFrame *depth);
+	void maybeWritePreview(uint64_t frameNumber, const DepthFrame &depth);
 	void updateRecording();
 	void checkRecording();
 	void stop();
@@ -60,10 +66,12 @@ private:
 	void publish(uint64_t captureNs, uint32_t flags);
 	void publishNoSignal(uint64_t nowNs);
 	bool depthFresh(uint64_t nowNs) const;
+	void configurePairing();
 	StatusSummary summary() const;
 
 	std::string configPath_;
 	CommandLineOverrides overrides_;
+	DeviceFactory factory_;
 	Settings settings_;
 	EventLoop loop_;
 	ServiceNotifier notifier_;
@@ -84,9 +92,8 @@ private:
 
 	Pipeline pipeline_;
 	PipelineOutput output_;
-	DepthFrame depthLatest_;
+	FramePairer pairer_;
 	ColourFrame colourLatest_;
-	bool haveDepth_ = false;
 	bool haveColour_ = false;
 	uint64_t lastColourNs_ = 0;
 	RgbImage noSignal_;

@@ -7,6 +7,7 @@
 #include "hal/frame_sink.hpp"
 #include "hal/status_leds.hpp"
 
+#include <functional>
 #include <memory>
 
 namespace depthkey {
@@ -15,5 +16,14 @@ std::unique_ptr<ColourCamera> createColourCamera(const Settings &settings);
 std::unique_ptr<DepthCamera> createDepthCamera(const Settings &settings);
 std::unique_ptr<FrameSink> createFrameSink(const Settings &settings);
 std::unique_ptr<StatusLeds> createStatusLeds(const Settings &settings);
+
+// What the daemon calls to get its devices: the backends above by default,
+// fakes in tests of the daemon's own behaviour (offline frames, recovery).
+struct DeviceFactory {
+	std::function<std::unique_ptr<ColourCamera>(const Settings &)> colourCamera = createColourCamera;
+	std::function<std::unique_ptr<DepthCamera>(const Settings &)> depthCamera = createDepthCamera;
+	std::function<std::unique_ptr<FrameSink>(const Settings &)> frameSink = createFrameSink;
+	std::function<std::unique_ptr<StatusLeds>(const Settings &)> statusLeds = createStatusLeds;
+};
 
 } // namespace depthkey

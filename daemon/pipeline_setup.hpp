@@ -1,7 +1,9 @@
-// The one place that turns the settings into the pipeline's configuration,
-// so that depthkeyd and depthkey-eval can never run it differently.
+// The one place that turns the settings into the pipeline's and the frame
+// pairer's configuration, so that depthkeyd and depthkey-eval can never run
+// them differently.
 #pragma once
 
+#include "algo/frame_pairer.hpp"
 #include "algo/pipeline.hpp"
 #include "config/settings.hpp"
 
@@ -10,6 +12,12 @@ namespace depthkey {
 inline void configurePipeline(Pipeline &pipeline, const Settings &settings)
 {
 	pipeline.configure(settings.segmentation, settings.composite);
+}
+
+inline void configurePairer(FramePairer &pairer, const Settings &settings)
+{
+	pairer.configure(int64_t{ settings.pairing.offsetMs } * 1'000'000,
+			 uint64_t(settings.pairing.maxSkewMs) * 1'000'000);
 }
 
 } // namespace depthkey

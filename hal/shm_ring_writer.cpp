@@ -150,9 +150,10 @@ int ShmRingWriter::open(const std::string &name, int width, int height, uint32_t
 	const char *step = nullptr;
 	if (fchmod(fd, kMode) < 0) // the umask may have narrowed the mode
 		step = "chmod 0640";
-	else if (!group.empty() && fchown(fd, static_cast<uid_t>(-1), gid) < 0)
+	else if (!group.empty() && fchown(fd, static_cast<uid_t>(-1), gid) < 0) {
 		step = "chgrp to";
-	else if (fstat(fd, &st) < 0)
+		detail_ = group;
+	} else if (fstat(fd, &st) < 0)
 		step = "fstat";
 	else if (static_cast<uint64_t>(st.st_size) < needed &&
 		 ftruncate(fd, static_cast<off_t>(needed)) < 0)
@@ -160,8 +161,6 @@ int ShmRingWriter::open(const std::string &name, int width, int height, uint32_t
 	if (step) {
 		int err = -errno;
 		::close(fd);
-		if (std::strcmp(step, "chgrp to") == 0)
-			detail_ = group;
 		return fail(err, step);
 	}
 

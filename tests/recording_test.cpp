@@ -52,12 +52,8 @@ Recorded simulate(int frames)
 	Recorded r;
 	ColourFrame c;
 	GroundTruth t;
-	DepthFrame d;
 	for (uint64_t n = 0; static_cast<int>(r.colour.size()) < frames; ++n) {
-		if (!sequence.frame(n, c, t, d))
-			continue;
-		if (r.depth.empty() || r.depth.back().sequence != d.sequence)
-			r.depth.push_back(d);
+		sequence.frame(n, c, t, [&](const DepthFrame &f) { r.depth.push_back(f); });
 		r.colour.push_back(c);
 		r.masks.push_back(t.alpha);
 	}

@@ -129,7 +129,11 @@ TEST(ShmRing, TornReadsAreDetected)
 	ASSERT_EQ(dk_shm_open(name.c_str(), &r), 0);
 	std::vector<uint32_t> out(kPixels);
 	int good = 0, again = 0, torn = 0;
-	for (int i = 0; i < 20000; i++) {
+	// At least 20000 reads, and on until the writer has lapped the reader once
+	// (bounded: a loaded machine may schedule them apart for a while).
+	auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+	for (int i = 0; i < 20000 || (r.torn_copies == 0 && std::chrono::steady_clock::now() < deadline);
+	     i++) {
 		dk_shm_frame_info info{};
 		int ret = dk_shm_read_latest(&r, out.data(), out.size() * 4, &info);
 		if (ret == -EAGAIN) {
@@ -153,11 +157,41 @@ TEST(ShmRing, TornReadsAreDetected)
 		    static_cast<unsigned long long>(writer.frameCount()));
 	EXPECT_EQ(torn, 0);
 	EXPECT_GT(good, 0);
-	// With two CPUs the writer laps the reader many times; one CPU may never
-	// interleave them, and then there was nothing to detect.
-	if (std::thread::hardware_concurrency() >= 2) {
-		EXPECT_GT(r.torn_copies, 0u) << "the writer never lapped the reader";
-	}
+	// Whether the writer lapped the reader here depends on the scheduler; the
+	// detection itself is asserted deterministically in SlotBeingWrittenIsNotRead.
+	dk_shm_close(&r);
+}
+
+// A slot whose sequence number is odd is being written: the reader must not
+// hand it out. The test plays a writer stopped mid-frame by flipping the
+// sequence through a writable mapping of its own.
+TEST(ShmRing, SlotBeingWrittenIsNotRead)
+{
+	ShmName name;
+	ShmRingWriter writer;
+	ASSERT_EQ(writer.open(name.str(), 8, 4, DK_SHM_FORMAT_RGB24, 2, ""), 0);
+	auto src = pattern(8, 4, 3, 24, 1);
+	ASSERT_EQ(writer.write(src.data(), 24, 5, DK_SHM_FLAG_ONLINE), 0);
+
+	int fd = shm_open(name.c_str(), O_RDWR, 0);
+	ASSERT_GE(fd, 0);
+	auto *h = static_cast<dk_shm_header *>(
+		mmap(nullptr, sizeof(dk_shm_header), PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0));
+	close(fd);
+	ASSERT_NE(h, MAP_FAILED);
+	uint32_t index = static_cast<uint32_t>(h->latest_frame % h->slot_count);
+
+	dk_shm_reader r;
+	ASSERT_EQ(dk_shm_open(name.c_str(), &r), 0);
+	std::vector<uint8_t> out(r.frame_bytes);
+	ASSERT_EQ(dk_shm_read_latest(&r, out.data(), out.size(), nullptr), 0);
+
+	__atomic_fetch_add(&h->slots[index].sequence, 1u, __ATOMIC_SEQ_CST); // writer enters
+	EXPECT_EQ(dk_shm_read_latest(&r, out.data(), out.size(), nullptr), -EAGAIN);
+	__atomic_fetch_add(&h->slots[index].sequence, 1u, __ATOMIC_SEQ_CST); // writer leaves
+	EXPECT_EQ(dk_shm_read_latest(&r, out.data(), out.size(), nullptr), 0);
+
+	munmap(h, sizeof(dk_shm_header));
 	dk_shm_close(&r);
 }
 
@@ -293,12 +327,13 @@ TEST(ShmRing, ReaderMappingIsReadOnly)
 		dk_shm_reader r;
 		if (dk_shm_open(name.c_str(), &r))
 			_exit(10);
+		signal(SIGSEGV, SIG_DFL); // a sanitizer's handler would turn it into exit(1)
 		*const_cast<volatile uint32_t *>(&r.header->magic) = 0; // must fault
 		_exit(0);
 	}
 	int status = 0;
 	ASSERT_EQ(waitpid(child, &status, 0), child);
-	EXPECT_FALSE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+	EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGSEGV) << "status " << status;
 	EXPECT_EQ(openStatus(name.c_str()), 0);
 }
 
@@ -357,67 +392,6 @@ TEST(ShmRing, TooSmallObjectRefused)
 TEST(ShmRing, MissingObject)
 {
 	ShmName name;
-	EXPECT_EQ(openStatus(name.c_str()), -ENOENT);
-}
-
-TEST(ShmRing, BadArgumentsRejected)
-{
-	ShmName name;
-	ShmRingWriter writer;
-	uint8_t pixels[64] = {};
-	EXPECT_EQ(writer.write(pixels, 24, 0, 0), -EBADF);
-	EXPECT_NE(writer.describeError().find("closed"), std::string::npos);
-	EXPECT_EQ(writer.open("no-slash", 8, 8, DK_SHM_FORMAT_RGB24, 2, ""), -EINVAL);
-	EXPECT_EQ(writer.open(name.str(), 8, 8, DK_SHM_FORMAT_RGB24, 1, ""), -EINVAL);
-	EXPECT_EQ(writer.open(name.str(), 8, 8, DK_SHM_FORMAT_RGB24, 9, ""), -EINVAL);
-	EXPECT_EQ(writer.open(name.str(), 0, 8, DK_SHM_FORMAT_RGB24, 2, ""), -EINVAL);
-	EXPECT_EQ(writer.open(name.str(), 8, 8, DK_SHM_FOURCC('Y', 'U', 'Y', 'V'), 2, ""), -EINVAL);
-	EXPECT_NE(writer.describeError().find(name.str()), std::string::npos);
-	EXPECT_EQ(openStatus(name.c_str()), -ENOENT); // nothing created
-
-	ASSERT_EQ(writer.open(name.str(), 8, 8, DK_SHM_FORMAT_RGB24, 2, ""), 0);
-	EXPECT_EQ(writer.write(pixels, 23, 0, 0), -EINVAL);
-	EXPECT_EQ(writer.write(nullptr, 24, 0, 0), -EINVAL);
-}
-
-TEST(ShmRing, UnknownGroupNamed)
-{
-	ShmName name;
-	ShmRingWriter writer;
-	EXPECT_EQ(writer.open(name.str(), 8, 8, DK_SHM_FORMAT_RGB24, 2, "depthkey-no-such-group"),
-		  -ENOENT);
-	const std::string message = writer.describeError();
-	EXPECT_NE(message.find("depthkey-no-such-group"), std::string::npos) << message;
-	EXPECT_NE(message.find(name.str()), std::string::npos) << message;
-	EXPECT_EQ(openStatus(name.c_str()), -ENOENT); // checked before creating
-}
-
-TEST(ShmRing, ModeAndGroup)
-{
-	ShmName name;
-	ShmRingWriter writer;
-	const mode_t oldMask = umask(077); // must not narrow the group's read bit
-	int ret = writer.open(name.str(), 8, 8, DK_SHM_FORMAT_RGB24, 2, std::to_string(getegid()));
-	umask(oldMask);
-	ASSERT_EQ(ret, 0) << writer.describeError();
-	int fd = shm_open(name.c_str(), O_RDONLY, 0);
-	struct stat st{};
-	ASSERT_EQ(fstat(fd, &st), 0);
-	close(fd);
-	EXPECT_EQ(st.st_mode & 0777, 0640u);
-	EXPECT_EQ(st.st_gid, getegid());
-}
-
-TEST(ShmRing, SecondWriterRefused)
-{
-	ShmName name;
-	ShmRingWriter first, second;
-	ASSERT_EQ(first.open(name.str(), 8, 8, DK_SHM_FORMAT_RGB24, 2, ""), 0);
-	EXPECT_EQ(second.open(name.str(), 8, 8, DK_SHM_FORMAT_RGB24, 2, ""), -EBUSY);
-	EXPECT_NE(second.describeError().find("another writer"), std::string::npos);
-	first.close();
-	EXPECT_EQ(second.open(name.str(), 8, 8, DK_SHM_FORMAT_RGB24, 2, ""), 0);
-	EXPECT_EQ(second.unlink(), 0);
 	EXPECT_EQ(openStatus(name.c_str()), -ENOENT);
 }
 

@@ -23,6 +23,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -108,46 +109,42 @@ int parseOptions(int argc, char **argv, Options &o)
 	return 0;
 }
 
-// Where scored frames come from: a colour frame, its truth and the depth
-// frame the daemon would have paired with it.
+// Where scored frames come from: the stream the daemon would receive, each
+// colour frame with its truth, preceded by the depth frames that have
+// arrived by then.
 class FrameSource
 {
 public:
+	using DepthHandler = std::function<void(const DepthFrame &)>;
 	virtual ~FrameSource() = default;
 	// 1 = a frame, 0 = the end, negative = error (printed).
-	virtual int next(ColourFrame &colour, DepthFrame &depth, Gray8Image &truth) = 0;
+	virtual int next(ColourFrame &colour, Gray8Image &truth, const DepthHandler &onDepth) = 0;
 };
 
 class SimSource : public FrameSource
 {
 public:
-	SimSource(const Settings &s, long frames) : frames_(frames)
+	explicit SimSource(const Settings &s)
 	{
 		sequence_.configure(s.sim, s.colour.width, s.colour.height, s.colour.fps, s.depth.fps);
 	}
-	int next(ColourFrame &colour, DepthFrame &depth, Gray8Image &truth) override
+	int next(ColourFrame &colour, Gray8Image &truth, const DepthHandler &onDepth) override
 	{
-		if (delivered_ >= frames_)
-			return 0;
-		// The first colour frames come before any depth frame: not scored.
-		while (!sequence_.frame(n_++, colour, truth_, depth)) {
-		}
+		sequence_.frame(n_++, colour, truth_, onDepth);
 		truth = truth_.alpha;
-		delivered_++;
 		return 1;
 	}
 
 private:
 	SimSequence sequence_;
 	GroundTruth truth_;
-	long frames_, delivered_ = 0;
 	uint64_t n_ = 0;
 };
 
 class RecordedSource : public FrameSource
 {
 public:
-	int open(const std::string &dir, long frames)
+	int open(const std::string &dir)
 	{
 		int ret = reader_.open(dir);
 		if (ret < 0) {
@@ -159,34 +156,31 @@ public:
 				     dir.c_str());
 			return -EINVAL;
 		}
-		frames_ = frames;
 		return 0;
 	}
-	int next(ColourFrame &colour, DepthFrame &depth, Gray8Image &truth) override
+	int next(ColourFrame &colour, Gray8Image &truth, const DepthHandler &onDepth) override
 	{
 		const auto &rgb = reader_.colour(), &dep = reader_.depth();
-		for (; i_ < rgb.size() && (frames_ == 0 || delivered_ < frames_); ++i_) {
-			while (d_ < dep.size() && dep[d_].timestampNs <= rgb[i_].timestampNs)
-				d_++;
-			if (d_ == 0)
-				continue; // no depth yet
-			int ret;
-			if ((ret = reader_.readColour(i_, colour)) < 0 || (ret = reader_.readDepth(d_ - 1, depth)) < 0 ||
-			    (ret = reader_.readMask(i_, truth)) < 0) {
-				std::fprintf(stderr, "depthkey-eval: %s\n", reader_.describeError().c_str());
-				return ret;
-			}
-			++i_;
-			delivered_++;
-			return 1;
+		if (i_ >= rgb.size())
+			return 0;
+		int ret = 0;
+		for (; d_ < dep.size() && dep[d_].timestampNs <= rgb[i_].timestampNs && ret >= 0; ++d_)
+			if ((ret = reader_.readDepth(d_, depth_)) >= 0)
+				onDepth(depth_);
+		if (ret >= 0 && (ret = reader_.readColour(i_, colour)) >= 0)
+			ret = reader_.readMask(i_, truth);
+		if (ret < 0) {
+			std::fprintf(stderr, "depthkey-eval: %s\n", reader_.describeError().c_str());
+			return ret;
 		}
-		return 0;
+		++i_;
+		return 1;
 	}
 
 private:
 	SequenceReader reader_;
+	DepthFrame depth_;
 	size_t i_ = 0, d_ = 0;
-	long frames_ = 0, delivered_ = 0;
 };
 
 // The method under test, timed alone.
@@ -198,18 +192,23 @@ public:
 		configurePipeline(pipeline_, settings);
 	}
 
-	const Gray8Image &run(const ColourFrame &colour, const DepthFrame &depth)
+	// depth == nullptr: nothing paired, the daemon publishes the colour
+	// picture unkeyed (everything lecturer) and so is it scored.
+	const Gray8Image &run(const ColourFrame &colour, const DepthFrame *depth)
 	{
 		auto start = std::chrono::steady_clock::now();
 		const Gray8Image *alpha;
-		if (depthOnly_) {
+		if (!depth) {
+			pipeline_.passThrough(colour, output_);
+			alpha = &output_.alpha;
+		} else if (depthOnly_) {
 			// The paper's baseline (Figure 7): the depth range check, with
 			// depth scaled to the colour image (no calibration yet).
-			ensureKeyer(colour, depth);
-			keyer_.key(depth.depthMm, settings_.segmentation.nearMm, settings_.segmentation.farMm, alpha_);
+			ensureKeyer(colour, *depth);
+			keyer_.key(depth->depthMm, settings_.segmentation.nearMm, settings_.segmentation.farMm, alpha_);
 			alpha = &alpha_;
 		} else {
-			pipeline_.process(colour, depth, output_);
+			pipeline_.process(colour, *depth, output_);
 			alpha = &output_.alpha;
 		}
 		seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -285,11 +284,11 @@ int main(int argc, char **argv)
 	std::string what;
 	if (o.simSeed >= 0) {
 		settings.sim.seed = static_cast<uint64_t>(o.simSeed);
-		source = std::make_unique<SimSource>(settings, o.frames);
+		source = std::make_unique<SimSource>(settings);
 		what = "sim seed " + std::to_string(o.simSeed);
 	} else {
 		auto recorded = std::make_unique<RecordedSource>();
-		if (recorded->open(o.sequence, o.frames) < 0)
+		if (recorded->open(o.sequence) < 0)
 			return 1;
 		source = std::move(recorded);
 		what = o.sequence;
@@ -314,12 +313,23 @@ int main(int argc, char **argv)
 	Method method(settings, o.method == "depth-only");
 	SegmentationScorer scorer(2);
 	ScoreAverage average;
+	FramePairer pairer;
+	configurePairer(pairer, settings);
 	ColourFrame colour;
-	DepthFrame depth;
 	Gray8Image truth;
-	uint64_t lastSavedDepth = 0;
-	int ret;
-	while ((ret = source->next(colour, depth, truth)) > 0) {
+	bool depthSeen = false;
+	int saveError = 0;
+	auto onDepth = [&](const DepthFrame &depth) {
+		pairer.addDepth(depth);
+		depthSeen = true;
+		if (!o.saveSequence.empty() && saveError >= 0)
+			saveError = saver.writeDepth(depth);
+	};
+	int ret = 0;
+	while ((o.frames == 0 || average.frames() < o.frames) && (ret = source->next(colour, truth, onDepth)) > 0) {
+		if (!depthSeen)
+			continue; // starting up: no depth camera has delivered yet
+		const DepthFrame *depth = pairer.match(colour.timestampNs);
 		const Gray8Image &alpha = method.run(colour, depth);
 		SegmentationScore s = scorer.score(alpha, truth);
 		long frame = average.frames();
@@ -327,23 +337,22 @@ int main(int argc, char **argv)
 		if (csv)
 			std::fprintf(csv, "%ld,%llu,%llu,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f\n", frame,
 				     static_cast<unsigned long long>(colour.timestampNs),
-				     static_cast<unsigned long long>(depth.timestampNs), s.iou, s.boundaryF,
+				     static_cast<unsigned long long>(depth ? depth->timestampNs : 0), s.iou, s.boundaryF,
 				     s.boundaryPrecision, s.boundaryRecall, s.fnr, s.fpr);
 		if (!o.saveSequence.empty()) {
-			int w = saver.writeColour(colour);
+			int w = saveError;
+			if (w >= 0)
+				w = saver.writeColour(colour);
 			if (w >= 0)
 				w = saver.writeMask(truth, colour.timestampNs, colour.sequence);
-			if (w >= 0 && depth.sequence != lastSavedDepth)
-				w = saver.writeDepth(depth);
-			lastSavedDepth = depth.sequence;
 			if (w < 0) {
 				std::fprintf(stderr, "depthkey-eval: %s\n", saver.describeError().c_str());
 				return 1;
 			}
 		}
-		if (!o.preview.empty() && isPreviewFrame(frame, o.frames)) {
+		if (!o.preview.empty() && depth && isPreviewFrame(frame, o.frames)) {
 			StageImages stages;
-			method.stages(colour, depth, truth, stages);
+			method.stages(colour, *depth, truth, stages);
 			char prefix[32];
 			std::snprintf(prefix, sizeof(prefix), "frame%06ld-", frame);
 			std::string error;
@@ -366,6 +375,9 @@ int main(int argc, char **argv)
 		    m.boundaryPrecision, m.boundaryRecall);
 	std::printf("  lecturer pixels lost (FNR) %.3f  board pixels taken (FPR) %.3f  %.0f frames/s\n", m.fnr,
 		    m.fpr, fps);
+	const PairingStats &ps = pairer.stats();
+	std::printf("  pairing: %llu paired, %llu colour frames without depth (scored unkeyed)\n",
+		    static_cast<unsigned long long>(ps.paired), static_cast<unsigned long long>(ps.unpaired));
 	std::printf("summary method=%s frames=%ld iou=%.3f bf=%.3f fnr=%.3f fpr=%.3f fps=%.0f\n", o.method.c_str(),
 		    frames, m.iou, m.boundaryF, m.fnr, m.fpr, fps);
 	return 0;

@@ -9,26 +9,21 @@ void SimSequence::configure(const SimSettings &settings, int colourWidth, int co
 {
 	simulator_.configure(settings, colourWidth, colourHeight);
 	timing_.configure(settings, colourFps, depthFps);
-	depthIndex_ = -1;
+	nextDepth_ = 0;
 }
 
-bool SimSequence::frame(uint64_t n, ColourFrame &colour, GroundTruth &truth, DepthFrame &depth)
+void SimSequence::frame(uint64_t n, ColourFrame &colour, GroundTruth &truth, const DepthHandler &onDepth)
 {
 	double t = timing_.colourTime(n);
+	for (int64_t last = timing_.latestDepthAt(t); nextDepth_ <= last; ++nextDepth_) {
+		uint64_t m = static_cast<uint64_t>(nextDepth_);
+		simulator_.renderDepth(timing_.depthCapture(m), depth_);
+		depth_.timestampNs = static_cast<uint64_t>(std::llround(timing_.depthStamp(m) * 1e9));
+		depth_.sequence = m + 1;
+		onDepth(depth_);
+	}
 	simulator_.renderColour(t, colour, &truth);
 	colour.sequence = n + 1;
-	int64_t m = timing_.latestDepthAt(t);
-	if (m < 0)
-		return false;
-	if (m != depthIndex_) {
-		depthCaptureS_ = timing_.depthCapture(static_cast<uint64_t>(m));
-		simulator_.renderDepth(depthCaptureS_, depth_);
-		depth_.timestampNs = static_cast<uint64_t>(std::llround(timing_.depthStamp(static_cast<uint64_t>(m)) * 1e9));
-		depth_.sequence = static_cast<uint64_t>(m) + 1;
-		depthIndex_ = m;
-	}
-	depth = depth_;
-	return true;
 }
 
 } // namespace depthkey

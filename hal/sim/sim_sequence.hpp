@@ -1,27 +1,30 @@
-// The simulated lecture as a sequence of what depthkeyd would receive,
-// without an event loop: colour frame n at its capture time with its ground
-// truth, paired with the newest depth frame stamped at or before it (the
-// daemon's pairing rule), stamped latency after its true capture.
-// For depthkey-eval, the tests and the recorder of test sequences.
+// The simulated lecture as the stream depthkeyd would receive, without an
+// event loop: colour frame n at its capture time with its ground truth, and
+// before it every depth frame that has arrived by then (stamped latency
+// after its true capture), in order. The consumer pairs them as the daemon
+// does (algo/frame_pairer.hpp). For depthkey-eval, the tests and the
+// recorder of test sequences.
 #pragma once
 
 #include "hal/sim/lecture_simulator.hpp"
 #include "hal/sim/sim_timing.hpp"
+
+#include <functional>
 
 namespace depthkey {
 
 class SimSequence
 {
 public:
+	using DepthHandler = std::function<void(const DepthFrame &)>;
+
 	void configure(const SimSettings &settings, int colourWidth, int colourHeight, int colourFps, int depthFps);
 
-	// Renders colour frame n and its truth; depth is the paired depth frame
-	// (re-rendered only when the pairing moves on). False when no depth
-	// frame exists yet at that time (the first few colour frames).
-	bool frame(uint64_t n, ColourFrame &colour, GroundTruth &truth, DepthFrame &depth);
+	// Hands the depth frames stamped at or before colour frame n's time (and
+	// not handed out before) to onDepth, then renders colour frame n and its
+	// truth. Frames are meant to be asked for in increasing n.
+	void frame(uint64_t n, ColourFrame &colour, GroundTruth &truth, const DepthHandler &onDepth);
 
-	// True capture time of the depth frame last returned, s.
-	double depthCaptureS() const { return depthCaptureS_; }
 	LectureSimulator &simulator() { return simulator_; }
 	const sim::SimTiming &timing() const { return timing_; }
 
@@ -29,8 +32,7 @@ private:
 	LectureSimulator simulator_;
 	sim::SimTiming timing_;
 	DepthFrame depth_;
-	int64_t depthIndex_ = -1;
-	double depthCaptureS_ = 0;
+	int64_t nextDepth_ = 0;
 };
 
 } // namespace depthkey

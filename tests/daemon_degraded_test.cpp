@@ -1,0 +1,179 @@
+// The daemon's behaviour when a camera goes away, with fake cameras driven
+// from the daemon's own event loop: the recorder keeps getting frames, marked
+// offline, and the picture comes back when the camera does.
+#include "daemon/daemon.hpp"
+#include "hal/depthkey_shm.h"
+#include "hal/fake_frame_sink.hpp"
+#include "tests/fake_camera.hpp"
+
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <ctime>
+#include <functional>
+#include <vector>
+
+using namespace depthkey;
+using depthkey::test::FakeCamera;
+
+namespace {
+
+uint64_t monotonicNs()
+{
+	timespec ts;
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return static_cast<uint64_t>(ts.tv_sec) * 1000000000u + static_cast<uint64_t>(ts.tv_nsec);
+}
+
+// Daemon::start blocks the signals it handles; give them back to the test binary.
+void unblockSignals()
+{
+	sigset_t set;
+	sigfillset(&set);
+	sigprocmask(SIG_UNBLOCK, &set, nullptr);
+}
+
+struct Harness {
+	FakeCamera<ColourFrame> *colour = nullptr;
+	FakeCamera<DepthFrame> *depth = nullptr;
+	FakeFrameSink *sink = nullptr;
+
+	DeviceFactory factory()
+	{
+		DeviceFactory f;
+		f.colourCamera = [this](const Settings &) {
+			auto c = std::make_unique<FakeCamera<ColourFrame>>("fake-colour");
+			colour = c.get();
+			return c;
+		};
+		f.depthCamera = [this](const Settings &) {
+			auto d = std::make_unique<FakeCamera<DepthFrame>>("fake-depth");
+			depth = d.get();
+			return d;
+		};
+		f.frameSink = [this](const Settings &) {
+			auto s = std::make_unique<FakeFrameSink>();
+			sink = s.get();
+			return s;
+		};
+		return f;
+	}
+};
+
+// A timeline of steps run on the daemon's loop, one every `stepUs`.
+class Script
+{
+public:
+	Script(Daemon &daemon, uint64_t stepUs) : daemon_(daemon), stepUs_(stepUs) {}
+	void then(std::function<void()> step) { steps_.push_back(std::move(step)); }
+	void run()
+	{
+		daemon_.loop().addPeriodic(stepUs_, [this] {
+			if (next_ < steps_.size())
+				steps_[next_++]();
+			else
+				daemon_.loop().exit(0);
+		}, timer_);
+		daemon_.run();
+	}
+
+private:
+	Daemon &daemon_;
+	uint64_t stepUs_;
+	std::vector<std::function<void()>> steps_;
+	size_t next_ = 0;
+	EventSource timer_;
+};
+
+} // namespace
+
+TEST(DaemonDegraded, PublishesOfflineFramesWhileACameraIsLostAndRecovers)
+{
+	Harness h;
+	Settings settings;
+	settings.colour.width = 64;
+	settings.colour.height = 48;
+	settings.colour.fps = 50;
+	Daemon daemon("unused.toml", {}, h.factory());
+	ASSERT_EQ(daemon.start(settings), 0);
+	ASSERT_NE(h.colour, nullptr);
+	ASSERT_NE(h.sink, nullptr);
+
+	ColourFrame colour;
+	colour.rgb = RgbImage(64, 48, Rgb8{ 10, 200, 10 });
+	DepthFrame depth;
+	depth.depthMm = Gray16Image(16, 12, 1000); // all lecturer
+	depth.amplitude = Gray16Image(16, 12, 5000);
+	depth.intensity = Gray16Image(16, 12, 5000);
+	auto deliverBoth = [&] {
+		depth.timestampNs = colour.timestampNs = monotonicNs();
+		h.depth->deliver(depth);
+		h.colour->deliver(colour);
+	};
+
+	uint32_t onlineFlags = 0, lostFlags = 0, recoveredFlags = 0;
+	uint64_t countBeforeLoss = 0, countDuringLoss = 0;
+	Rgb8 lostPixel{}, recoveredPixel{};
+	Script script(daemon, 20000); // 20 ms per step; the colour fps is 50
+	for (int i = 0; i < 5; ++i)
+		script.then(deliverBoth);
+	script.then([&] {
+		onlineFlags = h.sink->lastFlags();
+		countBeforeLoss = h.sink->compositeCount();
+		h.colour->setState(DeviceState::Lost, -ENODEV, "unplugged");
+	});
+	for (int i = 0; i < 10; ++i) // 200 ms without colour frames
+		script.then([] {});
+	script.then([&] {
+		lostFlags = h.sink->lastFlags();
+		countDuringLoss = h.sink->compositeCount();
+		lostPixel = h.sink->composite().at(2, 2);
+		h.colour->setState(DeviceState::Streaming, 0, "");
+	});
+	for (int i = 0; i < 3; ++i)
+		script.then(deliverBoth);
+	script.then([&] {
+		recoveredFlags = h.sink->lastFlags();
+		recoveredPixel = h.sink->composite().at(32, 24);
+	});
+	script.run();
+	unblockSignals();
+
+	EXPECT_TRUE(onlineFlags & DK_SHM_FLAG_ONLINE);
+	// Frames kept coming while the camera was gone (~10 at 50 fps, after the
+	// 3-period grace), and they were marked offline.
+	EXPECT_GE(countDuringLoss - countBeforeLoss, 4u);
+	EXPECT_FALSE(lostFlags & DK_SHM_FLAG_ONLINE);
+	EXPECT_FALSE(lostFlags & DK_SHM_FLAG_COLOUR_OK);
+	EXPECT_NE(lostPixel, (Rgb8{ 10, 200, 10 })) << "a NO SIGNAL frame, not the old picture";
+	EXPECT_TRUE(recoveredFlags & DK_SHM_FLAG_ONLINE);
+	// Lecturer everywhere at opacity 0.5: half green camera, half board colour.
+	EXPECT_NEAR(recoveredPixel.g, (200 + 0x3c) / 2, 2);
+}
+
+TEST(DaemonDegraded, StaleDepthPublishesColourUnkeyedAndOffline)
+{
+	Harness h;
+	Settings settings;
+	settings.colour.width = 32;
+	settings.colour.height = 24;
+	Daemon daemon("unused.toml", {}, h.factory());
+	ASSERT_EQ(daemon.start(settings), 0);
+	ColourFrame colour;
+	colour.rgb = RgbImage(32, 24, Rgb8{ 1, 2, 3 });
+	uint32_t flags = 0;
+	Rgb8 pixel{};
+	Script script(daemon, 20000);
+	script.then([&] {
+		colour.timestampNs = monotonicNs();
+		h.colour->deliver(colour); // no depth frame at all
+		flags = h.sink->lastFlags();
+		pixel = h.sink->composite().at(5, 5);
+	});
+	script.run();
+	unblockSignals();
+	EXPECT_TRUE(flags & DK_SHM_FLAG_COLOUR_OK);
+	EXPECT_FALSE(flags & DK_SHM_FLAG_DEPTH_OK);
+	EXPECT_FALSE(flags & DK_SHM_FLAG_ONLINE);
+	EXPECT_EQ(pixel, (Rgb8{ 1, 2, 3 }));
+}

@@ -1,0 +1,44 @@
+// A camera the test drives by hand: it delivers the frames and states the
+// test tells it to, on the daemon's own event loop.
+#pragma once
+
+#include "hal/camera.hpp"
+
+namespace depthkey::test {
+
+template<typename Frame>
+class FakeCamera : public Camera<Frame>
+{
+public:
+	using typename Camera<Frame>::FrameHandler;
+	using typename Camera<Frame>::StatusHandler;
+
+	explicit FakeCamera(std::string name) : name_(std::move(name)) {}
+
+	std::string name() const override { return name_; }
+	int start(EventLoop &, FrameHandler onFrame, StatusHandler onStatus) override
+	{
+		onFrame_ = std::move(onFrame);
+		onStatus_ = std::move(onStatus);
+		setState(DeviceState::Streaming, 0, "");
+		return 0;
+	}
+	void stop() override { status_ = { DeviceState::Stopped, 0, "" }; }
+	DeviceStatus status() const override { return status_; }
+
+	void deliver(const Frame &frame) { onFrame_(frame); }
+	void setState(DeviceState state, int error, const std::string &detail)
+	{
+		status_ = { state, error, detail };
+		if (onStatus_)
+			onStatus_(status_);
+	}
+
+private:
+	std::string name_;
+	FrameHandler onFrame_;
+	StatusHandler onStatus_;
+	DeviceStatus status_;
+};
+
+} // namespace depthkey::test
