@@ -320,12 +320,11 @@ TEST(LectureSimulator, CalibrationTargetSeenByBothCameras)
 	sim.configure(cleanSim(), 640, 480);
 	sim::CalibrationTarget target;
 	target.centre = { 0.0, 0.0, 1.2 };
-	sim.setCalibrationTarget(target);
 	ColourFrame colour;
 	GroundTruth truth;
 	DepthFrame depth;
+	sim.renderCalibrationPattern(target, 0.0, colour, depth);
 	sim.renderColour(0.0, colour, &truth);
-	sim.renderDepth(0.0, depth);
 	// The centre circle (index 3, 2) is black in colour and dim in the ToF
 	// amplitude; between circles the target is white and bright.
 	double x, y;

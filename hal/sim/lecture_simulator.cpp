@@ -63,6 +63,14 @@ void LectureSimulator::setCalibrationTarget(const std::optional<sim::Calibration
 	colourReady_ = depthReady_ = false;
 }
 
+void LectureSimulator::renderCalibrationPattern(const sim::CalibrationTarget &target, double timeS,
+						ColourFrame &colour, DepthFrame &depth)
+{
+	setCalibrationTarget(target);
+	renderColour(timeS, colour);
+	renderDepth(timeS, depth);
+}
+
 void LectureSimulator::poseLecturer(double timeS, std::vector<sim::Capsule> &out) const
 {
 	if (target_ || !lecturerVisible_)

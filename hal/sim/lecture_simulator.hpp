@@ -52,6 +52,10 @@ public:
 	// target stands at its pose in front of the board, seen by both cameras
 	// (colour picture and ToF amplitude); nullopt brings the lecture back.
 	void setCalibrationTarget(const std::optional<sim::CalibrationTarget> &target);
+	// Both views of a target at its pose (the calibration tool's shot): sets
+	// the target, renders colour and depth at timeS; the target stays set.
+	void renderCalibrationPattern(const sim::CalibrationTarget &target, double timeS, ColourFrame &colour,
+				      DepthFrame &depth);
 	// An empty room (the board, the desk), e.g. to measure the ToF's noise.
 	void setLecturerVisible(bool visible) { lecturerVisible_ = visible; }
 
