@@ -40,15 +40,4 @@ void DepthRangeKeyer::key(const Gray16Image &depthMm, int nearMm, int farMm, Gra
 	}
 }
 
-void DepthRangeKeyer::mapDepth(const Gray16Image &depthMm, Gray16Image &out) const
-{
-	out.resize(colourWidth_, colourHeight_);
-	bool sizeOk = depthMm.width() == depthWidth_ && depthMm.height() == depthHeight_;
-	for (int y = 0; y < colourHeight_; ++y) {
-		uint16_t *dst = out.row(y);
-		for (int x = 0; x < colourWidth_; ++x)
-			dst[x] = sizeOk ? depthMm.row(sourceRow_[y])[sourceColumn_[x]] : 0;
-	}
-}
-
 } // namespace depthkey

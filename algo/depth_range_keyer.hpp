@@ -20,10 +20,6 @@ public:
 	// alpha is resized to the colour size; 255 = lecturer, 0 = board.
 	void key(const Gray16Image &depthMm, int nearMm, int farMm, Gray8Image &alpha) const;
 
-	// The depth each colour pixel reads (for previews): out is resized to
-	// the colour size, all 0 for a depth frame of another size.
-	void mapDepth(const Gray16Image &depthMm, Gray16Image &out) const;
-
 private:
 	int colourWidth_ = 0, colourHeight_ = 0, depthWidth_ = 0, depthHeight_ = 0;
 	std::vector<int> sourceColumn_;

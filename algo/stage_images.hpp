@@ -16,14 +16,9 @@ namespace depthkey {
 enum class StageKind {
 	Colour,     // RgbImage as seen
 	Depth,      // Gray16Image, millimetres, 0 = no measurement
-	Seeds,      // Gray8Image of kSeed* values
+	Seeds,      // Gray8Image of trimap labels (algo/trimap.hpp)
 	Mask,       // Gray8Image, 0 = board, 255 = lecturer (alpha: in between)
 };
-
-// Seed image values: what depth alone says about a colour pixel.
-constexpr uint8_t kSeedBoard = 0;        // surely board
-constexpr uint8_t kSeedUndecided = 128;  // the band colour segmentation decides
-constexpr uint8_t kSeedLecturer = 255;   // surely lecturer
 
 struct StageImage {
 	std::string name;   // file stem, e.g. "depth-mapped"
@@ -45,12 +40,18 @@ public:
 	{
 		items_.push_back({ std::move(name), kind, nullptr, nullptr, &image });
 	}
-	// An image derived only for the preview, kept alive here.
+	// Images derived only for the preview, kept alive here.
 	Gray8Image &ownGray(std::string name, StageKind kind)
 	{
 		owned_.emplace_back();
 		add(std::move(name), kind, owned_.back());
 		return owned_.back();
+	}
+	Gray16Image &ownDepth(std::string name)
+	{
+		ownedDepth_.emplace_back();
+		addDepth(std::move(name), ownedDepth_.back());
+		return ownedDepth_.back();
 	}
 
 	const std::vector<StageImage> &items() const { return items_; }
@@ -58,11 +59,13 @@ public:
 	{
 		items_.clear();
 		owned_.clear();
+		ownedDepth_.clear();
 	}
 
 private:
 	std::vector<StageImage> items_;
 	std::deque<Gray8Image> owned_;
+	std::deque<Gray16Image> ownedDepth_;
 };
 
 } // namespace depthkey

@@ -1,13 +1,12 @@
 // The depthkey config schema, one function per section, and file loading.
 #include "config/config_loader.hpp"
 
-#include <cerrno>
 #include <cstring>
 #include <limits>
-#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "config/text_file.hpp"
 #include "config/toml_binder.hpp"
 
 namespace depthkey {
@@ -176,12 +175,44 @@ void bindSegmentation(TomlSection &sec, SegmentationSettings &s)
 			    "near_mm (" + std::to_string(s.nearMm) +
 				    ") must be less than far_mm (" +
 				    std::to_string(s.farMm) + ")");
+	bool amplitudes = sec.integer("min_amplitude", s.minAmplitude, 0, 65535);
+	amplitudes = sec.integer("max_amplitude", s.maxAmplitude, 1, 65535) && amplitudes;
+	if (amplitudes)
+		sec.require(s.minAmplitude < s.maxAmplitude,
+			    sec.has("max_amplitude") ? "max_amplitude" : "min_amplitude",
+			    "min_amplitude (" + std::to_string(s.minAmplitude) +
+				    ") must be less than max_amplitude (" +
+				    std::to_string(s.maxAmplitude) + ")");
+	sec.integer("erode_px", s.erodePx, 0, 20);
+	sec.integer("dilate_px", s.dilatePx, 1, 40);
+}
+
+void bindMapping(TomlSection &sec, MappingSettings &s)
+{
+	sec.string("calibration_file", s.calibrationFile, checkOptionalAbsolutePath);
+}
+
+void bindLearning(TomlSection &sec, LearningSettings &s)
+{
+	sec.integer("initial_frames", s.initialFrames, 1, 1000);
+	sec.number("board_rate", s.boardRate, 0.0, 1.0);
+	sec.number("lecturer_rate", s.lecturerRate, 0.0, 1.0);
+	sec.integer("samples", s.samples, 256, 65536);
+	sec.integer("margin_px", s.marginPx, 0, 40);
+	sec.number("relearn_misfit", s.relearnMisfit, 0.0, 1.0);
+}
+
+void bindSiox(TomlSection &sec, SioxSettings &s)
+{
+	sec.integer("smoothing", s.smoothing, 0, 8);
+	sec.boolean("soft_alpha", s.softAlpha);
 }
 
 void bindComposite(TomlSection &sec, CompositeSettings &s)
 {
 	sec.number("opacity", s.opacity, 0.0, 1.0);
 	sec.colour("board_colour", s.boardColour);
+	sec.string("board_image", s.boardImage, checkOptionalAbsolutePath);
 }
 
 void bindOutput(TomlSection &sec, OutputSettings &s)
@@ -268,6 +299,9 @@ void bindSettings(TomlSection &root, Settings &s)
 	root.table("depth", [&](TomlSection &sec) { bindDepth(sec, s.depth); });
 	root.table("pairing", [&](TomlSection &sec) { bindPairing(sec, s.pairing); });
 	root.table("segmentation", [&](TomlSection &sec) { bindSegmentation(sec, s.segmentation); });
+	root.table("mapping", [&](TomlSection &sec) { bindMapping(sec, s.mapping); });
+	root.table("learning", [&](TomlSection &sec) { bindLearning(sec, s.learning); });
+	root.table("siox", [&](TomlSection &sec) { bindSiox(sec, s.siox); });
 	root.table("composite", [&](TomlSection &sec) { bindComposite(sec, s.composite); });
 	root.table("output", [&](TomlSection &sec) { bindOutput(sec, s.output); });
 	root.table("leds", [&](TomlSection &sec) { bindLeds(sec, s.leds); });
@@ -307,36 +341,15 @@ ConfigResult parseConfig(std::string_view text, const std::string &sourceName)
 
 ConfigResult loadConfig(const std::string &path)
 {
-	ConfigResult result;
-	auto fail = [&](const char *what, int err) {
-		result.errors.push_back({ path, 0, 0, "",
-					  std::string(what) + ": " + std::strerror(err) });
-		return result;
-	};
-
-	// POSIX I/O rather than iostreams: the errno says why (ENOENT, EACCES,
-	// EISDIR), which is what a technician needs to fix it.
-	int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-	if (fd < 0)
-		return fail("cannot open config file", errno);
-
 	std::string text;
-	char buf[4096];
-	for (;;) {
-		ssize_t n = ::read(fd, buf, sizeof(buf));
-		if (n < 0 && errno == EINTR)
-			continue;
-		if (n < 0) {
-			int err = errno;
-			::close(fd);
-			return fail("cannot read config file", err);
-		}
-		if (n == 0)
-			break;
-		text.append(buf, static_cast<size_t>(n));
+	const char *step;
+	if (int ret = readTextFile(path, text, step); ret < 0) {
+		ConfigResult result;
+		result.errors.push_back({ path, 0, 0, "",
+					  std::string("cannot ") + step + " config file: " +
+						  std::strerror(-ret) });
+		return result;
 	}
-	::close(fd);
-
 	return parseConfig(text, path);
 }
 

@@ -65,15 +65,45 @@ struct PairingSettings {
 	bool operator==(const PairingSettings &) const = default;
 };
 
+// Depth seeding (paper 6.1), at the depth camera's resolution.
 struct SegmentationSettings {
 	int nearMm = 500;                   // lecturer depth interval [near, far]
 	int farMm = 1600;
+	int minAmplitude = 100;             // 0..65535: weaker echoes are not trusted
+	int maxAmplitude = 65535;           // 1..65535: at or above = saturated, not trusted
+	int erodePx = 2;                    // 0..20 ToF px: in-range mask -> surely lecturer
+	int dilatePx = 4;                   // 1..40 ToF px: surely lecturer -> superset
 	bool operator==(const SegmentationSettings &) const = default;
+};
+
+// Where the depth -> colour mapping comes from (paper section 5).
+struct MappingSettings {
+	std::string calibrationFile = "";   // "" = none: identity scaling, reported
+	bool operator==(const MappingSettings &) const = default;
+};
+
+// Colour learning (paper 6.1-6.2): decaying colour histograms per class.
+struct LearningSettings {
+	int initialFrames = 20;             // 1..1000 frames before SIOX starts
+	double boardRate = 0.1;             // 0..1 weight of each frame's board colours
+	double lecturerRate = 0.01;         // 0..1 weight of each frame's lecturer colours
+	int samples = 4096;                 // 256..65536 samples per class and frame
+	int marginPx = 2;                   // 0..40 ToF px kept free beyond the superset
+	double relearnMisfit = 0.05;        // 0..1 rise of misclassified samples that re-derives
+	bool operator==(const LearningSettings &) const = default;
+};
+
+// SIOX on the undecided band (paper section 6).
+struct SioxSettings {
+	int smoothing = 1;                  // 0..8 passes of 3x3 confidence smoothing
+	bool softAlpha = true;              // fractional alpha on the boundary
+	bool operator==(const SioxSettings &) const = default;
 };
 
 struct CompositeSettings {
 	double opacity = 0.5;               // 0..1, lecturer over board
 	uint32_t boardColour = 0x1e3c28;    // 0xRRGGBB board source (solid colour)
+	std::string boardImage = "";        // PNG/JPEG board source; "" = board_colour
 	bool operator==(const CompositeSettings &) const = default;
 };
 
@@ -146,6 +176,9 @@ struct Settings {
 	DepthCameraSettings depth;
 	PairingSettings pairing;
 	SegmentationSettings segmentation;
+	MappingSettings mapping;
+	LearningSettings learning;
+	SioxSettings siox;
 	CompositeSettings composite;
 	OutputSettings output;
 	LedSettings leds;

@@ -69,7 +69,7 @@ int Daemon::start(const Settings &settings)
 	loop_.addSignal(SIGUSR1, [this] { writeSnapshot(); }, sigusr1_);
 
 	startedUs_ = statusAtUs_ = loop_.nowUs();
-	configurePipeline(pipeline_, settings_);
+	configurePipeline();
 	configurePairing();
 	underSystemd_ = std::getenv("NOTIFY_SOCKET") != nullptr;
 
@@ -256,7 +256,7 @@ StatusSummary Daemon::summary() const
 	StatusSummary s;
 	s.colourOk = colour_ && colour_->status().state == DeviceState::Streaming;
 	s.depthOk = depth_ && depth_->status().state == DeviceState::Streaming;
-	s.calibrated = false;
+	s.calibrated = calibrated_ && pipeline_.status().mappingFits;
 	s.error = logger().activeErrorCount() > 0;
 	return s;
 }
@@ -337,7 +337,7 @@ void Daemon::apply(const Settings &next)
 	LogLevel level;
 	if (parseLogLevel(next.daemon.logLevel, level))
 		logger().setLevel(level);
-	configurePipeline(pipeline_, next);
+	configurePipeline();
 	configurePairing();
 	if (previous.daemon.recordDir != next.daemon.recordDir ||
 	    previous.daemon.recordCompression != next.daemon.recordCompression)
@@ -367,7 +367,7 @@ int Daemon::writeStages(const std::string &dir, const std::string &prefix, const
 {
 	static const DepthFrame kNoDepth;
 	StageImages stages;
-	collectPipelineStages(colourLatest_, depth ? *depth : kNoDepth, output_, stages);
+	collectPipelineStages(colourLatest_, depth ? *depth : kNoDepth, pipeline_, output_, mapping_, stages);
 	std::string error;
 	int ret = writeStageImages(dir, prefix, stages, error);
 	if (ret < 0)

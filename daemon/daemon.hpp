@@ -63,6 +63,7 @@ private:
 	void startCameras();
 	void stopCameras();
 	void apply(const Settings &settings);
+	void configurePipeline();
 	void publish(uint64_t captureNs, uint32_t flags);
 	void publishNoSignal(uint64_t nowNs);
 	bool depthFresh(uint64_t nowNs) const;
@@ -91,6 +92,8 @@ private:
 	uint64_t lastPreviewFrame_ = 0;
 
 	Pipeline pipeline_;
+	MappingModel mapping_;     // the last good calibration, or identity
+	bool calibrated_ = false;
 	PipelineOutput output_;
 	FramePairer pairer_;
 	ColourFrame colourLatest_;

@@ -1,18 +1,33 @@
-// The one place that turns the settings into the pipeline's and the frame
-// pairer's configuration, so that depthkeyd and depthkey-eval can never run
-// them differently.
+// What the pipeline and the frame pairer are configured from, shared by
+// depthkeyd (Daemon::configurePipeline, pipeline_setup.cpp) and
+// depthkey-eval, so that the two never run them differently.
 #pragma once
 
 #include "algo/frame_pairer.hpp"
+#include "algo/mapping_model.hpp"
 #include "algo/pipeline.hpp"
 #include "config/settings.hpp"
 
+#include <string>
+
 namespace depthkey {
 
-inline void configurePipeline(Pipeline &pipeline, const Settings &settings)
-{
-	pipeline.configure(settings.segmentation, settings.composite);
-}
+// Plain scaling of depth onto colour: the mapping without a calibration.
+MappingModel identityMapping(const Settings &settings);
+
+// The files the pipeline reads: the calibration's mapping (identity when
+// none is set or it is refused) and the board image (empty = board colour).
+struct PipelineFiles {
+	MappingModel mapping;
+	bool calibrated = false;
+	RgbImage board;
+	std::string calibrationError, boardError; // "" when fine
+};
+PipelineFiles loadPipelineFiles(const Settings &settings);
+
+// The one call that configures the pipeline, for the daemon and the eval.
+void configurePipeline(Pipeline &pipeline, const Settings &settings, const MappingModel &mapping,
+		       const RgbImage &board);
 
 inline void configurePairer(FramePairer &pairer, const Settings &settings)
 {

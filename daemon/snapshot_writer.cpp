@@ -1,5 +1,7 @@
 #include "daemon/snapshot_writer.hpp"
 
+#include "algo/trimap.hpp"
+
 #include <cerrno>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -54,8 +56,8 @@ cv::Mat drawStage(const StageImage &stage)
 		if (stage.kind == StageKind::Seeds) {
 			out.create(gray.rows, gray.cols, CV_8UC3);
 			out.setTo(cv::Scalar(128, 128, 128));                     // undecided: grey
-			out.setTo(cv::Scalar(200, 80, 40), gray == kSeedBoard);    // board: blue (BGR)
-			out.setTo(cv::Scalar(0, 140, 255), gray == kSeedLecturer); // lecturer: orange
+			out.setTo(cv::Scalar(200, 80, 40), gray == kTrimapBoard);    // board: blue (BGR)
+			out.setTo(cv::Scalar(0, 140, 255), gray == kTrimapLecturer); // lecturer: orange
 		} else {
 			out = gray;
 		}

@@ -8,7 +8,6 @@
 // Its last line is, for scripts:
 //   summary method=pipeline frames=300 iou=0.973 bf=0.912 fnr=0.012 fpr=0.004 fps=850
 // fps counts the segmentation alone (not rendering or reading PNGs).
-#include "algo/depth_range_keyer.hpp"
 #include "algo/pipeline.hpp"
 #include "algo/pipeline_stages.hpp"
 #include "algo/segmentation_metrics.hpp"
@@ -189,7 +188,16 @@ class Method
 public:
 	Method(const Settings &settings, bool depthOnly) : settings_(settings), depthOnly_(depthOnly)
 	{
-		configurePipeline(pipeline_, settings);
+		// The files the daemon would read, read the same way.
+		PipelineFiles files = loadPipelineFiles(settings);
+		if (!files.calibrationError.empty())
+			std::fprintf(stderr, "depthkey-eval: calibration refused, mapping by plain scaling: %s\n",
+				     files.calibrationError.c_str());
+		if (!files.boardError.empty())
+			std::fprintf(stderr, "depthkey-eval: board image unusable: %s\n", files.boardError.c_str());
+		mapping_ = files.mapping;
+		calibrated_ = files.calibrated;
+		configurePipeline(pipeline_, settings, mapping_, files.board);
 	}
 
 	// depth == nullptr: nothing paired, the daemon publishes the colour
@@ -202,10 +210,16 @@ public:
 			pipeline_.passThrough(colour, output_);
 			alpha = &output_.alpha;
 		} else if (depthOnly_) {
-			// The paper's baseline (Figure 7): the depth range check, with
-			// depth scaled to the colour image (no calibration yet).
-			ensureKeyer(colour, *depth);
-			keyer_.key(depth->depthMm, settings_.segmentation.nearMm, settings_.segmentation.farMm, alpha_);
+			// The paper's baseline (Figure 7): depth mapped into the colour
+			// image (the calibration's mapping, plain scaling without one),
+			// lecturer where it lies in [near_mm, far_mm].
+			const int w = colour.rgb.width(), h = colour.rgb.height();
+			mapDepthToColour(depth->depthMm, mapping_, w, h, mapped_);
+			alpha_.resize(w, h);
+			const unsigned nearMm = static_cast<unsigned>(settings_.segmentation.nearMm);
+			const unsigned span = static_cast<unsigned>(settings_.segmentation.farMm) - nearMm;
+			for (size_t i = 0; i < mapped_.size(); ++i)
+				alpha_.data()[i] = (mapped_.data()[i] - nearMm <= span) ? 255 : 0;
 			alpha = &alpha_;
 		} else {
 			pipeline_.process(colour, *depth, output_);
@@ -220,36 +234,26 @@ public:
 		if (depthOnly_) {
 			out.add("colour", colour.rgb);
 			out.addDepth("depth", depth.depthMm);
+			out.addDepth("depth-mapped", mapped_);
 			out.add("segmentation", StageKind::Mask, alpha_);
 		} else {
-			collectPipelineStages(colour, depth, output_, out);
+			collectPipelineStages(colour, depth, pipeline_, output_, mapping_, out);
 		}
-		ensureKeyer(colour, depth);
-		keyer_.mapDepth(depth.depthMm, mapped_);
-		out.addDepth("depth-mapped", mapped_);
 		out.add("truth", StageKind::Mask, truth);
 	}
 
 	double seconds() const { return seconds_; }
+	bool calibrated() const { return calibrated_; }
 
 private:
-	void ensureKeyer(const ColourFrame &colour, const DepthFrame &depth)
-	{
-		int sizes[4] = { colour.rgb.width(), colour.rgb.height(), depth.depthMm.width(), depth.depthMm.height() };
-		if (std::memcmp(sizes, keyerSizes_, sizeof(sizes)) != 0) {
-			keyer_.configure(sizes[0], sizes[1], sizes[2], sizes[3]);
-			std::memcpy(keyerSizes_, sizes, sizeof(sizes));
-		}
-	}
-
 	Settings settings_;
 	bool depthOnly_;
+	MappingModel mapping_;
+	bool calibrated_ = false;
 	Pipeline pipeline_;
 	PipelineOutput output_;
-	DepthRangeKeyer keyer_;
-	int keyerSizes_[4] = {};
-	Gray8Image alpha_;
 	Gray16Image mapped_;
+	Gray8Image alpha_;
 	double seconds_ = 0;
 };
 
@@ -370,7 +374,8 @@ int main(int argc, char **argv)
 	SegmentationScore m = average.mean();
 	long frames = average.frames();
 	double fps = method.seconds() > 0 ? frames / method.seconds() : 0.0;
-	std::printf("depthkey-eval: %s, method %s, %ld frames\n", what.c_str(), o.method.c_str(), frames);
+	std::printf("depthkey-eval: %s, method %s, %ld frames, mapping %s\n", what.c_str(), o.method.c_str(), frames,
+		    method.calibrated() ? "from the calibration" : "by plain scaling (no calibration)");
 	std::printf("  IoU %.3f  boundary F (2 px) %.3f (precision %.3f, recall %.3f)\n", m.iou, m.boundaryF,
 		    m.boundaryPrecision, m.boundaryRecall);
 	std::printf("  lecturer pixels lost (FNR) %.3f  board pixels taken (FPR) %.3f  %.0f frames/s\n", m.fnr,
