@@ -9,6 +9,7 @@
 #include "daemon/device_factory.hpp"
 #include "daemon/frame_recorder.hpp"
 #include "daemon/service_notifier.hpp"
+#include "daemon/test_fault.hpp"
 #include "hal/camera.hpp"
 #include "hal/event_loop.hpp"
 #include "hal/frame_sink.hpp"
@@ -57,6 +58,7 @@ private:
 	void maybeWritePreview(uint64_t frameNumber, const DepthFrame &depth);
 	void updateRecording();
 	void checkRecording();
+	void injectTestFault();
 	void stop();
 
 	int openOutput();
@@ -83,7 +85,7 @@ private:
 	std::unique_ptr<StatusLeds> leds_;
 	bool sinkOpen_ = false;
 
-	EventSource sigterm_, sigint_, sighup_, sigusr1_;
+	EventSource sigterm_, sigint_, sighup_, sigusr1_, sigusr2_;
 	EventSource frameTick_, statusTick_, watchdogTick_;
 
 	FrameRecorder recorder_;
@@ -102,6 +104,8 @@ private:
 	RgbImage noSignal_;
 	std::string noSignalText_;
 
+	TestFault testFault_ = TestFault::None;
+	bool framesStalled_ = false; // TEST-ONLY "stall" fault injected
 	bool ready_ = false;
 	bool underSystemd_ = false;
 	uint64_t statusTicks_ = 0;
