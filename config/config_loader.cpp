@@ -3,6 +3,8 @@
 
 #include <cstring>
 #include <limits>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "config/text_file.hpp"
 #include "config/toml_binder.hpp"
@@ -14,8 +16,8 @@ namespace {
 // The values each enumeration accepts. Adding a backend ("sr2", "v4l2",
 // "replay") is one edit here, once the daemon can build it.
 constexpr std::string_view kLogLevels[] = { "error", "warning", "info", "debug" };
-constexpr std::string_view kColourBackends[] = { "sim", "v4l2" };
-constexpr std::string_view kDepthBackends[] = { "sim", "sr2", "v4l2" };
+constexpr std::string_view kColourBackends[] = { "sim", "v4l2", "replay" };
+constexpr std::string_view kDepthBackends[] = { "sim", "sr2", "v4l2", "replay" };
 constexpr std::string_view kLedBackends[] = { "none", "gpiod" };
 constexpr std::string_view kColourFormats[] = { "auto", "yuyv", "nv12", "mjpeg" };
 constexpr std::string_view kDepthFormats[] = { "z16", "y16" };
@@ -100,6 +102,8 @@ void bindDaemon(TomlSection &sec, DaemonSettings &s)
 {
 	sec.string("log_level", s.logLevel, kLogLevels);
 	sec.string("snapshot_dir", s.snapshotDir, checkOptionalAbsolutePath);
+	sec.string("record_dir", s.recordDir, checkOptionalAbsolutePath);
+	sec.integer("record_compression", s.recordCompression, 0, 9);
 }
 
 void bindColour(TomlSection &sec, ColourCameraSettings &s)
@@ -252,6 +256,38 @@ void bindLeds(TomlSection &sec, LedSettings &s)
 void bindSim(TomlSection &sec, SimSettings &s)
 {
 	sec.integer("seed", s.seed, 0, std::numeric_limits<int64_t>::max());
+	sec.integer("board_distance_mm", s.boardDistanceMm, 1500, 2500);
+	sec.number("walk_speed_mps", s.walkSpeedMps, 0.1, 3.0);
+	sec.boolean("table", s.table);
+	sec.boolean("board_changes", s.boardChanges);
+	sec.boolean("lighting_change", s.lightingChange);
+	sec.number("lighting_amplitude", s.lightingAmplitude, 0.0, 0.5);
+	sec.number("lighting_period_s", s.lightingPeriodS, 1.0, 600.0);
+	sec.number("colour_noise", s.colourNoise, 0.0, 30.0);
+	sec.number("colour_jitter_ms", s.colourJitterMs, 0.0, 20.0);
+	sec.boolean("distortion", s.distortion);
+	sec.integer("baseline_mm", s.baselineMm, 0, 200);
+	sec.boolean("depth_noise", s.depthNoise);
+	sec.number("tof_amplitude", s.tofAmplitude, 500.0, 30000.0);
+	sec.number("tof_corner_amplitude", s.tofCornerAmplitude, 0.01, 1.0);
+	sec.number("tof_ambient", s.tofAmbient, 0.0, 30000.0);
+	sec.integer("halo_width_px", s.haloWidthPx, 0, 20);
+	sec.number("halo_strength", s.haloStrength, 0.0, 1.0);
+	sec.integer("saturation_mm", s.saturationMm, 0, 2000);
+	sec.boolean("motion_blur", s.motionBlur);
+	sec.number("tof_exposure_ms", s.tofExposureMs, 1.0, 100.0);
+	sec.number("depth_latency_ms", s.depthLatencyMs, 0.0, 300.0);
+	sec.number("depth_jitter_ms", s.depthJitterMs, 0.0, 50.0);
+}
+
+void bindReplay(TomlSection &sec, ReplaySettings &s, bool used)
+{
+	bool ok = sec.string("path", s.path, checkOptionalAbsolutePath);
+	sec.boolean("realtime", s.realtime);
+	sec.boolean("loop", s.loop);
+	if (ok)
+		sec.require(!used || !s.path.empty(), "path",
+			    "must name the recorded folder when colour.backend or depth.backend is \"replay\"");
 }
 
 } // namespace
@@ -270,6 +306,27 @@ void bindSettings(TomlSection &root, Settings &s)
 	root.table("output", [&](TomlSection &sec) { bindOutput(sec, s.output); });
 	root.table("leds", [&](TomlSection &sec) { bindLeds(sec, s.leds); });
 	root.table("sim", [&](TomlSection &sec) { bindSim(sec, s.sim); });
+	bool replayUsed = s.colour.backend == "replay" || s.depth.backend == "replay";
+	root.table("replay", [&](TomlSection &sec) { bindReplay(sec, s.replay, replayUsed); });
+}
+
+std::string findDefaultConfig()
+{
+	constexpr const char *kSystemConfig = "/etc/depthkey/depthkey.toml";
+	struct stat st;
+	auto exists = [&st](const std::string &path) { return stat(path.c_str(), &st) == 0; };
+	if (exists(kSystemConfig))
+		return kSystemConfig;
+	char buf[4096];
+	ssize_t n = readlink("/proc/self/exe", buf, sizeof(buf) - 1);
+	if (n > 0) {
+		std::string exe(buf, static_cast<size_t>(n));
+		std::string dir = exe.substr(0, exe.rfind('/'));
+		for (const char *up : { "/../../config/depthkey.toml", "/../../../config/depthkey.toml" })
+			if (exists(dir + up))
+				return dir + up;
+	}
+	return kSystemConfig;
 }
 
 ConfigResult parseConfig(std::string_view text, const std::string &sourceName)

@@ -26,6 +26,11 @@ struct ConfigResult {
 // A missing or unreadable file is an error naming the file.
 ConfigResult loadConfig(const std::string &path);
 
+// The config a program uses without --config: /etc/depthkey/depthkey.toml
+// on an installed box, else config/depthkey.toml of the source tree the
+// running binary (build/bin/ or build/san/bin/) was built in.
+std::string findDefaultConfig();
+
 // sourceName is the file name the errors carry.
 ConfigResult parseConfig(std::string_view text, const std::string &sourceName);
 

@@ -12,11 +12,13 @@ namespace depthkey {
 struct DaemonSettings {
 	std::string logLevel = "info";      // error | warning | info | debug
 	std::string snapshotDir = "";       // where SIGUSR1 stage snapshots go; "" = off
+	std::string recordDir = "";         // record the camera inputs here; "" = off
+	int recordCompression = 1;          // PNG zlib level 0..9 of the recording
 	bool operator==(const DaemonSettings &) const = default;
 };
 
 struct ColourCameraSettings {
-	std::string backend = "sim";        // sim | v4l2
+	std::string backend = "sim";        // sim | v4l2 | replay
 	std::string device = "/dev/video0";
 	int width = 640;                    // 16..1920
 	int height = 480;                   // 16..1080
@@ -34,7 +36,7 @@ struct Sr2RegisterWrite {
 };
 
 struct DepthCameraSettings {
-	std::string backend = "sim";        // sim | sr2 | v4l2
+	std::string backend = "sim";        // sim | sr2 | v4l2 | replay
 	int fps = 10;                       // 1..60
 	int timeoutMs = 1000;               // transfer / frame timeout
 	int minMm = 300;                    // valid depth range; outside = no measurement
@@ -132,7 +134,7 @@ struct LedSettings {
 struct SimSettings {
 	uint64_t seed = 1;                  // same seed, same frames
 	// Scene
-	int boardDistanceMm = 2200;         // 1500..2500, board plane from the colour camera
+	int boardDistanceMm = 2000;         // 1500..2500, board plane from the colour camera
 	double walkSpeedMps = 1.0;          // 0.1..3, lecturer's walking speed
 	bool table = true;                  // a table (with a monitor) at lecturer depth
 	bool boardChanges = true;           // strokes written and erased, slide changes
@@ -148,7 +150,7 @@ struct SimSettings {
 	// ToF camera
 	bool depthNoise = true;             // sigma = L/sqrt(8) * sqrt(I) / (2A)
 	double tofAmplitude = 6000;         // 500..30000, amplitude of the board at the centre
-	double tofCornerAmplitude = 0.06;   // 0.01..1, amplitude at the corner relative to centre
+	double tofCornerAmplitude = 0.045;  // 0.01..1, amplitude at the corner relative to centre
 	double tofAmbient = 3000;           // 0..30000, background light in the intensity image
 	int haloWidthPx = 4;                // 0..20, scatter halo around the lecturer; 0 = off
 	double haloStrength = 0.5;          // 0..1, share of scattered light at the silhouette
@@ -158,6 +160,14 @@ struct SimSettings {
 	double depthLatencyMs = 40.0;       // 0..300, capture before the depth timestamp
 	double depthJitterMs = 5.0;         // 0..50, depth frame time jitter (uniform +-)
 	bool operator==(const SimSettings &) const = default;
+};
+
+// The "replay" backend: a recorded sequence folder played back.
+struct ReplaySettings {
+	std::string path = "";              // absolute folder; required by a "replay" backend
+	bool realtime = true;               // false: as fast as the daemon takes frames
+	bool loop = true;                   // start again at the end
+	bool operator==(const ReplaySettings &) const = default;
 };
 
 struct Settings {
@@ -173,6 +183,7 @@ struct Settings {
 	OutputSettings output;
 	LedSettings leds;
 	SimSettings sim;
+	ReplaySettings replay;
 	bool operator==(const Settings &) const = default;
 };
 

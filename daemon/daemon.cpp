@@ -1,6 +1,8 @@
 #include "daemon/daemon.hpp"
 
 #include "config/config_loader.hpp"
+#include "algo/pipeline_stages.hpp"
+#include "daemon/pipeline_setup.hpp"
 #include "daemon/log.hpp"
 #include "daemon/snapshot_writer.hpp"
 #include "algo/no_signal_frame.hpp"
@@ -23,6 +25,9 @@ constexpr uint64_t kColourStalePeriods = 3;
 // that systemd's start job does not hang on a box with a camera unplugged.
 constexpr uint64_t kDegradedReadyUs = 5'000'000;
 constexpr uint64_t kTerminalStatusEvery = 5; // status ticks (seconds)
+// --preview: stage images of this many keyed frames, this many frames apart.
+constexpr int kPreviewCount = 3;
+constexpr uint64_t kPreviewEveryFrames = 50;
 
 } // namespace
 
@@ -30,10 +35,13 @@ void CommandLineOverrides::applyTo(Settings &settings) const
 {
 	if (!snapshotDir.empty())
 		settings.daemon.snapshotDir = snapshotDir;
+	if (!recordDir.empty())
+		settings.daemon.recordDir = recordDir;
 }
 
 Daemon::~Daemon()
 {
+	recorder_.stop();
 	stopCameras();
 	if (sink_)
 		sink_->close();
@@ -75,6 +83,7 @@ int Daemon::start(const Settings &settings)
 				   { { "DEVICE", "leds" } });
 
 	openOutput();
+	updateRecording();
 	startCameras();
 
 	loop_.addPeriodic(1000000u / settings_.colour.fps, [this] { onFrameTick(); }, frameTick_);
@@ -91,6 +100,7 @@ int Daemon::run()
 	int ret = loop_.run();
 	notifier_.stopping();
 	stopCameras();
+	recorder_.stop();
 	if (sink_)
 		sink_->close();
 	logger().info("depthkeyd stopped");
@@ -150,8 +160,7 @@ void Daemon::stopCameras()
 
 void Daemon::configurePairing()
 {
-	pairer_.configure(int64_t{ settings_.pairing.offsetMs } * 1'000'000,
-			  uint64_t(settings_.pairing.maxSkewMs) * 1'000'000);
+	configurePairer(pairer_, settings_);
 }
 
 void Daemon::onDeviceStatus(const std::string &device, const DeviceStatus &status)
@@ -168,6 +177,7 @@ void Daemon::onDeviceStatus(const std::string &device, const DeviceStatus &statu
 void Daemon::onDepthFrame(const DepthFrame &frame)
 {
 	pairer_.addDepth(frame); // same-size copy: no allocation after the first
+	recorder_.recordDepth(frame);
 	depthFrames_++;
 }
 
@@ -175,16 +185,20 @@ void Daemon::onColourFrame(const ColourFrame &frame)
 {
 	colourFrames_++;
 	haveColour_ = true;
+	recorder_.recordColour(frame);
 	lastColourNs_ = frame.timestampNs;
 	uint32_t flags = DK_SHM_FLAG_COLOUR_OK;
-	if (const DepthFrame *depth = pairer_.match(frame.timestampNs)) {
+	const DepthFrame *depth = pairer_.match(frame.timestampNs);
+	if (depth) {
 		pipeline_.process(frame, *depth, output_);
 		flags |= DK_SHM_FLAG_DEPTH_OK | DK_SHM_FLAG_ONLINE;
 	} else {
 		pipeline_.passThrough(frame, output_);
 	}
-	if (settings_.daemon.snapshotDir.size())
+	if (settings_.daemon.snapshotDir.size() || overrides_.previewDir.size())
 		colourLatest_ = frame; // kept only for snapshots
+	if (depth)
+		maybeWritePreview(colourFrames_, *depth);
 	publish(frame.timestampNs, flags);
 }
 
@@ -286,6 +300,7 @@ void Daemon::onStatusTick()
 		      summary().calibrated ? "calibrated" : "not calibrated (identity mapping)");
 	statusAtUs_ = now;
 	notifier_.status(text);
+	checkRecording();
 	// In a terminal there is no STATUS= to look at: say it every few seconds.
 	if (!underSystemd_ && ++statusTicks_ % kTerminalStatusEvery == 0)
 		logger().info(text);
@@ -335,6 +350,9 @@ void Daemon::apply(const Settings &next)
 		logger().setLevel(level);
 	configurePipeline();
 	configurePairing();
+	if (previous.daemon.recordDir != next.daemon.recordDir ||
+	    previous.daemon.recordCompression != next.daemon.recordCompression)
+		updateRecording();
 
 	bool sizeChanged = previous.colour.width != next.colour.width ||
 			   previous.colour.height != next.colour.height;
@@ -354,6 +372,18 @@ void Daemon::apply(const Settings &next)
 		leds_ = factory_.statusLeds(next);
 		leds_->open(loop_, next.leds);
 	}
+}
+
+int Daemon::writeStages(const std::string &dir, const std::string &prefix, const DepthFrame *depth)
+{
+	static const DepthFrame kNoDepth;
+	StageImages stages;
+	collectPipelineStages(colourLatest_, depth ? *depth : kNoDepth, pipeline_, output_, mapping_, stages);
+	std::string error;
+	int ret = writeStageImages(dir, prefix, stages, error);
+	if (ret < 0)
+		logger().error("stage images failed: " + error, { { "SNAPSHOT_DIR", dir } });
+	return ret;
 }
 
 void Daemon::injectTestFault()
@@ -376,15 +406,57 @@ void Daemon::writeSnapshot()
 		logger().warning("snapshot requested but daemon.snapshot_dir is not set");
 		return;
 	}
-	static const Gray16Image kNoDepth;
-	const DepthFrame *depth = pairer_.newest();
-	SnapshotImages images{ colourLatest_.rgb, depth ? depth->depthMm : kNoDepth, output_.alpha,
-			       output_.composite };
-	std::string error;
-	if (writeSnapshotImages(dir, images, error) < 0)
-		logger().error("snapshot failed: " + error, { { "SNAPSHOT_DIR", dir } });
-	else
+	if (writeStages(dir, "", pairer_.newest()) >= 0)
 		logger().info("snapshot written to " + dir, { { "SNAPSHOT_DIR", dir } });
+}
+
+// --preview: the first keyed frame and a few more, 2 s apart, each as
+// frameNNNNNN-<stage>.png, so a technician sees the stages without a signal.
+void Daemon::maybeWritePreview(uint64_t frameNumber, const DepthFrame &depth)
+{
+	if (overrides_.previewDir.empty() || previewsWritten_ >= kPreviewCount)
+		return;
+	if (previewsWritten_ > 0 && frameNumber < lastPreviewFrame_ + kPreviewEveryFrames)
+		return;
+	// The stages are those of this frame: process() has run, publish() not yet.
+	char prefix[32];
+	std::snprintf(prefix, sizeof(prefix), "frame%06llu-", static_cast<unsigned long long>(frameNumber));
+	previewsWritten_++;
+	lastPreviewFrame_ = frameNumber;
+	if (writeStages(overrides_.previewDir, prefix, &depth) >= 0)
+		logger().info(std::string("stage preview written: ") + overrides_.previewDir + "/" + prefix + "*.png",
+			      { { "SNAPSHOT_DIR", overrides_.previewDir } });
+}
+
+void Daemon::updateRecording()
+{
+	recorder_.stop();
+	const std::string &dir = settings_.daemon.recordDir;
+	if (dir.empty())
+		return;
+	std::string error;
+	int ret = recorder_.start(dir, settings_.daemon.recordCompression, error);
+	if (ret < 0)
+		logger().errorOnce("record", "cannot record: " + error,
+				   { { "DEVICE", "recorder" }, { "ERROR", errnoText(ret) } });
+	else
+		logger().info("recording camera frames to " + dir, { { "RECORD_DIR", dir } });
+}
+
+// On the status tick: the worker's write errors and dropped frames.
+void Daemon::checkRecording()
+{
+	if (!recorder_.running())
+		return;
+	std::string error = recorder_.takeError();
+	if (!error.empty())
+		logger().errorOnce("record", "recording: " + error, { { "DEVICE", "recorder" } });
+	uint64_t dropped = recorder_.dropped();
+	if (dropped > recorderDropsLogged_) {
+		logger().warning("recording fell behind: " + std::to_string(dropped) + " frames dropped so far",
+				 { { "DEVICE", "recorder" } });
+		recorderDropsLogged_ = dropped;
+	}
 }
 
 } // namespace depthkey

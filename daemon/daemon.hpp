@@ -7,6 +7,7 @@
 #include "algo/pipeline.hpp"
 #include "config/settings.hpp"
 #include "daemon/device_factory.hpp"
+#include "daemon/frame_recorder.hpp"
 #include "daemon/service_notifier.hpp"
 #include "daemon/test_fault.hpp"
 #include "hal/camera.hpp"
@@ -22,6 +23,8 @@ namespace depthkey {
 // Command-line options that win over the config file, on start and reload.
 struct CommandLineOverrides {
 	std::string snapshotDir;
+	std::string recordDir;   // --record DIR
+	std::string previewDir;  // --preview DIR: stage images of a few frames
 	void applyTo(Settings &settings) const;
 };
 
@@ -51,6 +54,10 @@ private:
 	void onWatchdogTick();
 	void reload();
 	void writeSnapshot();
+	int writeStages(const std::string &dir, const std::string &prefix, const DepthFrame *depth);
+	void maybeWritePreview(uint64_t frameNumber, const DepthFrame &depth);
+	void updateRecording();
+	void checkRecording();
 	void injectTestFault();
 	void stop();
 
@@ -80,6 +87,11 @@ private:
 
 	EventSource sigterm_, sigint_, sighup_, sigusr1_, sigusr2_;
 	EventSource frameTick_, statusTick_, watchdogTick_;
+
+	FrameRecorder recorder_;
+	uint64_t recorderDropsLogged_ = 0;
+	int previewsWritten_ = 0;
+	uint64_t lastPreviewFrame_ = 0;
 
 	Pipeline pipeline_;
 	MappingModel mapping_;     // the last good calibration, or identity

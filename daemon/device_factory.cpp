@@ -2,6 +2,7 @@
 
 #include "daemon/log.hpp"
 #include "hal/gpio/gpiod_status_leds.hpp"
+#include "hal/replay/replay_cameras.hpp"
 #include "hal/shm_frame_sink.hpp"
 #include "hal/sim/sim_cameras.hpp"
 #include "hal/sr2/sr2_camera.hpp"
@@ -9,12 +10,32 @@
 
 namespace depthkey {
 
+namespace {
+
+// The replay colour and depth cameras of one folder must share a timeline
+// (to keep the recorded order). The daemon creates them one after the
+// other; the second finds the first's timeline here while it lives.
+std::shared_ptr<ReplayTimeline> replayTimeline(const ReplaySettings &settings)
+{
+	static std::weak_ptr<ReplayTimeline> current;
+	std::shared_ptr<ReplayTimeline> timeline = current.lock();
+	if (!timeline || !(timeline->settings() == settings)) {
+		timeline = std::make_shared<ReplayTimeline>(settings);
+		current = timeline;
+	}
+	return timeline;
+}
+
+} // namespace
+
 // The config loader only accepts backends listed here, so the fallbacks below
 // are never reached with a validated config.
 std::unique_ptr<ColourCamera> createColourCamera(const Settings &settings)
 {
 	if (settings.colour.backend == "v4l2")
 		return std::make_unique<V4l2ColourCamera>(settings.colour);
+	if (settings.colour.backend == "replay")
+		return std::make_unique<ReplayColourCamera>(replayTimeline(settings.replay));
 	return std::make_unique<SimColourCamera>(settings.colour, settings.sim);
 }
 
@@ -24,6 +45,8 @@ std::unique_ptr<DepthCamera> createDepthCamera(const Settings &settings)
 		return std::make_unique<Sr2Camera>(settings.depth);
 	if (settings.depth.backend == "v4l2")
 		return std::make_unique<V4l2DepthCamera>(settings.depth);
+	if (settings.depth.backend == "replay")
+		return std::make_unique<ReplayDepthCamera>(replayTimeline(settings.replay));
 	return std::make_unique<SimDepthCamera>(settings.depth, settings.sim);
 }
 

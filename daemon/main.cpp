@@ -15,44 +15,19 @@ using namespace depthkey;
 
 namespace {
 
-constexpr const char *kSystemConfig = "/etc/depthkey/depthkey.toml";
-
 void usage(FILE *out)
 {
 	std::fprintf(out,
-		     "usage: depthkeyd [--config FILE] [--snapshot-dir DIR]\n"
+		     "usage: depthkeyd [--config FILE] [--snapshot-dir DIR] [--record DIR] [--preview DIR]\n"
 		     "       depthkeyd --check-config FILE\n"
 		     "       depthkeyd --version\n"
 		     "\n"
 		     "Without --config: %s, or config/depthkey.toml of the source tree\n"
 		     "when run from build/bin/. Signals: SIGHUP re-reads the config,\n"
-		     "SIGUSR1 writes stage snapshots, SIGTERM/SIGINT stop.\n",
-		     kSystemConfig);
-}
-
-bool fileExists(const std::string &path)
-{
-	struct stat st;
-	return stat(path.c_str(), &st) == 0;
-}
-
-// /etc first (an installed box); else the tree this binary was built in.
-std::string defaultConfigPath()
-{
-	if (fileExists(kSystemConfig))
-		return kSystemConfig;
-	char buf[4096];
-	ssize_t n = readlink("/proc/self/exe", buf, sizeof(buf) - 1);
-	if (n > 0) {
-		std::string exe(buf, static_cast<size_t>(n));
-		std::string dir = exe.substr(0, exe.rfind('/'));
-		for (const char *up : { "/../../config/depthkey.toml", "/../../../config/depthkey.toml" }) {
-			std::string candidate = dir + up;
-			if (fileExists(candidate))
-				return candidate;
-		}
-	}
-	return kSystemConfig;
+		     "SIGUSR1 writes stage snapshots, SIGTERM/SIGINT stop.\n"
+		     "--record DIR records the camera frames (see the README's format);\n"
+		     "--preview DIR writes stage images of the first few keyed frames.\n",
+		     "/etc/depthkey/depthkey.toml");
 }
 
 int checkConfig(const std::string &path)
@@ -86,6 +61,10 @@ int main(int argc, char **argv)
 			configPath = argv[++i];
 		} else if (arg == "--snapshot-dir" && i + 1 < argc) {
 			overrides.snapshotDir = argv[++i];
+		} else if (arg == "--record" && i + 1 < argc) {
+			overrides.recordDir = argv[++i];
+		} else if (arg == "--preview" && i + 1 < argc) {
+			overrides.previewDir = argv[++i];
 		} else {
 			std::fprintf(stderr, "depthkeyd: unknown or incomplete argument '%s'\n", arg.c_str());
 			usage(stderr);
@@ -93,7 +72,7 @@ int main(int argc, char **argv)
 		}
 	}
 	if (configPath.empty())
-		configPath = defaultConfigPath();
+		configPath = findDefaultConfig();
 
 	ConfigResult config = loadConfig(configPath);
 	if (!config.ok()) {

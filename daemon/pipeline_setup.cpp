@@ -3,9 +3,10 @@
 // it changes) and the daemon runs on its last good state: the previous
 // calibration, or identity scaling when there never was one; the solid board
 // colour instead of a missing board image.
-#include "daemon/daemon.hpp"
+#include "daemon/pipeline_setup.hpp"
 
 #include "config/calibration_file.hpp"
+#include "daemon/daemon.hpp"
 #include "daemon/log.hpp"
 #include "hal/image_file.hpp"
 #include "hal/kernel_path_env.hpp"
@@ -13,15 +14,6 @@
 namespace depthkey {
 
 namespace {
-
-// SR-2 resolution; the pipeline rescales identity to whatever sizes arrive.
-MappingModel identityMapping(const Settings &settings)
-{
-	MappingModel model;
-	model.colourWidth = settings.colour.width;
-	model.colourHeight = settings.colour.height;
-	return model;
-}
 
 // The journal line names the first problem; `depthkey-calibrate` or a look at
 // the file shows the rest.
@@ -32,52 +24,75 @@ std::string moreErrors(size_t count)
 
 } // namespace
 
+// SR-2 resolution; the pipeline rescales identity to whatever sizes arrive.
+MappingModel identityMapping(const Settings &settings)
+{
+	MappingModel model;
+	model.colourWidth = settings.colour.width;
+	model.colourHeight = settings.colour.height;
+	return model;
+}
+
+PipelineFiles loadPipelineFiles(const Settings &settings)
+{
+	PipelineFiles files;
+	files.mapping = identityMapping(settings);
+	if (!settings.mapping.calibrationFile.empty()) {
+		CalibrationResult result = loadCalibration(settings.mapping.calibrationFile);
+		if (result.ok()) {
+			files.mapping = result.calibration.mapping;
+			files.calibrated = true;
+		} else {
+			files.calibrationError = result.errors.front().toString() + moreErrors(result.errors.size());
+		}
+	}
+	if (!settings.composite.boardImage.empty() &&
+	    readRgbImage(settings.composite.boardImage, files.board, files.boardError) < 0)
+		files.board = RgbImage();
+	return files;
+}
+
+void configurePipeline(Pipeline &pipeline, const Settings &settings, const MappingModel &mapping,
+		       const RgbImage &board)
+{
+	pipeline.setKernelPath(kernelPathFromEnvironment());
+	pipeline.setBoardImage(board);
+	pipeline.configure(settings, mapping);
+}
+
 void Daemon::configurePipeline()
 {
+	PipelineFiles files = loadPipelineFiles(settings_);
 	const std::string &path = settings_.mapping.calibrationFile;
 	if (path.empty()) {
 		calibrated_ = false;
-		mapping_ = identityMapping(settings_);
+		mapping_ = files.mapping;
 		logger().errorOnce("calibration",
 				   "no calibration file (mapping.calibration_file is empty): "
 				   "depth is mapped to colour by plain scaling",
 				   { { "DEVICE", "calibration" }, { "CALIBRATION_FILE", path } });
+	} else if (!files.calibrated) {
+		logger().errorOnce("calibration",
+				   "calibration refused: " + files.calibrationError +
+					   (calibrated_ ? "; keeping the previous calibration"
+							: "; mapping by plain scaling"),
+				   { { "DEVICE", "calibration" }, { "CALIBRATION_FILE", path } });
+		if (!calibrated_)
+			mapping_ = files.mapping;
 	} else {
-		CalibrationResult result = loadCalibration(path);
-		if (!result.ok()) {
-			logger().errorOnce("calibration",
-					   "calibration refused: " + result.errors.front().toString() +
-						   moreErrors(result.errors.size()) +
-						   (calibrated_ ? "; keeping the previous calibration"
-								: "; mapping by plain scaling"),
-					   { { "DEVICE", "calibration" }, { "CALIBRATION_FILE", path } });
-			if (!calibrated_)
-				mapping_ = identityMapping(settings_);
-		} else {
-			mapping_ = result.calibration.mapping;
-			calibrated_ = true;
-			logger().clearError("calibration",
-					    std::string("calibration loaded, model ") +
-						    mappingKindName(mapping_.kind),
-					    { { "DEVICE", "calibration" }, { "CALIBRATION_FILE", path } });
-		}
+		mapping_ = files.mapping;
+		calibrated_ = true;
+		logger().clearError("calibration",
+				    std::string("calibration loaded, model ") + mappingKindName(mapping_.kind),
+				    { { "DEVICE", "calibration" }, { "CALIBRATION_FILE", path } });
 	}
 
-	RgbImage board;
-	const std::string &boardPath = settings_.composite.boardImage;
-	if (!boardPath.empty()) {
-		std::string error;
-		if (readRgbImage(boardPath, board, error) < 0) {
-			board = RgbImage();
-			logger().errorOnce("board_image", "board image unusable, showing board_colour: " + error,
-					   { { "DEVICE", "board_image" } });
-		} else {
-			logger().clearError("board_image", "board image loaded", { { "DEVICE", "board_image" } });
-		}
-	}
-	pipeline_.setKernelPath(kernelPathFromEnvironment());
-	pipeline_.setBoardImage(board);
-	pipeline_.configure(settings_, mapping_);
+	if (!files.boardError.empty())
+		logger().errorOnce("board_image", "board image unusable, showing board_colour: " + files.boardError,
+				   { { "DEVICE", "board_image" } });
+	else if (!settings_.composite.boardImage.empty())
+		logger().clearError("board_image", "board image loaded", { { "DEVICE", "board_image" } });
+	depthkey::configurePipeline(pipeline_, settings_, mapping_, files.board);
 }
 
 } // namespace depthkey

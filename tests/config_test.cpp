@@ -78,6 +78,8 @@ TEST(ConfigLoader, CustomFileSetsEveryField)
 [daemon]
 log_level = "debug"
 snapshot_dir = "/var/lib/depthkey/snapshots"
+record_dir = "/srv/recordings/today"
+record_compression = 6
 [colour]
 backend = "v4l2"
 device = "/dev/v4l/by-id/usb-cam"
@@ -134,13 +136,39 @@ reader_line = -1
 error_line = 15
 [sim]
 seed = 9007199254740993
+board_distance_mm = 2400
+walk_speed_mps = 1.5
+table = false
+board_changes = false
+lighting_change = false
+lighting_amplitude = 0.3
+lighting_period_s = 60
+colour_noise = 0
+colour_jitter_ms = 0
+distortion = false
+baseline_mm = 80
+depth_noise = false
+tof_amplitude = 9000
+tof_corner_amplitude = 0.2
+tof_ambient = 1000
+halo_width_px = 0
+halo_strength = 0.25
+saturation_mm = 0
+motion_blur = false
+tof_exposure_ms = 10
+depth_latency_ms = 0
+depth_jitter_ms = 0
+[replay]
+path = "/srv/recordings/lecture1"
+realtime = false
+loop = false
 )",
 					  kFile);
 	for (const ConfigError &e : result.errors)
 		ADD_FAILURE() << e.toString();
 
 	Settings expected;
-	expected.daemon = { "debug", "/var/lib/depthkey/snapshots" };
+	expected.daemon = { "debug", "/var/lib/depthkey/snapshots", "/srv/recordings/today", 6 };
 	expected.colour = { "v4l2", "/dev/v4l/by-id/usb-cam", 1280, 720, 30, "mjpeg", 2000 };
 	expected.depth = { "sr2", 15, 500, 400, 5000, "1-2.3", 90, true, 12000, 20000,
 			   { { 0x0A, 7 }, { 0x0B, 255 } }, "usb-Intel_RealSense-video-index0",
@@ -150,7 +178,9 @@ seed = 9007199254740993
 	expected.composite = { 1.0, 0xff8000 };
 	expected.output = { "/room12.composite", "/room12.lecturer", 5, "video" };
 	expected.leds = { "gpiod", "/dev/gpiochip1", true, 10, 11, 12, 13, -1, 15 };
-	expected.sim = { 9007199254740993u };
+	expected.sim = { 9007199254740993u, 2400, 1.5, false, false, false, 0.3, 60.0, 0.0, 0.0, false, 80,
+			 false, 9000.0, 0.2, 1000.0, 0, 0.25, 0, false, 10.0, 0.0, 0.0 };
+	expected.replay = { "/srv/recordings/lecture1", false, false };
 	EXPECT_EQ(result.settings, expected);
 
 	// Every section the file can change did change.
@@ -164,6 +194,30 @@ seed = 9007199254740993
 	EXPECT_NE(expected.composite, defaults.composite);
 	EXPECT_NE(expected.output, defaults.output);
 	EXPECT_NE(expected.sim, defaults.sim);
+	EXPECT_NE(expected.replay, defaults.replay);
+}
+
+TEST(ConfigLoader, SimRangesAreChecked)
+{
+	ConfigError e = onlyError("[sim]\nboard_distance_mm = 1000\n");
+	EXPECT_EQ(e.key, "sim.board_distance_mm");
+	EXPECT_NE(e.message.find("out of range"), std::string::npos) << e.message;
+	e = onlyError("[sim]\nhalo_strength = 1.5\n");
+	EXPECT_EQ(e.key, "sim.halo_strength");
+	EXPECT_EQ(e.line, 2);
+	e = onlyError("[sim]\nmotion_blur = 1\n");
+	EXPECT_EQ(e.key, "sim.motion_blur");
+}
+
+TEST(ConfigLoader, ReplayBackendNeedsAPath)
+{
+	ConfigError e = onlyError("[colour]\nbackend = \"replay\"\n");
+	EXPECT_EQ(e.key, "replay.path");
+	EXPECT_NE(e.message.find("must name the recorded folder"), std::string::npos) << e.message;
+	ConfigResult ok = parseConfig("[depth]\nbackend = \"replay\"\n[replay]\npath = \"/srv/rec\"\n", kFile);
+	EXPECT_TRUE(ok.ok());
+	EXPECT_EQ(ok.settings.depth.backend, "replay");
+	EXPECT_EQ(onlyError("[replay]\npath = \"rec\"\n").key, "replay.path");
 }
 
 TEST(ConfigLoader, ErrorFormat)
@@ -247,7 +301,7 @@ TEST(ConfigLoader, ValueNotAllowed)
 {
 	EXPECT_EQ(onlyError("[depth]\nbackend = \"kinect\"\n"),
 		  (ConfigError{ kFile, 2, 11, "depth.backend",
-				"\"kinect\" is not one of \"sim\" \"sr2\" \"v4l2\"" }));
+				"\"kinect\" is not one of \"sim\" \"sr2\" \"v4l2\" \"replay\"" }));
 	EXPECT_EQ(onlyError("[daemon]\nlog_level = \"verbose\"\n"),
 		  (ConfigError{ kFile, 2, 13, "daemon.log_level",
 				"\"verbose\" is not one of \"error\" \"warning\" \"info\" \"debug\"" }));

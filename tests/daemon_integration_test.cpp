@@ -7,6 +7,9 @@
 #include <gtest/gtest.h>
 
 #include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <thread>
 #include <vector>
@@ -179,4 +182,65 @@ TEST_F(DaemonIntegration, CorruptCalibrationIsRefusedWithFileAndLine)
 	int status = daemon_.waitExit(5s);
 	ASSERT_TRUE(WIFEXITED(status));
 	EXPECT_EQ(WEXITSTATUS(status), 0);
+}
+
+namespace {
+
+int countLines(const std::string &path, char skipIfFirst)
+{
+	FILE *f = std::fopen(path.c_str(), "r");
+	if (!f)
+		return -1;
+	int n = 0;
+	char line[512];
+	while (std::fgets(line, sizeof(line), f))
+		n += line[0] != skipIfFirst;
+	std::fclose(f);
+	return n;
+}
+
+} // namespace
+
+// --record writes what the cameras deliver; the replay backends play it
+// back so that the daemon runs on it as on live cameras; --preview writes
+// stage images.
+TEST_F(DaemonIntegration, RecordThenReplayWithPreviews)
+{
+	std::string recording = daemon_.dir() + "/recording";
+	std::string previews = daemon_.dir() + "/previews";
+	ASSERT_TRUE(daemon_.start({ "--config", config_, "--record", recording, "--preview", previews }));
+	ASSERT_TRUE(daemon_.waitForNotify("READY=1", 10s)) << daemon_.log();
+	std::this_thread::sleep_for(1500ms);
+	ASSERT_EQ(daemon_.signal(SIGTERM), 0);
+	ASSERT_NE(daemon_.waitExit(5s), -1);
+	int colourFrames = countLines(recording + "/rgb.txt", '#');
+	EXPECT_GE(colourFrames, 15) << daemon_.log();
+	EXPECT_GE(countLines(recording + "/depth.txt", '#'), 5);
+	EXPECT_EQ(countLines(recording + "/amplitude.txt", '#'), countLines(recording + "/depth.txt", '#'));
+	struct stat st;
+	EXPECT_EQ(stat((recording + "/rgb/000001.png").c_str(), &st), 0);
+	bool previewFound = false;
+	for (const char *stage : { "colour", "depth", "alpha", "composite" }) {
+		std::string glob = "ls " + previews + "/frame*-" + stage + ".png >/dev/null 2>&1";
+		previewFound = std::system(glob.c_str()) == 0;
+		EXPECT_TRUE(previewFound) << stage << "\n" << daemon_.log();
+	}
+
+	DaemonProcess replay;
+	std::string replayConfig = replay.writeFile("depthkey.toml",
+					"[colour]\nbackend = \"replay\"\nwidth = 320\nheight = 240\n"
+					"[depth]\nbackend = \"replay\"\n"
+					"[output]\ncomposite_name = \"" + prefix_ + ".composite\"\n"
+					"lecturer_name = \"" + prefix_ + ".lecturer\"\n"
+					"[replay]\npath = \"" + recording + "\"\n");
+	ASSERT_TRUE(replay.start({ "--config", replayConfig }));
+	ASSERT_TRUE(replay.waitForNotify("READY=1", 10s)) << replay.log();
+	std::this_thread::sleep_for(1200ms);
+	replay.pollNotify();
+	EXPECT_GE(replay.countNotify("STATUS=colour replay-colour streaming"), 1) << replay.log();
+	ShmFrame frame;
+	ASSERT_TRUE(readFrame(prefix_ + ".composite", frame, 2s));
+	EXPECT_TRUE(frame.info.flags & DK_SHM_FLAG_ONLINE);
+	ASSERT_EQ(replay.signal(SIGTERM), 0);
+	EXPECT_NE(replay.waitExit(5s), -1);
 }

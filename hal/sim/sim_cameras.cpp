@@ -3,7 +3,7 @@
 namespace depthkey {
 
 SimColourCamera::SimColourCamera(const ColourCameraSettings &settings, const SimSettings &sim)
-	: settings_(settings), scene_(sim.seed)
+	: settings_(settings), sim_(sim)
 {
 }
 
@@ -11,9 +11,8 @@ int SimColourCamera::start(EventLoop &loop, FrameHandler onFrame, StatusHandler 
 {
 	loop_ = &loop;
 	onFrame_ = std::move(onFrame);
-	frame_.rgb.resize(settings_.width, settings_.height);
+	simulator_.configure(sim_, settings_.width, settings_.height);
 	frame_.sequence = 0;
-	startUs_ = loop.nowUs();
 	int ret = loop.addPeriodic(1000000u / settings_.fps, [this] { capture(); }, timer_);
 	if (ret < 0)
 		return ret;
@@ -31,14 +30,14 @@ void SimColourCamera::stop()
 void SimColourCamera::capture()
 {
 	uint64_t now = loop_->nowUs();
-	scene_.renderColour((now - startUs_) / 1e6, frame_.rgb);
+	simulator_.renderColour(now / 1e6, frame_);
 	frame_.timestampNs = now * 1000u;
 	frame_.sequence++;
 	onFrame_(frame_);
 }
 
 SimDepthCamera::SimDepthCamera(const DepthCameraSettings &settings, const SimSettings &sim)
-	: settings_(settings), scene_(sim.seed)
+	: settings_(settings), sim_(sim)
 {
 }
 
@@ -46,11 +45,10 @@ int SimDepthCamera::start(EventLoop &loop, FrameHandler onFrame, StatusHandler o
 {
 	loop_ = &loop;
 	onFrame_ = std::move(onFrame);
-	frame_.depthMm.resize(kWidth, kHeight);
-	frame_.amplitude.resize(kWidth, kHeight);
-	frame_.intensity.resize(kWidth, kHeight);
+	// The colour size does not matter for the depth view.
+	simulator_.configure(sim_, 640, 480);
+	timing_.configure(sim_, 25, settings_.fps);
 	frame_.sequence = 0;
-	startUs_ = loop.nowUs();
 	int ret = loop.addPeriodic(1000000u / settings_.fps, [this] { capture(); }, timer_);
 	if (ret < 0)
 		return ret;
@@ -68,7 +66,10 @@ void SimDepthCamera::stop()
 void SimDepthCamera::capture()
 {
 	uint64_t now = loop_->nowUs();
-	scene_.renderDepth((now - startUs_) / 1e6, frame_);
+	// The frame shows the scene latency (and jitter) before it arrives.
+	double shown = now / 1e6 - sim_.depthLatencyMs / 1000.0 -
+		       sim_.depthJitterMs / 1000.0 * timing_.jitterUnit(2, frame_.sequence);
+	simulator_.renderDepth(shown, frame_);
 	frame_.timestampNs = now * 1000u;
 	frame_.sequence++;
 	onFrame_(frame_);

@@ -1,10 +1,14 @@
-// Simulated colour and depth cameras: timer-driven renderers of a scene,
-// free-running at their own frame rates like the real pair.
+// Simulated colour and depth cameras: timer-driven views of the simulated
+// lecture (hal/sim/lecture_simulator.hpp), free-running at their own frame
+// rates like the real pair. Scene time is CLOCK_MONOTONIC, shared by both,
+// so the two views agree. The depth camera stamps each frame latency +
+// jitter after the moment it shows, as a real ToF delivers it late.
 #pragma once
 
 #include "config/settings.hpp"
 #include "hal/camera.hpp"
-#include "hal/sim/simple_scene.hpp"
+#include "hal/sim/lecture_simulator.hpp"
+#include "hal/sim/sim_timing.hpp"
 
 namespace depthkey {
 
@@ -21,13 +25,13 @@ private:
 	void capture();
 
 	ColourCameraSettings settings_;
-	SimpleScene scene_;
+	SimSettings sim_;
+	LectureSimulator simulator_;
 	EventLoop *loop_ = nullptr;
 	EventSource timer_;
 	FrameHandler onFrame_;
 	ColourFrame frame_;
 	DeviceStatus status_;
-	uint64_t startUs_ = 0;
 };
 
 class SimDepthCamera : public DepthCamera
@@ -39,20 +43,21 @@ public:
 	void stop() override;
 	DeviceStatus status() const override { return status_; }
 
-	static constexpr int kWidth = 160;  // the SR-2's sensor
-	static constexpr int kHeight = 124;
+	static constexpr int kWidth = LectureSimulator::kTofWidth;  // the SR-2's sensor
+	static constexpr int kHeight = LectureSimulator::kTofHeight;
 
 private:
 	void capture();
 
 	DepthCameraSettings settings_;
-	SimpleScene scene_;
+	SimSettings sim_;
+	LectureSimulator simulator_;
+	sim::SimTiming timing_;
 	EventLoop *loop_ = nullptr;
 	EventSource timer_;
 	FrameHandler onFrame_;
 	DepthFrame frame_;
 	DeviceStatus status_;
-	uint64_t startUs_ = 0;
 };
 
 } // namespace depthkey

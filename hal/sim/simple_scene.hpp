@@ -1,4 +1,5 @@
-// A minimal scene for the simulated cameras: a board with a few strokes and
+// The skeleton's minimal scene, kept only for tests/pipeline_test.cpp (the
+// daemon and the tools use hal/sim/lecture_simulator.hpp): a board with a few strokes and
 // a figure (head and torso) walking to and fro in front of it. Both cameras
 // render the same scene at their own resolution and time, so the pipeline has
 // consistent colour and depth to work on. Deterministic in time and seed.

@@ -1,0 +1,38 @@
+// What the pipeline and the frame pairer are configured from, shared by
+// depthkeyd (Daemon::configurePipeline, pipeline_setup.cpp) and
+// depthkey-eval, so that the two never run them differently.
+#pragma once
+
+#include "algo/frame_pairer.hpp"
+#include "algo/mapping_model.hpp"
+#include "algo/pipeline.hpp"
+#include "config/settings.hpp"
+
+#include <string>
+
+namespace depthkey {
+
+// Plain scaling of depth onto colour: the mapping without a calibration.
+MappingModel identityMapping(const Settings &settings);
+
+// The files the pipeline reads: the calibration's mapping (identity when
+// none is set or it is refused) and the board image (empty = board colour).
+struct PipelineFiles {
+	MappingModel mapping;
+	bool calibrated = false;
+	RgbImage board;
+	std::string calibrationError, boardError; // "" when fine
+};
+PipelineFiles loadPipelineFiles(const Settings &settings);
+
+// The one call that configures the pipeline, for the daemon and the eval.
+void configurePipeline(Pipeline &pipeline, const Settings &settings, const MappingModel &mapping,
+		       const RgbImage &board);
+
+inline void configurePairer(FramePairer &pairer, const Settings &settings)
+{
+	pairer.configure(int64_t{ settings.pairing.offsetMs } * 1'000'000,
+			 uint64_t(settings.pairing.maxSkewMs) * 1'000'000);
+}
+
+} // namespace depthkey

@@ -1,0 +1,187 @@
+#include "hal/recording/sequence_reader.hpp"
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <sstream>
+#include <unistd.h>
+
+namespace depthkey {
+
+using namespace recording;
+
+namespace {
+
+// The sequence number in "rgb/000042.png", else 0.
+uint64_t sequenceFromName(const std::string &file)
+{
+	size_t slash = file.rfind('/'), dot = file.rfind('.');
+	size_t start = slash == std::string::npos ? 0 : slash + 1;
+	if (dot == std::string::npos || dot <= start)
+		return 0;
+	uint64_t n = 0;
+	for (size_t i = start; i < dot; ++i) {
+		if (file[i] < '0' || file[i] > '9')
+			return 0;
+		n = n * 10 + static_cast<uint64_t>(file[i] - '0');
+	}
+	return n;
+}
+
+template<typename Pixel> struct PixelType;
+template<> struct PixelType<Rgb8> { static constexpr int cv = CV_8UC3; static constexpr const char *name = "8-bit RGB"; };
+template<> struct PixelType<uint16_t> { static constexpr int cv = CV_16UC1; static constexpr const char *name = "16-bit grey"; };
+template<> struct PixelType<uint8_t> { static constexpr int cv = CV_8UC1; static constexpr const char *name = "8-bit grey"; };
+
+} // namespace
+
+int SequenceReader::readIndex(Stream stream, bool required)
+{
+	std::string path = dir_ + "/" + kStreams[stream] + ".txt";
+	std::ifstream in(path);
+	if (!in) {
+		if (!required)
+			return 0;
+		error_ = path + ": cannot open";
+		return -ENOENT;
+	}
+	std::string line;
+	int lineNumber = 0;
+	while (std::getline(in, line)) {
+		lineNumber++;
+		if (line.empty() || line[0] == '#')
+			continue;
+		std::istringstream fields(line);
+		std::string stamp, file;
+		SequenceEntry entry;
+		if (!(fields >> stamp >> file) || !parseTimestamp(stamp, entry.timestampNs)) {
+			error_ = path + ":" + std::to_string(lineNumber) + ": expected \"<seconds> <file>\"";
+			return -EINVAL;
+		}
+		auto &index = index_[stream];
+		if (!index.empty() && entry.timestampNs < index.back().timestampNs) {
+			error_ = path + ":" + std::to_string(lineNumber) + ": timestamp goes backwards";
+			return -EINVAL;
+		}
+		entry.file = file;
+		entry.sequence = sequenceFromName(file);
+		if (entry.sequence == 0)
+			entry.sequence = index.size() + 1;
+		index.push_back(entry);
+	}
+	return 0;
+}
+
+int SequenceReader::checkMatches(Stream stream, Stream owner)
+{
+	const auto &a = index_[stream], &b = index_[owner];
+	if (a.empty())
+		return 0;
+	bool same = a.size() == b.size();
+	for (size_t i = 0; same && i < a.size(); ++i)
+		same = a[i].timestampNs == b[i].timestampNs;
+	if (!same) {
+		error_ = dir_ + "/" + kStreams[stream] + ".txt: does not list the same timestamps as " +
+			 kStreams[owner] + ".txt";
+		return -EINVAL;
+	}
+	return 0;
+}
+
+int SequenceReader::open(const std::string &dir)
+{
+	dir_ = dir;
+	for (auto &index : index_)
+		index.clear();
+	int ret;
+	for (int s = 0; s < StreamCount; ++s)
+		if ((ret = readIndex(static_cast<Stream>(s), false)) < 0)
+			return ret;
+	if (colour().empty() && depth().empty()) {
+		error_ = dir + ": no frames (rgb.txt and depth.txt missing or empty)";
+		return -ENOENT;
+	}
+	if ((ret = checkMatches(Amplitude, Depth)) < 0 || (ret = checkMatches(Intensity, Depth)) < 0 ||
+	    (ret = checkMatches(Mask, Rgb)) < 0)
+		return ret;
+	return 0;
+}
+
+template<typename Pixel>
+int SequenceReader::readImage(Stream stream, size_t i, Image<Pixel> &out)
+{
+	const auto &index = index_[stream];
+	if (i >= index.size()) {
+		error_ = dir_ + "/" + kStreams[stream] + ".txt: no frame " + std::to_string(i);
+		return -ERANGE;
+	}
+	std::string path = dir_ + "/" + index[i].file;
+	// Checked first: OpenCV would only log a warning of its own.
+	if (access(path.c_str(), R_OK) < 0) {
+		int err = errno;
+		error_ = path + ": cannot open: " + std::strerror(err);
+		return -err;
+	}
+	cv::Mat mat;
+	try {
+		mat = cv::imread(path, cv::IMREAD_UNCHANGED);
+	} catch (const cv::Exception &e) {
+		error_ = path + ": " + e.what();
+		return -EIO;
+	}
+	if (mat.empty()) {
+		error_ = path + ": missing or not an image";
+		return -EIO;
+	}
+	if (mat.type() != PixelType<Pixel>::cv) {
+		error_ = path + ": is not " + PixelType<Pixel>::name;
+		return -EINVAL;
+	}
+	if constexpr (std::is_same_v<Pixel, Rgb8>)
+		cv::cvtColor(mat, mat, cv::COLOR_BGR2RGB);
+	out.resize(mat.cols, mat.rows);
+	for (int y = 0; y < mat.rows; ++y)
+		std::memcpy(out.row(y), mat.ptr(y), sizeof(Pixel) * mat.cols);
+	return 0;
+}
+
+int SequenceReader::readColour(size_t i, ColourFrame &out)
+{
+	int ret = readImage(Rgb, i, out.rgb);
+	if (ret < 0)
+		return ret;
+	out.timestampNs = colour()[i].timestampNs;
+	out.sequence = colour()[i].sequence;
+	return 0;
+}
+
+int SequenceReader::readDepth(size_t i, DepthFrame &out)
+{
+	int ret = readImage(Depth, i, out.depthMm);
+	if (ret < 0)
+		return ret;
+	for (auto [stream, image] : { std::pair{ Amplitude, &out.amplitude }, std::pair{ Intensity, &out.intensity } }) {
+		if (!index_[stream].empty()) {
+			if ((ret = readImage(stream, i, *image)) < 0)
+				return ret;
+			if (image->width() != out.depthMm.width() || image->height() != out.depthMm.height()) {
+				error_ = dir_ + "/" + index_[stream][i].file + ": size differs from the depth image";
+				return -EINVAL;
+			}
+		} else {
+			*image = Gray16Image(out.depthMm.width(), out.depthMm.height(), 0);
+		}
+	}
+	out.timestampNs = depth()[i].timestampNs;
+	out.sequence = depth()[i].sequence;
+	return 0;
+}
+
+int SequenceReader::readMask(size_t i, Gray8Image &out)
+{
+	return readImage(Mask, i, out);
+}
+
+} // namespace depthkey

@@ -1,0 +1,389 @@
+// depthkey-eval: scores a segmentation method against ground truth, on the
+// simulated lecture or a recorded sequence with masks, as fast as it can.
+//
+//   depthkey-eval [--config FILE] (--sequence DIR | --sim SEED --frames N)
+//                 [--method depth-only|pipeline] [--csv FILE] [--preview DIR]
+//                 [--save-sequence DIR]
+//
+// Its last line is, for scripts:
+//   summary method=pipeline frames=300 iou=0.973 bf=0.912 fnr=0.012 fpr=0.004 fps=850
+// fps counts the segmentation alone (not rendering or reading PNGs).
+#include "algo/pipeline.hpp"
+#include "algo/pipeline_stages.hpp"
+#include "algo/segmentation_metrics.hpp"
+#include "config/config_loader.hpp"
+#include "daemon/pipeline_setup.hpp"
+#include "daemon/snapshot_writer.hpp"
+#include "hal/recording/sequence_reader.hpp"
+#include "hal/recording/sequence_writer.hpp"
+#include "hal/sim/sim_sequence.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <functional>
+#include <memory>
+#include <string>
+
+using namespace depthkey;
+
+namespace {
+
+struct Options {
+	std::string config, sequence, csv, preview, saveSequence;
+	std::string method = "pipeline";
+	long simSeed = -1;
+	long frames = 0;
+};
+
+void usage(FILE *out)
+{
+	std::fprintf(out, "usage: depthkey-eval [--config FILE] (--sequence DIR | --sim SEED --frames N)\n"
+			  "                     [--method depth-only|pipeline] [--csv FILE] [--preview DIR]\n"
+			  "                     [--save-sequence DIR]\n");
+}
+
+bool parseNumber(const char *text, long min, long &out)
+{
+	char *end = nullptr;
+	errno = 0;
+	long v = std::strtol(text, &end, 10);
+	if (errno || !end || *end || end == text || v < min)
+		return false;
+	out = v;
+	return true;
+}
+
+// 0 = parsed, else the exit status.
+int parseOptions(int argc, char **argv, Options &o)
+{
+	for (int i = 1; i < argc; ++i) {
+		std::string arg = argv[i];
+		bool hasValue = i + 1 < argc;
+		if (arg == "--help" || arg == "-h") {
+			usage(stdout);
+			return -1;
+		} else if (arg == "--config" && hasValue) {
+			o.config = argv[++i];
+		} else if (arg == "--sequence" && hasValue) {
+			o.sequence = argv[++i];
+		} else if (arg == "--sim" && hasValue) {
+			if (!parseNumber(argv[++i], 0, o.simSeed)) {
+				std::fprintf(stderr, "depthkey-eval: --sim needs a seed >= 0, not '%s'\n", argv[i]);
+				return 2;
+			}
+		} else if (arg == "--frames" && hasValue) {
+			if (!parseNumber(argv[++i], 1, o.frames)) {
+				std::fprintf(stderr, "depthkey-eval: --frames needs a count >= 1, not '%s'\n", argv[i]);
+				return 2;
+			}
+		} else if (arg == "--method" && hasValue) {
+			o.method = argv[++i];
+			if (o.method != "depth-only" && o.method != "pipeline") {
+				std::fprintf(stderr, "depthkey-eval: --method must be depth-only or pipeline, not '%s'\n",
+					     o.method.c_str());
+				return 2;
+			}
+		} else if (arg == "--csv" && hasValue) {
+			o.csv = argv[++i];
+		} else if (arg == "--preview" && hasValue) {
+			o.preview = argv[++i];
+		} else if (arg == "--save-sequence" && hasValue) {
+			o.saveSequence = argv[++i];
+		} else {
+			std::fprintf(stderr, "depthkey-eval: unknown or incomplete argument '%s'\n", arg.c_str());
+			usage(stderr);
+			return 2;
+		}
+	}
+	if (o.sequence.empty() == (o.simSeed < 0)) {
+		std::fprintf(stderr, "depthkey-eval: give either --sequence DIR or --sim SEED --frames N\n");
+		return 2;
+	}
+	if (o.simSeed >= 0 && o.frames == 0) {
+		std::fprintf(stderr, "depthkey-eval: --sim needs --frames N\n");
+		return 2;
+	}
+	return 0;
+}
+
+// Where scored frames come from: the stream the daemon would receive, each
+// colour frame with its truth, preceded by the depth frames that have
+// arrived by then.
+class FrameSource
+{
+public:
+	using DepthHandler = std::function<void(const DepthFrame &)>;
+	virtual ~FrameSource() = default;
+	// 1 = a frame, 0 = the end, negative = error (printed).
+	virtual int next(ColourFrame &colour, Gray8Image &truth, const DepthHandler &onDepth) = 0;
+};
+
+class SimSource : public FrameSource
+{
+public:
+	explicit SimSource(const Settings &s)
+	{
+		sequence_.configure(s.sim, s.colour.width, s.colour.height, s.colour.fps, s.depth.fps);
+	}
+	int next(ColourFrame &colour, Gray8Image &truth, const DepthHandler &onDepth) override
+	{
+		sequence_.frame(n_++, colour, truth_, onDepth);
+		truth = truth_.alpha;
+		return 1;
+	}
+
+private:
+	SimSequence sequence_;
+	GroundTruth truth_;
+	uint64_t n_ = 0;
+};
+
+class RecordedSource : public FrameSource
+{
+public:
+	int open(const std::string &dir)
+	{
+		int ret = reader_.open(dir);
+		if (ret < 0) {
+			std::fprintf(stderr, "depthkey-eval: %s\n", reader_.describeError().c_str());
+			return ret;
+		}
+		if (!reader_.hasMask() || reader_.depth().empty()) {
+			std::fprintf(stderr, "depthkey-eval: %s: needs rgb, depth and mask (ground truth) to score\n",
+				     dir.c_str());
+			return -EINVAL;
+		}
+		return 0;
+	}
+	int next(ColourFrame &colour, Gray8Image &truth, const DepthHandler &onDepth) override
+	{
+		const auto &rgb = reader_.colour(), &dep = reader_.depth();
+		if (i_ >= rgb.size())
+			return 0;
+		int ret = 0;
+		for (; d_ < dep.size() && dep[d_].timestampNs <= rgb[i_].timestampNs && ret >= 0; ++d_)
+			if ((ret = reader_.readDepth(d_, depth_)) >= 0)
+				onDepth(depth_);
+		if (ret >= 0 && (ret = reader_.readColour(i_, colour)) >= 0)
+			ret = reader_.readMask(i_, truth);
+		if (ret < 0) {
+			std::fprintf(stderr, "depthkey-eval: %s\n", reader_.describeError().c_str());
+			return ret;
+		}
+		++i_;
+		return 1;
+	}
+
+private:
+	SequenceReader reader_;
+	DepthFrame depth_;
+	size_t i_ = 0, d_ = 0;
+};
+
+// The method under test, timed alone.
+class Method
+{
+public:
+	Method(const Settings &settings, bool depthOnly) : settings_(settings), depthOnly_(depthOnly)
+	{
+		// The files the daemon would read, read the same way.
+		PipelineFiles files = loadPipelineFiles(settings);
+		if (!files.calibrationError.empty())
+			std::fprintf(stderr, "depthkey-eval: calibration refused, mapping by plain scaling: %s\n",
+				     files.calibrationError.c_str());
+		if (!files.boardError.empty())
+			std::fprintf(stderr, "depthkey-eval: board image unusable: %s\n", files.boardError.c_str());
+		mapping_ = files.mapping;
+		calibrated_ = files.calibrated;
+		configurePipeline(pipeline_, settings, mapping_, files.board);
+	}
+
+	// depth == nullptr: nothing paired, the daemon publishes the colour
+	// picture unkeyed (everything lecturer) and so is it scored.
+	const Gray8Image &run(const ColourFrame &colour, const DepthFrame *depth)
+	{
+		auto start = std::chrono::steady_clock::now();
+		const Gray8Image *alpha;
+		if (!depth) {
+			pipeline_.passThrough(colour, output_);
+			alpha = &output_.alpha;
+		} else if (depthOnly_) {
+			// The paper's baseline (Figure 7): depth mapped into the colour
+			// image (the calibration's mapping, plain scaling without one),
+			// lecturer where it lies in [near_mm, far_mm].
+			const int w = colour.rgb.width(), h = colour.rgb.height();
+			mapDepthToColour(depth->depthMm, mapping_, w, h, mapped_);
+			alpha_.resize(w, h);
+			const unsigned nearMm = static_cast<unsigned>(settings_.segmentation.nearMm);
+			const unsigned span = static_cast<unsigned>(settings_.segmentation.farMm) - nearMm;
+			for (size_t i = 0; i < mapped_.size(); ++i)
+				alpha_.data()[i] = (mapped_.data()[i] - nearMm <= span) ? 255 : 0;
+			alpha = &alpha_;
+		} else {
+			pipeline_.process(colour, *depth, output_);
+			alpha = &output_.alpha;
+		}
+		seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+		return *alpha;
+	}
+
+	void stages(const ColourFrame &colour, const DepthFrame &depth, const Gray8Image &truth, StageImages &out)
+	{
+		if (depthOnly_) {
+			out.add("colour", colour.rgb);
+			out.addDepth("depth", depth.depthMm);
+			out.addDepth("depth-mapped", mapped_);
+			out.add("segmentation", StageKind::Mask, alpha_);
+		} else {
+			collectPipelineStages(colour, depth, pipeline_, output_, mapping_, out);
+		}
+		out.add("truth", StageKind::Mask, truth);
+	}
+
+	double seconds() const { return seconds_; }
+	bool calibrated() const { return calibrated_; }
+
+private:
+	Settings settings_;
+	bool depthOnly_;
+	MappingModel mapping_;
+	bool calibrated_ = false;
+	Pipeline pipeline_;
+	PipelineOutput output_;
+	Gray16Image mapped_;
+	Gray8Image alpha_;
+	double seconds_ = 0;
+};
+
+// Four frames spread over the run (at 1/8, 3/8, 5/8, 7/8 of it), or of an
+// open-ended sequence frames 50, 150, 250, 350.
+bool isPreviewFrame(long frame, long frames)
+{
+	for (long k = 1; k < 8; k += 2)
+		if (frames > 0 ? frame == k * frames / 8 : frame == (k / 2) * 100 + 50)
+			return true;
+	return false;
+}
+
+} // namespace
+
+int main(int argc, char **argv)
+{
+	Options o;
+	if (int ret = parseOptions(argc, argv, o))
+		return ret < 0 ? 0 : ret;
+
+	std::string configPath = o.config.empty() ? findDefaultConfig() : o.config;
+	ConfigResult config = loadConfig(configPath);
+	if (!config.ok()) {
+		for (const ConfigError &e : config.errors)
+			std::fprintf(stderr, "%s\n", e.toString().c_str());
+		return 1;
+	}
+	Settings settings = config.settings;
+
+	std::unique_ptr<FrameSource> source;
+	std::string what;
+	if (o.simSeed >= 0) {
+		settings.sim.seed = static_cast<uint64_t>(o.simSeed);
+		source = std::make_unique<SimSource>(settings);
+		what = "sim seed " + std::to_string(o.simSeed);
+	} else {
+		auto recorded = std::make_unique<RecordedSource>();
+		if (recorded->open(o.sequence) < 0)
+			return 1;
+		source = std::move(recorded);
+		what = o.sequence;
+	}
+
+	std::FILE *csv = nullptr;
+	if (!o.csv.empty()) {
+		csv = std::fopen(o.csv.c_str(), "w");
+		if (!csv) {
+			std::fprintf(stderr, "depthkey-eval: %s: cannot write: %s\n", o.csv.c_str(), std::strerror(errno));
+			return 1;
+		}
+		std::fprintf(csv, "frame,colour_timestamp_ns,depth_timestamp_ns,iou,bf,boundary_precision,"
+				  "boundary_recall,fnr,fpr\n");
+	}
+	SequenceWriter saver(1);
+	if (!o.saveSequence.empty() && saver.open(o.saveSequence) < 0) {
+		std::fprintf(stderr, "depthkey-eval: %s\n", saver.describeError().c_str());
+		return 1;
+	}
+
+	Method method(settings, o.method == "depth-only");
+	SegmentationScorer scorer(2);
+	ScoreAverage average;
+	FramePairer pairer;
+	configurePairer(pairer, settings);
+	ColourFrame colour;
+	Gray8Image truth;
+	bool depthSeen = false;
+	int saveError = 0;
+	auto onDepth = [&](const DepthFrame &depth) {
+		pairer.addDepth(depth);
+		depthSeen = true;
+		if (!o.saveSequence.empty() && saveError >= 0)
+			saveError = saver.writeDepth(depth);
+	};
+	int ret = 0;
+	while ((o.frames == 0 || average.frames() < o.frames) && (ret = source->next(colour, truth, onDepth)) > 0) {
+		if (!depthSeen)
+			continue; // starting up: no depth camera has delivered yet
+		const DepthFrame *depth = pairer.match(colour.timestampNs);
+		const Gray8Image &alpha = method.run(colour, depth);
+		SegmentationScore s = scorer.score(alpha, truth);
+		long frame = average.frames();
+		average.add(s);
+		if (csv)
+			std::fprintf(csv, "%ld,%llu,%llu,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f\n", frame,
+				     static_cast<unsigned long long>(colour.timestampNs),
+				     static_cast<unsigned long long>(depth ? depth->timestampNs : 0), s.iou, s.boundaryF,
+				     s.boundaryPrecision, s.boundaryRecall, s.fnr, s.fpr);
+		if (!o.saveSequence.empty()) {
+			int w = saveError;
+			if (w >= 0)
+				w = saver.writeColour(colour);
+			if (w >= 0)
+				w = saver.writeMask(truth, colour.timestampNs, colour.sequence);
+			if (w < 0) {
+				std::fprintf(stderr, "depthkey-eval: %s\n", saver.describeError().c_str());
+				return 1;
+			}
+		}
+		if (!o.preview.empty() && depth && isPreviewFrame(frame, o.frames)) {
+			StageImages stages;
+			method.stages(colour, *depth, truth, stages);
+			char prefix[32];
+			std::snprintf(prefix, sizeof(prefix), "frame%06ld-", frame);
+			std::string error;
+			if (writeStageImages(o.preview, prefix, stages, error) < 0) {
+				std::fprintf(stderr, "depthkey-eval: %s\n", error.c_str());
+				return 1;
+			}
+		}
+	}
+	if (csv)
+		std::fclose(csv);
+	if (ret < 0)
+		return 1;
+
+	SegmentationScore m = average.mean();
+	long frames = average.frames();
+	double fps = method.seconds() > 0 ? frames / method.seconds() : 0.0;
+	std::printf("depthkey-eval: %s, method %s, %ld frames, mapping %s\n", what.c_str(), o.method.c_str(), frames,
+		    method.calibrated() ? "from the calibration" : "by plain scaling (no calibration)");
+	std::printf("  IoU %.3f  boundary F (2 px) %.3f (precision %.3f, recall %.3f)\n", m.iou, m.boundaryF,
+		    m.boundaryPrecision, m.boundaryRecall);
+	std::printf("  lecturer pixels lost (FNR) %.3f  board pixels taken (FPR) %.3f  %.0f frames/s\n", m.fnr,
+		    m.fpr, fps);
+	const PairingStats &ps = pairer.stats();
+	std::printf("  pairing: %llu paired, %llu colour frames without depth (scored unkeyed)\n",
+		    static_cast<unsigned long long>(ps.paired), static_cast<unsigned long long>(ps.unpaired));
+	std::printf("summary method=%s frames=%ld iou=%.3f bf=%.3f fnr=%.3f fpr=%.3f fps=%.0f\n", o.method.c_str(),
+		    frames, m.iou, m.boundaryF, m.fnr, m.fpr, fps);
+	return 0;
+}
