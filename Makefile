@@ -42,12 +42,13 @@ LDFLAGS += $(SANFLAGS)
 
 LIB_SRCS := $(filter-out daemon/main.cpp,$(wildcard algo/*.cpp hal/*.cpp hal/*/*.cpp config/*.cpp daemon/*.cpp))
 TOOL_SRCS := $(wildcard tools/*.cpp)
+SR2EMU_SRCS := $(wildcard tools/sr2_emulator/*.cpp)
 TEST_SRCS := $(wildcard tests/*.cpp)
 BENCH_SRCS := $(wildcard tests/bench/*.cpp)
 
 LIB := $(BUILD)/libdepthkey.a
 DAEMON := $(BIN)/depthkeyd
-TOOLS := $(patsubst tools/%.cpp,$(BIN)/depthkey-%,$(TOOL_SRCS))
+TOOLS := $(patsubst tools/%.cpp,$(BIN)/depthkey-%,$(TOOL_SRCS)) $(BIN)/depthkey-sr2-emulator
 TESTS := $(BIN)/depthkey-tests
 BENCH := $(BIN)/depthkey-bench
 
@@ -97,6 +98,16 @@ $(DAEMON): $(call obj,daemon/main.cpp) $(LIB)
 	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -o $@
 
 $(BIN)/depthkey-%: $(OBJ)/tools/%.o $(LIB)
+	@mkdir -p $(dir $@)
+	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -o $@
+
+# The emulated SR-2 (a USB gadget for the HIL tests) is several files.
+$(BIN)/depthkey-sr2-emulator: $(call obj,$(SR2EMU_SRCS)) $(LIB)
+	@mkdir -p $(dir $@)
+	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -o $@
+
+# A bare libusb client of the SR-2 protocol, to check the emulator in the VM.
+$(BIN)/depthkey-hil-sr2-probe: $(OBJ)/tests/hil/sr2_probe.o
 	@mkdir -p $(dir $@)
 	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -o $@
 
