@@ -45,6 +45,16 @@ if [ "$vm_status" -ne 0 ] && [ "${failed:-0}" -eq 0 ]; then
 	echo "hil: FAIL vm: the VM run ended with status $vm_status (see $results/console.txt)"
 	failed=$((${failed:-0} + 1))
 fi
+if [ -s "$results/recovery" ]; then
+	# Recovery times: each fault, then min/median/max over the replug cycles.
+	grep -v '^cycle ' "$results/recovery" | while read -r name seconds; do
+		echo "hil: recovery $name $seconds s"
+	done
+	grep '^cycle ' "$results/recovery" | cut -d' ' -f2 | sort -n | awk '
+		{ t[NR] = $1 }
+		END { if (NR) printf "hil: recovery over %d replug cycles: min %.3f s, median %.3f s, max %.3f s\n",
+			NR, t[1], t[int((NR + 1) / 2)], t[NR] }'
+fi
 end=$(date +%s)
 echo "hil: setup $((prepared - start)) s, VM $((end - prepared)) s; logs in $results"
 echo "hil: ${passed:-0} passed, ${failed:-0} failed, ${skipped:-0} skipped"
