@@ -32,7 +32,7 @@ prepared=$(date +%s)
 rm -rf "$results"
 mkdir -p "$results"
 "$tree/tests/vm/run.sh" --results "$results" --layer "$udev" --timeout "${HIL_TIMEOUT:-1200}" \
-	--env "HIL_BIN=$bin" -- bash "$here/guest/main.sh" >"$results/console.txt" 2>&1
+	--env "HIL_BIN=$bin" --env "HIL_SECTIONS=${HIL_SECTIONS:-all}" -- bash "$here/guest/main.sh" >"$results/console.txt" 2>&1
 vm_status=$?
 grep '^hil: ' "$results/console.txt"
 passed=$(grep -c '^PASS ' "$results/results" 2>/dev/null)

@@ -8,7 +8,9 @@
 //
 // Succeeds (exit 0) when N consecutive new frames have (flags & MASK) == VALUE
 // and prints the time from UPTIME (seconds of CLOCK_BOOTTIME as in
-// /proc/uptime, default: when it started) to the first of them being seen.
+// /proc/uptime, default: when it started) to the first of them being seen,
+// and that moment itself ("at T"): a watcher started before a device returns
+// sees the first good frame at once, whenever the return is known.
 // --alpha also prints the share of pixels with alpha > 0 in the last frame
 // (RGBA streams). Exit 1 on timeout, with the last flags seen.
 #include "hal/depthkey_shm.h"
@@ -131,8 +133,8 @@ int main(int argc, char **argv)
 			runStart = now;
 		if (run < o.count)
 			continue;
-		std::printf("shm-watch: %s flags&0x%x==0x%x after %.3f s (frame %llu flags 0x%x, %llu frames seen)",
-			    o.name.c_str(), o.mask, o.value, runStart - since, (unsigned long long)info.frame,
+		std::printf("shm-watch: %s flags&0x%x==0x%x after %.3f s at %.3f (frame %llu flags 0x%x, %llu frames seen)",
+			    o.name.c_str(), o.mask, o.value, runStart - since, runStart, (unsigned long long)info.frame,
 			    info.flags, (unsigned long long)seen);
 		if (o.alpha)
 			std::printf(" alpha %.3f", alphaShare(pixels, reader));

@@ -57,6 +57,6 @@ hil_check sr2-replug hil_wait 20 sr2_present
 
 # --- end ----------------------------------------------------------------------
 echo quit >"$SR2_FIFO"
-wait "$SR2_PID" 2>/dev/null
+hil_wait 10 sh -c "! kill -0 $SR2_PID"
 dmesg >"$HIL_LOGS/dmesg.log"
 ! grep -q '^FAIL' "$HIL_RESULTS"
