@@ -1,10 +1,24 @@
-// The per-frame segmentation: a colour frame and the depth frame paired with
-// it in, the alpha matte, composite and lecturer layer out. Pure: no I/O, no
-// clock; buffers are allocated when the sizes change, never per frame.
+// The per-frame segmentation of the paper, stage by stage (one file each):
+//   DepthSeeder   depth -> surely lecturer / undecided / surely board, at ToF
+//                 resolution ([segmentation]);
+//   SeedMapper    the seeds into the colour image through the calibration's
+//                 mapping (DepthMapper, [mapping]);
+//   ColourLearner lecturer and board colours -> SIOX signatures ([learning]);
+//   SioxRefiner   SIOX on the undecided band, post-processing, soft alpha
+//                 ([siox]);
+//   composite     the lecturer over the board source ([composite]).
+// Pure: no I/O, no clock. Buffers are allocated when sizes change, never per
+// frame in steady state (tests/pipeline_allocation_test.cpp counts).
 #pragma once
 
-#include "algo/depth_range_keyer.hpp"
+#include "algo/colour_learner.hpp"
+#include "algo/depth_mapper.hpp"
+#include "algo/depth_seeder.hpp"
 #include "algo/frames.hpp"
+#include "algo/mapping_model.hpp"
+#include "algo/seed_mapper.hpp"
+#include "algo/siox_classifier.hpp"
+#include "algo/siox_refiner.hpp"
 #include "config/settings.hpp"
 
 namespace depthkey {
@@ -15,11 +29,26 @@ struct PipelineOutput {
 	RgbaImage lecturer;   // straight alpha
 };
 
+// What the daemon reports and the previews show.
+struct PipelineStatus {
+	bool learning = true;        // still collecting the first colours
+	bool mappingFits = true;     // the calibration matches the frame sizes
+	int derivations = 0;         // signature derivations so far
+	size_t bandPixels = 0;       // undecided pixels SIOX decided in the last frame
+	size_t lecturerCentroids = 0, boardCentroids = 0;
+};
+
 class Pipeline
 {
 public:
-	// Takes the parameters that may change on reload; cheap when unchanged.
-	void configure(const SegmentationSettings &segmentation, const CompositeSettings &composite);
+	Pipeline();
+
+	// Takes what may change on reload; cheap when unchanged. A new mapping
+	// or new seeding restarts the colour learning.
+	void configure(const Settings &settings, const MappingModel &mapping);
+	// The board source when composite.board_image is set (scaled to the
+	// colour size, nearest neighbour); an empty image = the solid colour.
+	void setBoardImage(const RgbImage &board);
 
 	void process(const ColourFrame &colour, const DepthFrame &depth, PipelineOutput &out);
 
@@ -27,15 +56,36 @@ public:
 	// it is (lecturer layer opaque), since a plain picture beats a black one.
 	void passThrough(const ColourFrame &colour, PipelineOutput &out);
 
+	const PipelineStatus &status() const { return status_; }
+	// Stage images of the last frame, for snapshots and previews.
+	const Gray8Image &trimap() const { return trimap_; }
+	const DepthSeeds &seeds() const { return seeds_; }
+
 private:
 	void ensureSizes(int colourWidth, int colourHeight, int depthWidth, int depthHeight);
+	void renderBoard(int width, int height);
+	void restartLearning();
+	void compose(const RgbImage &colour, PipelineOutput &out) const;
 
-	SegmentationSettings segmentation_;
-	CompositeSettings compositeSettings_;
+	Settings settings_;
+	MappingModel mapping_;
 	int opacityQ8_ = 128;
-	DepthRangeKeyer keyer_;
-	RgbImage board_;
+
+	QuantisedLabTable lab_;
+	SioxClassifier classifier_;
+	ColourLearner learner_;
+	DepthMapper mapper_;
+	DepthSeeder seeder_;
+	SeedMapper seedMapper_;
+	SioxRefiner refiner_;
+
+	DepthSeeds seeds_;
+	Gray8Image trimap_;
+	Roi roi_;
+	RgbImage boardSource_, board_;
+	PipelineStatus status_;
 	int colourWidth_ = 0, colourHeight_ = 0, depthWidth_ = 0, depthHeight_ = 0;
+	bool mappingDirty_ = true;
 	bool boardDirty_ = true;
 };
 

@@ -1,12 +1,10 @@
 // The depthkey config schema, one function per section, and file loading.
 #include "config/config_loader.hpp"
 
-#include <cerrno>
 #include <cstring>
 #include <limits>
-#include <fcntl.h>
-#include <unistd.h>
 
+#include "config/text_file.hpp"
 #include "config/toml_binder.hpp"
 
 namespace depthkey {
@@ -16,9 +14,11 @@ namespace {
 // The values each enumeration accepts. Adding a backend ("sr2", "v4l2",
 // "replay") is one edit here, once the daemon can build it.
 constexpr std::string_view kLogLevels[] = { "error", "warning", "info", "debug" };
-constexpr std::string_view kColourBackends[] = { "sim" };
-constexpr std::string_view kDepthBackends[] = { "sim" };
-constexpr std::string_view kLedBackends[] = { "none" };
+constexpr std::string_view kColourBackends[] = { "sim", "v4l2" };
+constexpr std::string_view kDepthBackends[] = { "sim", "sr2", "v4l2" };
+constexpr std::string_view kLedBackends[] = { "none", "gpiod" };
+constexpr std::string_view kColourFormats[] = { "auto", "yuyv", "nv12", "mjpeg" };
+constexpr std::string_view kDepthFormats[] = { "z16", "y16" };
 
 constexpr int kMinRangeMm = 300;        // nearest the depth camera measures
 constexpr int kMaxRangeMm = 7500;       // furthest it measures
@@ -35,6 +35,37 @@ std::string checkAbsolutePath(std::string_view path)
 	return "";
 }
 
+// A video device: an absolute path, or a bare name under /dev/v4l/by-id/.
+std::string checkVideoDevice(std::string_view device)
+{
+	if (!device.empty() && device[0] != '/' && device.find('/') == std::string_view::npos &&
+	    !hasNul(device) && device != "." && device != "..")
+		return "";
+	return checkAbsolutePath(device).empty()
+		       ? ""
+		       : "must be an absolute path or a name in /dev/v4l/by-id/";
+}
+
+// A USB port path as sysfs and lsusb -t show it: BUS-PORT[.PORT...], e.g. "1-2.3".
+std::string checkUsbPath(std::string_view path)
+{
+	if (path.empty())
+		return "";
+	size_t dash = path.find('-');
+	bool ok = dash != std::string_view::npos && dash > 0 && dash + 1 < path.size();
+	for (size_t i = 0; ok && i < path.size(); i++) {
+		char c = path[i];
+		bool sep = i == dash || (i > dash && c == '.');
+		ok = sep ? (i + 1 < path.size() && path[i + 1] != '.') : (c >= '0' && c <= '9');
+	}
+	return ok ? "" : "must be \"\" or a USB port path BUS-PORT[.PORT...], e.g. \"1-2.3\"";
+}
+
+// "gpiochip0", "/dev/gpiochip0", a chip label or number, as libgpiod looks it up.
+std::string checkGpioChip(std::string_view chip)
+{
+	return chip.empty() || hasNul(chip) ? "must name a GPIO chip, e.g. \"gpiochip0\"" : "";
+}
 // The daemon runs from / under systemd, so a relative path would land
 // somewhere nobody looks.
 std::string checkOptionalAbsolutePath(std::string_view path)
@@ -74,16 +105,58 @@ void bindDaemon(TomlSection &sec, DaemonSettings &s)
 void bindColour(TomlSection &sec, ColourCameraSettings &s)
 {
 	sec.string("backend", s.backend, kColourBackends);
-	sec.string("device", s.device, checkAbsolutePath);
+	sec.string("device", s.device, checkVideoDevice);
 	sec.integer("width", s.width, 16, 1920);
 	sec.integer("height", s.height, 16, 1080);
 	sec.integer("fps", s.fps, 1, 60);
+	sec.string("pixel_format", s.pixelFormat, kColourFormats);
+	sec.integer("timeout_ms", s.timeoutMs, 100, 10000);
+}
+
+void bindSr2Register(TomlSection &sec, DepthCameraSettings &s)
+{
+	Sr2RegisterWrite write;
+	bool ok = sec.integer("address", write.address, 0, 255);
+	ok = sec.integer("value", write.value, 0, 255) && ok;
+	// Both are required: a write without an address would silently hit 0x00.
+	sec.require(sec.has("address"), "address", "missing: the register address 0..255");
+	sec.require(sec.has("value"), "value", "missing: the register value 0..255");
+	if (ok && sec.has("address") && sec.has("value"))
+		s.sr2Registers.push_back(write);
 }
 
 void bindDepth(TomlSection &sec, DepthCameraSettings &s)
 {
 	sec.string("backend", s.backend, kDepthBackends);
 	sec.integer("fps", s.fps, 1, 60);
+	sec.integer("timeout_ms", s.timeoutMs, 100, 10000);
+	bool ok = sec.integer("min_mm", s.minMm, 0, 65535);
+	ok = sec.integer("max_mm", s.maxMm, 1, 65535) && ok;
+	if (ok)
+		sec.require(s.minMm < s.maxMm, sec.has("max_mm") ? "max_mm" : "min_mm",
+			    "min_mm (" + std::to_string(s.minMm) + ") must be less than max_mm (" +
+				    std::to_string(s.maxMm) + ")");
+	sec.string("usb_path", s.usbPath, checkUsbPath);
+	sec.integer("integration_time", s.integrationTime, 0, 255);
+	sec.boolean("auto_integration", s.autoIntegration);
+	ok = sec.integer("intensity_low", s.intensityLow, 0, 65535);
+	ok = sec.integer("intensity_high", s.intensityHigh, 0, 65535) && ok;
+	if (ok)
+		sec.require(s.intensityLow < s.intensityHigh,
+			    sec.has("intensity_high") ? "intensity_high" : "intensity_low",
+			    "intensity_low must be less than intensity_high");
+	sec.tables("sr2_register", [&](TomlSection &element, size_t) { bindSr2Register(element, s); });
+	sec.string("device", s.device, checkVideoDevice);
+	sec.integer("width", s.width, 16, 1920);
+	sec.integer("height", s.height, 16, 1080);
+	sec.string("pixel_format", s.pixelFormat, kDepthFormats);
+	sec.number("scale_mm", s.scaleMm, 0.01, 100.0);
+}
+
+void bindPairing(TomlSection &sec, PairingSettings &s)
+{
+	sec.integer("offset_ms", s.offsetMs, -1000, 1000);
+	sec.integer("max_skew_ms", s.maxSkewMs, 1, 1000);
 }
 
 void bindSegmentation(TomlSection &sec, SegmentationSettings &s)
@@ -98,12 +171,44 @@ void bindSegmentation(TomlSection &sec, SegmentationSettings &s)
 			    "near_mm (" + std::to_string(s.nearMm) +
 				    ") must be less than far_mm (" +
 				    std::to_string(s.farMm) + ")");
+	bool amplitudes = sec.integer("min_amplitude", s.minAmplitude, 0, 65535);
+	amplitudes = sec.integer("max_amplitude", s.maxAmplitude, 1, 65535) && amplitudes;
+	if (amplitudes)
+		sec.require(s.minAmplitude < s.maxAmplitude,
+			    sec.has("max_amplitude") ? "max_amplitude" : "min_amplitude",
+			    "min_amplitude (" + std::to_string(s.minAmplitude) +
+				    ") must be less than max_amplitude (" +
+				    std::to_string(s.maxAmplitude) + ")");
+	sec.integer("erode_px", s.erodePx, 0, 20);
+	sec.integer("dilate_px", s.dilatePx, 1, 40);
+}
+
+void bindMapping(TomlSection &sec, MappingSettings &s)
+{
+	sec.string("calibration_file", s.calibrationFile, checkOptionalAbsolutePath);
+}
+
+void bindLearning(TomlSection &sec, LearningSettings &s)
+{
+	sec.integer("initial_frames", s.initialFrames, 1, 1000);
+	sec.number("board_rate", s.boardRate, 0.0, 1.0);
+	sec.number("lecturer_rate", s.lecturerRate, 0.0, 1.0);
+	sec.integer("samples", s.samples, 256, 65536);
+	sec.integer("margin_px", s.marginPx, 0, 40);
+	sec.number("relearn_misfit", s.relearnMisfit, 0.0, 1.0);
+}
+
+void bindSiox(TomlSection &sec, SioxSettings &s)
+{
+	sec.integer("smoothing", s.smoothing, 0, 8);
+	sec.boolean("soft_alpha", s.softAlpha);
 }
 
 void bindComposite(TomlSection &sec, CompositeSettings &s)
 {
 	sec.number("opacity", s.opacity, 0.0, 1.0);
 	sec.colour("board_colour", s.boardColour);
+	sec.string("board_image", s.boardImage, checkOptionalAbsolutePath);
 }
 
 void bindOutput(TomlSection &sec, OutputSettings &s)
@@ -123,6 +228,25 @@ void bindOutput(TomlSection &sec, OutputSettings &s)
 void bindLeds(TomlSection &sec, LedSettings &s)
 {
 	sec.string("backend", s.backend, kLedBackends);
+	sec.string("chip", s.chip, checkGpioChip);
+	sec.boolean("active_low", s.activeLow);
+	struct Line { const char *key; int &offset; };
+	Line lines[] = { { "power_line", s.powerLine }, { "depth_line", s.depthLine },
+			 { "colour_line", s.colourLine }, { "calibration_line", s.calibrationLine },
+			 { "reader_line", s.readerLine }, { "error_line", s.errorLine } };
+	bool ok = true;
+	for (Line &line : lines)
+		ok = sec.integer(line.key, line.offset, -1, 511) && ok;
+	// Two LEDs on one line would show neither; blame the later key.
+	for (size_t i = 0; ok && i < std::size(lines); i++)
+		for (size_t j = 0; j < i; j++)
+			if (lines[i].offset >= 0 && lines[i].offset == lines[j].offset) {
+				sec.require(false, sec.has(lines[i].key) ? lines[i].key : lines[j].key,
+					    std::string(lines[i].key) + " and " + lines[j].key +
+						    " use the same line " + std::to_string(lines[i].offset));
+				ok = false;
+				break;
+			}
 }
 
 void bindSim(TomlSection &sec, SimSettings &s)
@@ -137,7 +261,11 @@ void bindSettings(TomlSection &root, Settings &s)
 	root.table("daemon", [&](TomlSection &sec) { bindDaemon(sec, s.daemon); });
 	root.table("colour", [&](TomlSection &sec) { bindColour(sec, s.colour); });
 	root.table("depth", [&](TomlSection &sec) { bindDepth(sec, s.depth); });
+	root.table("pairing", [&](TomlSection &sec) { bindPairing(sec, s.pairing); });
 	root.table("segmentation", [&](TomlSection &sec) { bindSegmentation(sec, s.segmentation); });
+	root.table("mapping", [&](TomlSection &sec) { bindMapping(sec, s.mapping); });
+	root.table("learning", [&](TomlSection &sec) { bindLearning(sec, s.learning); });
+	root.table("siox", [&](TomlSection &sec) { bindSiox(sec, s.siox); });
 	root.table("composite", [&](TomlSection &sec) { bindComposite(sec, s.composite); });
 	root.table("output", [&](TomlSection &sec) { bindOutput(sec, s.output); });
 	root.table("leds", [&](TomlSection &sec) { bindLeds(sec, s.leds); });
@@ -156,36 +284,15 @@ ConfigResult parseConfig(std::string_view text, const std::string &sourceName)
 
 ConfigResult loadConfig(const std::string &path)
 {
-	ConfigResult result;
-	auto fail = [&](const char *what, int err) {
-		result.errors.push_back({ path, 0, 0, "",
-					  std::string(what) + ": " + std::strerror(err) });
-		return result;
-	};
-
-	// POSIX I/O rather than iostreams: the errno says why (ENOENT, EACCES,
-	// EISDIR), which is what a technician needs to fix it.
-	int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-	if (fd < 0)
-		return fail("cannot open config file", errno);
-
 	std::string text;
-	char buf[4096];
-	for (;;) {
-		ssize_t n = ::read(fd, buf, sizeof(buf));
-		if (n < 0 && errno == EINTR)
-			continue;
-		if (n < 0) {
-			int err = errno;
-			::close(fd);
-			return fail("cannot read config file", err);
-		}
-		if (n == 0)
-			break;
-		text.append(buf, static_cast<size_t>(n));
+	const char *step;
+	if (int ret = readTextFile(path, text, step); ret < 0) {
+		ConfigResult result;
+		result.errors.push_back({ path, 0, 0, "",
+					  std::string("cannot ") + step + " config file: " +
+						  std::strerror(-ret) });
+		return result;
 	}
-	::close(fd);
-
 	return parseConfig(text, path);
 }
 

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace depthkey {
 
@@ -15,29 +16,92 @@ struct DaemonSettings {
 };
 
 struct ColourCameraSettings {
-	std::string backend = "sim";        // sim
+	std::string backend = "sim";        // sim | v4l2
 	std::string device = "/dev/video0";
 	int width = 640;                    // 16..1920
 	int height = 480;                   // 16..1080
 	int fps = 25;                       // 1..60
+	std::string pixelFormat = "auto";   // auto | yuyv | nv12 | mjpeg
+	int timeoutMs = 1000;               // no frame this long: device lost
 	bool operator==(const ColourCameraSettings &) const = default;
 };
 
+// A raw SR-2 register write from the config, applied after the built-in ones.
+struct Sr2RegisterWrite {
+	int address = 0;                    // 0..255
+	int value = 0;                      // 0..255
+	bool operator==(const Sr2RegisterWrite &) const = default;
+};
+
 struct DepthCameraSettings {
-	std::string backend = "sim";        // sim
+	std::string backend = "sim";        // sim | sr2 | v4l2
 	int fps = 10;                       // 1..60
+	int timeoutMs = 1000;               // transfer / frame timeout
+	int minMm = 300;                    // valid depth range; outside = no measurement
+	int maxMm = 7500;
+	// sr2
+	std::string usbPath = "";           // "" = first 0852:0071, else "BUS-PORT[.PORT...]"
+	int integrationTime = 40;           // register 0x09, 0..255
+	bool autoIntegration = false;
+	int intensityLow = 14000;           // auto integration window (mean intensity)
+	int intensityHigh = 18000;
+	std::vector<Sr2RegisterWrite> sr2Registers;
+	// v4l2
+	std::string device = "/dev/video1";
+	int width = 640;
+	int height = 480;
+	std::string pixelFormat = "z16";    // z16 | y16
+	double scaleMm = 1.0;               // millimetres per count
 	bool operator==(const DepthCameraSettings &) const = default;
 };
 
+// Soft synchronisation of the two free-running cameras (Friedland et al.):
+// depth frames are matched to colour frames by capture time.
+struct PairingSettings {
+	int offsetMs = 0;                   // added to depth timestamps (depth latency)
+	int maxSkewMs = 150;                // farther apart: colour goes out unkeyed
+	bool operator==(const PairingSettings &) const = default;
+};
+
+// Depth seeding (paper 6.1), at the depth camera's resolution.
 struct SegmentationSettings {
 	int nearMm = 500;                   // lecturer depth interval [near, far]
 	int farMm = 1600;
+	int minAmplitude = 100;             // 0..65535: weaker echoes are not trusted
+	int maxAmplitude = 65535;           // 1..65535: at or above = saturated, not trusted
+	int erodePx = 2;                    // 0..20 ToF px: in-range mask -> surely lecturer
+	int dilatePx = 4;                   // 1..40 ToF px: surely lecturer -> superset
 	bool operator==(const SegmentationSettings &) const = default;
+};
+
+// Where the depth -> colour mapping comes from (paper section 5).
+struct MappingSettings {
+	std::string calibrationFile = "";   // "" = none: identity scaling, reported
+	bool operator==(const MappingSettings &) const = default;
+};
+
+// Colour learning (paper 6.1-6.2): decaying colour histograms per class.
+struct LearningSettings {
+	int initialFrames = 20;             // 1..1000 frames before SIOX starts
+	double boardRate = 0.1;             // 0..1 weight of each frame's board colours
+	double lecturerRate = 0.01;         // 0..1 weight of each frame's lecturer colours
+	int samples = 4096;                 // 256..65536 samples per class and frame
+	int marginPx = 2;                   // 0..40 ToF px kept free beyond the superset
+	double relearnMisfit = 0.05;        // 0..1 rise of misclassified samples that re-derives
+	bool operator==(const LearningSettings &) const = default;
+};
+
+// SIOX on the undecided band (paper section 6).
+struct SioxSettings {
+	int smoothing = 1;                  // 0..8 passes of 3x3 confidence smoothing
+	bool softAlpha = true;              // fractional alpha on the boundary
+	bool operator==(const SioxSettings &) const = default;
 };
 
 struct CompositeSettings {
 	double opacity = 0.5;               // 0..1, lecturer over board
 	uint32_t boardColour = 0x1e3c28;    // 0xRRGGBB board source (solid colour)
+	std::string boardImage = "";        // PNG/JPEG board source; "" = board_colour
 	bool operator==(const CompositeSettings &) const = default;
 };
 
@@ -50,12 +114,49 @@ struct OutputSettings {
 };
 
 struct LedSettings {
-	std::string backend = "none";       // none
+	std::string backend = "none";       // none | gpiod
+	std::string chip = "gpiochip0";     // name, /dev path, label or number
+	bool activeLow = false;
+	// Line offsets on the chip, -1 = not wired.
+	int powerLine = 0;
+	int depthLine = 1;
+	int colourLine = 2;
+	int calibrationLine = 3;
+	int readerLine = 4;
+	int errorLine = 5;
 	bool operator==(const LedSettings &) const = default;
 };
 
+// The simulated lecture scene and camera pair (backend "sim", depthkey-eval
+// --sim). Every artefact has its own switch so a test can isolate it.
 struct SimSettings {
-	uint64_t seed = 1;
+	uint64_t seed = 1;                  // same seed, same frames
+	// Scene
+	int boardDistanceMm = 2200;         // 1500..2500, board plane from the colour camera
+	double walkSpeedMps = 1.0;          // 0.1..3, lecturer's walking speed
+	bool table = true;                  // a table (with a monitor) at lecturer depth
+	bool boardChanges = true;           // strokes written and erased, slide changes
+	bool lightingChange = true;         // slow variation of the room light
+	double lightingAmplitude = 0.15;    // 0..0.5, relative brightness swing
+	double lightingPeriodS = 23.0;      // 1..600
+	// Colour camera
+	double colourNoise = 3.0;           // 0..30, sensor noise sigma in 8-bit levels; 0 = off
+	double colourJitterMs = 2.0;        // 0..20, frame time jitter (uniform +-)
+	// Both lenses
+	bool distortion = true;             // radial distortion of both lenses; false = pinholes
+	int baselineMm = 60;                // 0..200, ToF optical centre beside the colour camera's
+	// ToF camera
+	bool depthNoise = true;             // sigma = L/sqrt(8) * sqrt(I) / (2A)
+	double tofAmplitude = 6000;         // 500..30000, amplitude of the board at the centre
+	double tofCornerAmplitude = 0.06;   // 0.01..1, amplitude at the corner relative to centre
+	double tofAmbient = 3000;           // 0..30000, background light in the intensity image
+	int haloWidthPx = 4;                // 0..20, scatter halo around the lecturer; 0 = off
+	double haloStrength = 0.5;          // 0..1, share of scattered light at the silhouette
+	int saturationMm = 750;             // 0..2000, nearer saturates (no depth); 0 = off
+	bool motionBlur = true;             // depth of moving parts mixes over the exposure
+	double tofExposureMs = 30.0;        // 1..100, integration time
+	double depthLatencyMs = 40.0;       // 0..300, capture before the depth timestamp
+	double depthJitterMs = 5.0;         // 0..50, depth frame time jitter (uniform +-)
 	bool operator==(const SimSettings &) const = default;
 };
 
@@ -63,7 +164,11 @@ struct Settings {
 	DaemonSettings daemon;
 	ColourCameraSettings colour;
 	DepthCameraSettings depth;
+	PairingSettings pairing;
 	SegmentationSettings segmentation;
+	MappingSettings mapping;
+	LearningSettings learning;
+	SioxSettings siox;
 	CompositeSettings composite;
 	OutputSettings output;
 	LedSettings leds;

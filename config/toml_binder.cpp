@@ -166,6 +166,28 @@ bool TomlSection::integerValue(std::string_view key, int64_t min, int64_t max,
 	return true;
 }
 
+std::optional<double> TomlSection::numberValue(std::string_view key, const toml::node &node,
+					      double min, double max)
+{
+	std::optional<double> value;
+	if (const auto *f = node.as_floating_point())
+		value = f->get();
+	else if (const auto *i = node.as_integer())
+		value = static_cast<double>(i->get());
+	if (!value) {
+		wrongType(key, node, "a number");
+		return std::nullopt;
+	}
+
+	// Written as a negation so that NaN is rejected too.
+	if (!(*value >= min && *value <= max)) {
+		error(node.source(), key, formatNumber(*value) + " is out of range: " +
+					  formatNumber(min) + ".." + formatNumber(max));
+		return std::nullopt;
+	}
+	return value;
+}
+
 bool TomlSection::number(std::string_view key, double &out, double min, double max)
 {
 	const toml::node *node = find(key);
@@ -173,21 +195,42 @@ bool TomlSection::number(std::string_view key, double &out, double min, double m
 		result_.absent.push_back(dotted(key));
 		return true;
 	}
-	std::optional<double> value;
-	if (const auto *f = node->as_floating_point())
-		value = f->get();
-	else if (const auto *i = node->as_integer())
-		value = static_cast<double>(i->get());
-	if (!value)
-		return wrongType(key, *node, "a number");
+	std::optional<double> value = numberValue(key, *node, min, max);
+	if (value)
+		out = *value;
+	return value.has_value();
+}
 
-	// Written as a negation so that NaN is rejected too.
-	if (!(*value >= min && *value <= max)) {
-		error(node->source(), key, formatNumber(*value) + " is out of range: " +
-					   formatNumber(min) + ".." + formatNumber(max));
+bool TomlSection::numbers(std::string_view key, std::vector<double> &out,
+			  size_t minCount, size_t maxCount, double min, double max)
+{
+	const toml::node *node = find(key);
+	if (!node) {
+		result_.absent.push_back(dotted(key));
+		return true;
+	}
+	const toml::array *array = node->as_array();
+	if (!array)
+		return wrongType(key, *node, "an array of numbers");
+	if (array->size() < minCount || array->size() > maxCount) {
+		std::string expected = minCount == maxCount
+					       ? std::to_string(minCount)
+					       : std::to_string(minCount) + ".." + std::to_string(maxCount);
+		error(node->source(), key, "has " + std::to_string(array->size()) +
+					   " numbers, expected " + expected);
 		return false;
 	}
-	out = *value;
+
+	// Every bad element is reported, each at its own position.
+	std::vector<double> values;
+	for (size_t i = 0; i < array->size(); i++) {
+		std::string name = std::string(key) + '[' + std::to_string(i) + ']';
+		if (std::optional<double> value = numberValue(name, *array->get(i), min, max))
+			values.push_back(*value);
+	}
+	if (values.size() != array->size())
+		return false;
+	out = std::move(values);
 	return true;
 }
 

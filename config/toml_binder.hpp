@@ -66,6 +66,11 @@ public:
 
 	// A float; an integer is accepted too ("opacity = 1").
 	bool number(std::string_view key, double &out, double min, double max);
+	// An array of numbers, each in [min, max] (so NaN and infinities are
+	// refused), with minCount..maxCount elements. out is replaced only when
+	// every element is valid.
+	bool numbers(std::string_view key, std::vector<double> &out,
+		     size_t minCount, size_t maxCount, double min, double max);
 
 	bool string(std::string_view key, std::string &out);
 	// An enumeration: the value must be one of allowed.
@@ -106,6 +111,8 @@ private:
 	const toml::node *find(std::string_view key);
 	bool integerValue(std::string_view key, int64_t min, int64_t max,
 			  std::optional<int64_t> &value);
+	std::optional<double> numberValue(std::string_view key, const toml::node &node,
+					  double min, double max);
 	bool wrongType(std::string_view key, const toml::node &node,
 		       std::string_view expected);
 	void error(const toml::source_region &where, std::string_view key,

@@ -14,9 +14,9 @@ namespace depthkey {
 
 namespace {
 
-// A depth frame older than this is not paired with colour any more: the
-// lecturer may have moved a metre since (the SR-2 runs at ~10 fps).
-constexpr uint64_t kDepthStaleNs = 500'000'000;
+// Depth counts as delivering (DEPTH_OK on NO SIGNAL frames) while its newest
+// frame is younger than this; pairing itself uses pairing.max_skew_ms.
+constexpr int64_t kDepthStaleNs = 500'000'000;
 // Without a colour frame for this many frame periods, publish NO SIGNAL.
 constexpr uint64_t kColourStalePeriods = 3;
 // In a degraded mode (a camera missing) READY=1 is sent after this long, so
@@ -61,7 +61,8 @@ int Daemon::start(const Settings &settings)
 	loop_.addSignal(SIGUSR1, [this] { writeSnapshot(); }, sigusr1_);
 
 	startedUs_ = statusAtUs_ = loop_.nowUs();
-	pipeline_.configure(settings_.segmentation, settings_.composite);
+	configurePipeline();
+	configurePairing();
 	underSystemd_ = std::getenv("NOTIFY_SOCKET") != nullptr;
 
 	leds_ = factory_.statusLeds(settings_);
@@ -135,7 +136,14 @@ void Daemon::stopCameras()
 		colour_->stop();
 	if (depth_)
 		depth_->stop();
-	haveDepth_ = haveColour_ = false;
+	haveColour_ = false;
+	pairer_.clear();
+}
+
+void Daemon::configurePairing()
+{
+	pairer_.configure(int64_t{ settings_.pairing.offsetMs } * 1'000'000,
+			  uint64_t(settings_.pairing.maxSkewMs) * 1'000'000);
 }
 
 void Daemon::onDeviceStatus(const std::string &device, const DeviceStatus &status)
@@ -151,8 +159,7 @@ void Daemon::onDeviceStatus(const std::string &device, const DeviceStatus &statu
 
 void Daemon::onDepthFrame(const DepthFrame &frame)
 {
-	depthLatest_ = frame; // same-size copy: no allocation after the first
-	haveDepth_ = true;
+	pairer_.addDepth(frame); // same-size copy: no allocation after the first
 	depthFrames_++;
 }
 
@@ -162,8 +169,8 @@ void Daemon::onColourFrame(const ColourFrame &frame)
 	haveColour_ = true;
 	lastColourNs_ = frame.timestampNs;
 	uint32_t flags = DK_SHM_FLAG_COLOUR_OK;
-	if (haveDepth_ && depthFresh(frame.timestampNs)) {
-		pipeline_.process(frame, depthLatest_, output_);
+	if (const DepthFrame *depth = pairer_.match(frame.timestampNs)) {
+		pipeline_.process(frame, *depth, output_);
 		flags |= DK_SHM_FLAG_DEPTH_OK | DK_SHM_FLAG_ONLINE;
 	} else {
 		pipeline_.passThrough(frame, output_);
@@ -175,8 +182,11 @@ void Daemon::onColourFrame(const ColourFrame &frame)
 
 bool Daemon::depthFresh(uint64_t nowNs) const
 {
-	uint64_t ts = depthLatest_.timestampNs;
-	return ts + kDepthStaleNs >= nowNs && ts <= nowNs + kDepthStaleNs;
+	int64_t ts;
+	if (!pairer_.newestNs(ts))
+		return false;
+	int64_t d = ts - static_cast<int64_t>(nowNs);
+	return d <= kDepthStaleNs && d >= -kDepthStaleNs;
 }
 
 void Daemon::publish(uint64_t captureNs, uint32_t flags)
@@ -224,7 +234,7 @@ void Daemon::publishNoSignal(uint64_t nowNs)
 	std::fill(output_.alpha.data(), output_.alpha.data() + output_.alpha.size(), 0);
 	output_.lecturer.resize(w, h);
 	std::fill(output_.lecturer.data(), output_.lecturer.data() + output_.lecturer.size(), Rgba8{ 0, 0, 0, 0 });
-	publish(nowNs, depthFresh(nowNs) && haveDepth_ ? DK_SHM_FLAG_DEPTH_OK : 0);
+	publish(nowNs, depthFresh(nowNs) ? DK_SHM_FLAG_DEPTH_OK : 0);
 }
 
 StatusSummary Daemon::summary() const
@@ -232,7 +242,7 @@ StatusSummary Daemon::summary() const
 	StatusSummary s;
 	s.colourOk = colour_ && colour_->status().state == DeviceState::Streaming;
 	s.depthOk = depth_ && depth_->status().state == DeviceState::Streaming;
-	s.calibrated = false;
+	s.calibrated = calibrated_ && pipeline_.status().mappingFits;
 	s.error = logger().activeErrorCount() > 0;
 	return s;
 }
@@ -248,14 +258,21 @@ void Daemon::onStatusTick()
 		before = count;
 		return r;
 	};
+	DeviceStatus cs = colour_ ? colour_->status() : DeviceStatus{};
+	DeviceStatus ds = depth_ ? depth_->status() : DeviceStatus{};
+	const PairingStats &ps = pairer_.stats();
 	char text[512];
-	std::snprintf(text, sizeof(text), "colour %s %s %.1f fps; depth %s %s %.1f fps; output %.1f fps",
-		      colour_ ? colour_->name().c_str() : "-",
-		      colour_ ? deviceStateName(colour_->status().state) : "none",
+	std::snprintf(text, sizeof(text),
+		      "colour %s %s %.1f fps %llu dropped; depth %s %s %.1f fps %llu dropped; "
+		      "paired %llu unpaired %llu; output %.1f fps",
+		      colour_ ? colour_->name().c_str() : "-", deviceStateName(cs.state),
 		      rate(colourFrames_, colourFramesAtStatus_),
-		      depth_ ? depth_->name().c_str() : "-",
-		      depth_ ? deviceStateName(depth_->status().state) : "none",
-		      rate(depthFrames_, depthFramesAtStatus_), rate(published_, publishedAtStatus_));
+		      static_cast<unsigned long long>(cs.droppedFrames),
+		      depth_ ? depth_->name().c_str() : "-", deviceStateName(ds.state),
+		      rate(depthFrames_, depthFramesAtStatus_),
+		      static_cast<unsigned long long>(ds.droppedFrames),
+		      static_cast<unsigned long long>(ps.paired),
+		      static_cast<unsigned long long>(ps.unpaired), rate(published_, publishedAtStatus_));
 	statusAtUs_ = now;
 	notifier_.status(text);
 	// In a terminal there is no STATUS= to look at: say it every few seconds.
@@ -305,7 +322,8 @@ void Daemon::apply(const Settings &next)
 	LogLevel level;
 	if (parseLogLevel(next.daemon.logLevel, level))
 		logger().setLevel(level);
-	pipeline_.configure(next.segmentation, next.composite);
+	configurePipeline();
+	configurePairing();
 
 	bool sizeChanged = previous.colour.width != next.colour.width ||
 			   previous.colour.height != next.colour.height;
@@ -334,7 +352,10 @@ void Daemon::writeSnapshot()
 		logger().warning("snapshot requested but daemon.snapshot_dir is not set");
 		return;
 	}
-	SnapshotImages images{ colourLatest_.rgb, depthLatest_.depthMm, output_.alpha, output_.composite };
+	static const Gray16Image kNoDepth;
+	const DepthFrame *depth = pairer_.newest();
+	SnapshotImages images{ colourLatest_.rgb, depth ? depth->depthMm : kNoDepth, output_.alpha,
+			       output_.composite };
 	std::string error;
 	if (writeSnapshotImages(dir, images, error) < 0)
 		logger().error("snapshot failed: " + error, { { "SNAPSHOT_DIR", dir } });

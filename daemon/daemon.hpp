@@ -3,6 +3,7 @@
 // no algorithm; it decides what to run when, and degrades instead of dying.
 #pragma once
 
+#include "algo/frame_pairer.hpp"
 #include "algo/pipeline.hpp"
 #include "config/settings.hpp"
 #include "daemon/device_factory.hpp"
@@ -55,9 +56,11 @@ private:
 	void startCameras();
 	void stopCameras();
 	void apply(const Settings &settings);
+	void configurePipeline();
 	void publish(uint64_t captureNs, uint32_t flags);
 	void publishNoSignal(uint64_t nowNs);
 	bool depthFresh(uint64_t nowNs) const;
+	void configurePairing();
 	StatusSummary summary() const;
 
 	std::string configPath_;
@@ -77,10 +80,11 @@ private:
 	EventSource frameTick_, statusTick_, watchdogTick_;
 
 	Pipeline pipeline_;
+	MappingModel mapping_;     // the last good calibration, or identity
+	bool calibrated_ = false;
 	PipelineOutput output_;
-	DepthFrame depthLatest_;
+	FramePairer pairer_;
 	ColourFrame colourLatest_;
-	bool haveDepth_ = false;
 	bool haveColour_ = false;
 	uint64_t lastColourNs_ = 0;
 	RgbImage noSignal_;

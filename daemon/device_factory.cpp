@@ -1,7 +1,11 @@
 #include "daemon/device_factory.hpp"
 
+#include "daemon/log.hpp"
+#include "hal/gpio/gpiod_status_leds.hpp"
 #include "hal/shm_frame_sink.hpp"
 #include "hal/sim/sim_cameras.hpp"
+#include "hal/sr2/sr2_camera.hpp"
+#include "hal/v4l2/v4l2_cameras.hpp"
 
 namespace depthkey {
 
@@ -9,11 +13,17 @@ namespace depthkey {
 // are never reached with a validated config.
 std::unique_ptr<ColourCamera> createColourCamera(const Settings &settings)
 {
+	if (settings.colour.backend == "v4l2")
+		return std::make_unique<V4l2ColourCamera>(settings.colour);
 	return std::make_unique<SimColourCamera>(settings.colour, settings.sim);
 }
 
 std::unique_ptr<DepthCamera> createDepthCamera(const Settings &settings)
 {
+	if (settings.depth.backend == "sr2")
+		return std::make_unique<Sr2Camera>(settings.depth);
+	if (settings.depth.backend == "v4l2")
+		return std::make_unique<V4l2DepthCamera>(settings.depth);
 	return std::make_unique<SimDepthCamera>(settings.depth, settings.sim);
 }
 
@@ -22,8 +32,16 @@ std::unique_ptr<FrameSink> createFrameSink(const Settings &)
 	return std::make_unique<ShmFrameSink>();
 }
 
-std::unique_ptr<StatusLeds> createStatusLeds(const Settings &)
+std::unique_ptr<StatusLeds> createStatusLeds(const Settings &settings)
 {
+	if (settings.leds.backend == "gpiod")
+		return std::make_unique<GpiodStatusLeds>(
+			[](const std::string &led, int error, const std::string &detail) {
+				// Once per line: the LED stays dark, the daemon goes on.
+				std::string device = led.empty() ? "leds" : "led-" + led;
+				logger().errorOnce(device, "status LED unavailable: " + detail,
+						   { { "DEVICE", device }, { "ERROR", errnoText(error) } });
+			});
 	return std::make_unique<NoStatusLeds>();
 }
 

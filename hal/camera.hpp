@@ -24,6 +24,7 @@ struct DeviceStatus {
 	DeviceState state = DeviceState::Stopped;
 	int error = 0;          // negative errno of the last failure, 0 if none
 	std::string detail;     // what failed and where, for the journal
+	uint64_t droppedFrames = 0; // short, corrupt or error-flagged frames refused
 };
 
 template<typename Frame>

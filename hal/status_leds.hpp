@@ -14,6 +14,7 @@ struct StatusSummary {
 	bool colourOk = false;
 	bool depthOk = false;
 	bool calibrated = false;
+	bool readerAttached = false; // a recorder reads the shared memory (when known)
 	bool error = false;     // a persistent error is being reported
 	bool operator==(const StatusSummary &) const = default;
 };

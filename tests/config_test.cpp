@@ -79,14 +79,38 @@ TEST(ConfigLoader, CustomFileSetsEveryField)
 log_level = "debug"
 snapshot_dir = "/var/lib/depthkey/snapshots"
 [colour]
-backend = "sim"
+backend = "v4l2"
 device = "/dev/v4l/by-id/usb-cam"
 width = 1280
 height = 720
 fps = 30
+pixel_format = "mjpeg"
+timeout_ms = 2000
 [depth]
-backend = "sim"
+backend = "sr2"
 fps = 15
+timeout_ms = 500
+min_mm = 400
+max_mm = 5000
+usb_path = "1-2.3"
+integration_time = 90
+auto_integration = true
+intensity_low = 12000
+intensity_high = 20000
+device = "usb-Intel_RealSense-video-index0"
+width = 848
+height = 480
+pixel_format = "y16"
+scale_mm = 0.125
+[[depth.sr2_register]]
+address = 0x0A
+value = 7
+[[depth.sr2_register]]
+address = 0x0B
+value = 255
+[pairing]
+offset_ms = -40
+max_skew_ms = 80
 [segmentation]
 near_mm = 800
 far_mm = 2500
@@ -99,7 +123,15 @@ lecturer_name = "/room12.lecturer"
 slots = 5
 group = "video"
 [leds]
-backend = "none"
+backend = "gpiod"
+chip = "/dev/gpiochip1"
+active_low = true
+power_line = 10
+depth_line = 11
+colour_line = 12
+calibration_line = 13
+reader_line = -1
+error_line = 15
 [sim]
 seed = 9007199254740993
 )",
@@ -109,21 +141,25 @@ seed = 9007199254740993
 
 	Settings expected;
 	expected.daemon = { "debug", "/var/lib/depthkey/snapshots" };
-	expected.colour = { "sim", "/dev/v4l/by-id/usb-cam", 1280, 720, 30 };
-	expected.depth = { "sim", 15 };
+	expected.colour = { "v4l2", "/dev/v4l/by-id/usb-cam", 1280, 720, 30, "mjpeg", 2000 };
+	expected.depth = { "sr2", 15, 500, 400, 5000, "1-2.3", 90, true, 12000, 20000,
+			   { { 0x0A, 7 }, { 0x0B, 255 } }, "usb-Intel_RealSense-video-index0",
+			   848, 480, "y16", 0.125 };
+	expected.pairing = { -40, 80 };
 	expected.segmentation = { 800, 2500 };
 	expected.composite = { 1.0, 0xff8000 };
 	expected.output = { "/room12.composite", "/room12.lecturer", 5, "video" };
-	expected.leds = { "none" };
+	expected.leds = { "gpiod", "/dev/gpiochip1", true, 10, 11, 12, 13, -1, 15 };
 	expected.sim = { 9007199254740993u };
 	EXPECT_EQ(result.settings, expected);
 
-	// Every section the file can change did change (backends and LEDs have
-	// only one allowed value today).
+	// Every section the file can change did change.
 	const Settings defaults;
 	EXPECT_NE(expected.daemon, defaults.daemon);
 	EXPECT_NE(expected.colour, defaults.colour);
 	EXPECT_NE(expected.depth, defaults.depth);
+	EXPECT_NE(expected.pairing, defaults.pairing);
+	EXPECT_NE(expected.leds, defaults.leds);
 	EXPECT_NE(expected.segmentation, defaults.segmentation);
 	EXPECT_NE(expected.composite, defaults.composite);
 	EXPECT_NE(expected.output, defaults.output);
@@ -209,8 +245,9 @@ TEST(ConfigLoader, OutOfRange)
 
 TEST(ConfigLoader, ValueNotAllowed)
 {
-	EXPECT_EQ(onlyError("[depth]\nbackend = \"sr2\"\n"),
-		  (ConfigError{ kFile, 2, 11, "depth.backend", "\"sr2\" is not one of \"sim\"" }));
+	EXPECT_EQ(onlyError("[depth]\nbackend = \"kinect\"\n"),
+		  (ConfigError{ kFile, 2, 11, "depth.backend",
+				"\"kinect\" is not one of \"sim\" \"sr2\" \"v4l2\"" }));
 	EXPECT_EQ(onlyError("[daemon]\nlog_level = \"verbose\"\n"),
 		  (ConfigError{ kFile, 2, 13, "daemon.log_level",
 				"\"verbose\" is not one of \"error\" \"warning\" \"info\" \"debug\"" }));

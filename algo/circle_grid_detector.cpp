@@ -1,0 +1,284 @@
+// Circle-grid detection in both cameras with OpenCV, and the pairing.
+#include "algo/circle_grid_detector.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+
+#include <opencv2/calib3d.hpp>
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <Eigen/Dense>
+
+namespace depthkey {
+
+namespace {
+
+// Blob limits for an image of the given size: a circle covers at least a
+// few pixels and at most the whole grid's share of the image. Circularity and
+// convexity are loosened so a pattern tilted by 45 degrees (ellipses) and a
+// noisy ToF edge still pass.
+cv::Ptr<cv::FeatureDetector> blobDetector(int width, int height, GridSize grid, double minArea)
+{
+	cv::SimpleBlobDetector::Params p;
+	p.minThreshold = 20;
+	p.maxThreshold = 230;
+	p.thresholdStep = 10;
+	p.filterByColor = true;
+	p.blobColor = 0;
+	p.filterByArea = true;
+	p.minArea = static_cast<float>(minArea);
+	p.maxArea = static_cast<float>(static_cast<double>(width) * height / grid.count());
+	p.filterByCircularity = true;
+	p.minCircularity = 0.5f;
+	p.filterByConvexity = true;
+	p.minConvexity = 0.8f;
+	p.filterByInertia = true;
+	p.minInertiaRatio = 0.2f;
+	return cv::SimpleBlobDetector::create(p);
+}
+
+// A symmetric grid looks the same turned by 180 degrees, so OpenCV may
+// start from either end; the top-left circle goes first in both cameras.
+int findGrid(const cv::Mat &gray, GridSize grid, double minArea, double scale,
+	     std::vector<ImagePoint> &centres)
+{
+	std::vector<cv::Point2f> found;
+	auto detector = blobDetector(gray.cols, gray.rows, grid, minArea);
+	if (!cv::findCirclesGrid(gray, cv::Size(grid.cols, grid.rows), found,
+				 cv::CALIB_CB_SYMMETRIC_GRID, detector) ||
+	    found.size() != static_cast<size_t>(grid.count()))
+		return -ENOENT;
+
+	const cv::Point2f &first = found.front(), &last = found.back();
+	if (first.x + first.y > last.x + last.y)
+		std::reverse(found.begin(), found.end());
+
+	// Rows must run left to right: a pattern held upright in both cameras.
+	cv::Point2f along = found[1] - found[0];
+	if (std::abs(along.x) < std::abs(along.y))
+		return -ENOENT;
+
+	centres.clear();
+	for (const cv::Point2f &p : found)
+		centres.push_back({ (p.x + 0.5) / scale - 0.5, (p.y + 0.5) / scale - 0.5 });
+	return 0;
+}
+
+// Mean distance between neighbouring centres along the rows (step 1) or
+// the columns (step grid.cols).
+double gridSpacing(const std::vector<ImagePoint> &c, GridSize grid, bool columns)
+{
+	int step = columns ? grid.cols : 1;
+	double sum = 0;
+	int n = 0;
+	for (int i = 0; i + step < grid.count(); i++) {
+		if (!columns && (i + 1) % grid.cols == 0)
+			continue;
+		sum += std::hypot(c[i + step].x - c[i].x, c[i + step].y - c[i].y);
+		n++;
+	}
+	return sum / n;
+}
+
+// The blob detector's centres come from threshold contours, which a
+// brightness gradient across a circle (the ToF's vignetting and distance
+// fall-off, uneven room light) pulls towards the darker side: a scale error
+// of a few tenths of a pixel at the image edges. Each centre is refined as
+// the centroid of the circle's darkness below the paper around it, the
+// paper's brightness fitted as a plane to the ring between the circle and
+// its neighbours, so a linear gradient cancels, and the darkness taken
+// relative to that paper.
+template<typename Pixel>
+void refineCentres(const cv::Mat &image, GridSize grid, std::vector<ImagePoint> &centres)
+{
+	// In units of the spacing along each axis (the SR-2's pixels are not
+	// square): the circle (diameter at most 0.6 of the spacing) lies within
+	// kInner, the ring out to kOuter is paper only.
+	constexpr double kInner = 0.36, kOuter = 0.46;
+	double sx = gridSpacing(centres, grid, false), sy = gridSpacing(centres, grid, true);
+	for (ImagePoint &c : centres) {
+		int x0 = std::max(0, static_cast<int>(std::floor(c.x - kOuter * sx)));
+		int x1 = std::min(image.cols - 1, static_cast<int>(std::ceil(c.x + kOuter * sx)));
+		int y0 = std::max(0, static_cast<int>(std::floor(c.y - kOuter * sy)));
+		int y1 = std::min(image.rows - 1, static_cast<int>(std::ceil(c.y + kOuter * sy)));
+		auto radius = [&](double dx, double dy) { return std::hypot(dx / sx, dy / sy); };
+
+		// Plane a + b dx + c dy through the ring's pixels.
+		Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+		Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+		for (int y = y0; y <= y1; y++)
+			for (int x = x0; x <= x1; x++) {
+				double dx = x - c.x, dy = y - c.y, r = radius(dx, dy);
+				if (r < kInner || r > kOuter)
+					continue;
+				Eigen::Vector3d row(1.0, dx, dy);
+				normal += row * row.transpose();
+				rhs += row * static_cast<double>(image.at<Pixel>(y, x));
+			}
+		if (std::abs(normal.determinant()) < 1e-9)
+			continue;
+		Eigen::Vector3d plane = normal.ldlt().solve(rhs);
+
+		double sum = 0, mx = 0, my = 0;
+		for (int y = y0; y <= y1; y++)
+			for (int x = x0; x <= x1; x++) {
+				double dx = x - c.x, dy = y - c.y;
+				if (radius(dx, dy) > kInner)
+					continue;
+				// Relative darkness: ink reflects a fixed share of what
+				// paper would, so the weight is even across the circle
+				// whatever the light falling on it.
+				double paper = plane(0) + plane(1) * dx + plane(2) * dy;
+				if (paper <= 0)
+					continue;
+				double dark = 1.0 - static_cast<double>(image.at<Pixel>(y, x)) / paper;
+				sum += dark;
+				mx += dark * dx;
+				my += dark * dy;
+			}
+		if (sum <= 0)
+			continue;
+		c.x += mx / sum;
+		c.y += my / sum;
+	}
+}
+
+double median(std::vector<double> &values)
+{
+	auto mid = values.begin() + static_cast<long>(values.size() / 2);
+	std::nth_element(values.begin(), mid, values.end());
+	return *mid;
+}
+
+} // namespace
+
+Gray8Image amplitudeForDetection(const Gray16Image &amplitude)
+{
+	// Stretch between the 2nd and 98th percentile of the measured amplitudes:
+	// the SR-2's amplitude falls with distance squared, so a fixed scale
+	// would leave a far pattern black.
+	std::vector<uint16_t> values;
+	for (size_t i = 0; i < amplitude.size(); i++)
+		if (amplitude.data()[i] > 0)
+			values.push_back(amplitude.data()[i]);
+	double lo = 0, hi = 1;
+	if (!values.empty()) {
+		auto at = [&](double q) {
+			auto it = values.begin() + static_cast<long>(q * (values.size() - 1));
+			std::nth_element(values.begin(), it, values.end());
+			return static_cast<double>(*it);
+		};
+		lo = at(0.02);
+		hi = std::max(at(0.98), lo + 1);
+	}
+
+	cv::Mat src(amplitude.height(), amplitude.width(), CV_16UC1,
+		    const_cast<uint16_t *>(amplitude.data()));
+	cv::Mat stretched, scaled;
+	src.convertTo(stretched, CV_8UC1, 255.0 / (hi - lo), -lo * 255.0 / (hi - lo));
+	cv::resize(stretched, scaled, cv::Size(), kAmplitudeScale, kAmplitudeScale, cv::INTER_CUBIC);
+	// Half a ToF pixel of blur: the per-pixel noise would otherwise split a
+	// circle's threshold contours into fragments.
+	cv::GaussianBlur(scaled, scaled, cv::Size(), 0.5 * kAmplitudeScale);
+
+	Gray8Image out(scaled.cols, scaled.rows);
+	for (int y = 0; y < scaled.rows; y++)
+		std::copy_n(scaled.ptr<uint8_t>(y), scaled.cols, out.row(y));
+	return out;
+}
+
+int findColourGrid(const RgbImage &rgb, GridSize grid, std::vector<ImagePoint> &centres)
+{
+	cv::Mat src(rgb.height(), rgb.width(), CV_8UC3, const_cast<Rgb8 *>(rgb.data()));
+	cv::Mat gray;
+	cv::cvtColor(src, gray, cv::COLOR_RGB2GRAY);
+	if (int ret = findGrid(gray, grid, 12.0, 1.0, centres); ret < 0)
+		return ret;
+	refineCentres<uint8_t>(gray, grid, centres);
+	return 0;
+}
+
+int findAmplitudeGrid(const Gray16Image &amplitude, GridSize grid, std::vector<ImagePoint> &centres)
+{
+	Gray8Image scaled = amplitudeForDetection(amplitude);
+	cv::Mat gray(scaled.height(), scaled.width(), CV_8UC1, scaled.data());
+	// A circle two ToF pixels across is the smallest that still has a centre.
+	constexpr double kMinArea = 3.0 * kAmplitudeScale * kAmplitudeScale;
+	if (int ret = findGrid(gray, grid, kMinArea, kAmplitudeScale, centres); ret < 0)
+		return ret;
+	// Refined on the measured amplitudes, not the stretched 8-bit copy.
+	cv::Mat raw(amplitude.height(), amplitude.width(), CV_16UC1, const_cast<uint16_t *>(amplitude.data()));
+	refineCentres<uint16_t>(raw, grid, centres);
+	return 0;
+}
+
+double depthAround(const DepthFrame &depth, ImagePoint centre, double radiusPx)
+{
+	const Gray16Image &z = depth.depthMm;
+	bool amplitude = depth.amplitude.width() == z.width() && depth.amplitude.height() == z.height();
+	std::vector<double> depths, amplitudes;
+	int x0 = std::max(0, static_cast<int>(std::floor(centre.x - radiusPx)));
+	int x1 = std::min(z.width() - 1, static_cast<int>(std::ceil(centre.x + radiusPx)));
+	int y0 = std::max(0, static_cast<int>(std::floor(centre.y - radiusPx)));
+	int y1 = std::min(z.height() - 1, static_cast<int>(std::ceil(centre.y + radiusPx)));
+	for (int y = y0; y <= y1; y++) {
+		for (int x = x0; x <= x1; x++) {
+			double dx = x - centre.x, dy = y - centre.y;
+			if (dx * dx + dy * dy > radiusPx * radiusPx || z.at(x, y) == 0)
+				continue;
+			depths.push_back(z.at(x, y));
+			amplitudes.push_back(amplitude ? depth.amplitude.at(x, y) : 0.0);
+		}
+	}
+	if (depths.empty())
+		return 0;
+
+	// The black circle returns little light and so the noisiest depths; the
+	// paper around it (amplitude above the local median) measures best.
+	std::vector<double> sorted = amplitudes;
+	double threshold = median(sorted);
+	std::vector<double> bright;
+	for (size_t i = 0; i < depths.size(); i++)
+		if (amplitudes[i] >= threshold)
+			bright.push_back(depths[i]);
+	return median(bright.empty() ? depths : bright) / 1000.0;
+}
+
+int pairView(const ColourFrame &colour, const DepthFrame &depth, GridSize grid,
+	     CalibrationView &view, std::string &error)
+{
+	std::vector<ImagePoint> inColour, inTof;
+	bool colourSees = findColourGrid(colour.rgb, grid, inColour) == 0;
+	bool tofSees = findAmplitudeGrid(depth.amplitude, grid, inTof) == 0;
+	std::string pattern = std::to_string(grid.cols) + "x" + std::to_string(grid.rows) + " grid";
+	if (!colourSees || !tofSees) {
+		error = !colourSees && !tofSees ? "neither camera sees the whole " + pattern
+			: !colourSees ? "the colour camera does not see the whole " + pattern
+				      : "the ToF camera does not see the whole " + pattern +
+						" in its amplitude image";
+		return -ENOENT;
+	}
+
+	// Half the distance between neighbouring circles: the disc around a
+	// centre that holds its circle and the paper around it, no other circle.
+	double spacing = gridSpacing(inTof, grid, false);
+
+	view.points.clear();
+	std::vector<double> depths;
+	for (int i = 0; i < grid.count(); i++) {
+		double z = depthAround(depth, inTof[i], 0.5 * spacing);
+		if (z <= 0) {
+			error = "the ToF camera has no depth at circle " + std::to_string(i + 1) +
+				" of the " + pattern;
+			return -EINVAL;
+		}
+		view.points.push_back({ inTof[i].x, inTof[i].y, z, inColour[i].x, inColour[i].y });
+		depths.push_back(z);
+	}
+	view.depthM = median(depths);
+	return 0;
+}
+
+} // namespace depthkey

@@ -1,0 +1,51 @@
+// Finding the calibration pattern, a symmetric grid of black circles on
+// white, in the colour image and in the ToF amplitude image, and pairing the
+// circle centres of the two into the point pairs the fit needs.
+//
+// OpenCV's calib3d does the finding (findCirclesGrid with a SimpleBlobDetector).
+// A 160x124 amplitude image shows each circle as a few noisy pixels, so it
+// is stretched to 8 bits, scaled up 4 times and smoothed first, with the blob
+// detector's area limits set for that scale.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "algo/calibration_fit.hpp"
+#include "algo/frames.hpp"
+
+namespace depthkey {
+
+struct GridSize {
+	int cols = 7;           // circles per row
+	int rows = 5;           // rows
+	int count() const { return cols * rows; }
+};
+
+struct ImagePoint {
+	double x = 0, y = 0;    // pixel i's centre at i
+};
+
+// The ToF amplitude image scaled up for detection and preview: 8 bits,
+// kAmplitudeScale times the size, the circles dark.
+constexpr int kAmplitudeScale = 4;
+Gray8Image amplitudeForDetection(const Gray16Image &amplitude);
+
+// Circle centres, row by row from the top-left circle, or -ENOENT when the
+// whole grid is not in the image. Both cameras see the pattern upright, so
+// the order is the same in both images.
+int findColourGrid(const RgbImage &rgb, GridSize grid, std::vector<ImagePoint> &centres);
+int findAmplitudeGrid(const Gray16Image &amplitude, GridSize grid, std::vector<ImagePoint> &centres);
+
+// The pattern's depth at a ToF circle centre: the median of the valid depths
+// around it (within radiusPx), taken from the bright paper between circles
+// when there is some, where the ToF measures best. 0 when none is valid.
+double depthAround(const DepthFrame &depth, ImagePoint centre, double radiusPx);
+
+// Both cameras' view of the pattern as point pairs, labelled with depthM.
+// Returns -ENOENT with error naming the camera that did not see the whole
+// grid, or -EINVAL when the depth image has no depth at the circles.
+int pairView(const ColourFrame &colour, const DepthFrame &depth, GridSize grid,
+	     CalibrationView &view, std::string &error);
+
+} // namespace depthkey

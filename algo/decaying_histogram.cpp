@@ -1,0 +1,62 @@
+#include "algo/decaying_histogram.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace depthkey {
+
+DecayingHistogram::DecayingHistogram() : bins_(kQuantisedColours, 0)
+{
+}
+
+void DecayingHistogram::setRate(double rate)
+{
+	rate_ = std::clamp(rate, 0.0, 1.0);
+	growth_ = rate_ >= 1.0 ? 1.0 : 1.0 / (1.0 - rate_);
+}
+
+void DecayingHistogram::clear()
+{
+	std::memset(bins_.data(), 0, bins_.size() * sizeof(uint32_t));
+	total_ = 0;
+	incrementExact_ = kStartIncrement;
+	increment_ = kStartIncrement;
+}
+
+void DecayingHistogram::endFrame()
+{
+	if (rate_ >= 1.0) {
+		clear(); // only the next frame will count
+		return;
+	}
+	incrementExact_ *= growth_;
+	if (incrementExact_ >= kMaxIncrement)
+		rescale(8);
+	else if (total_ >= kMaxTotal)
+		rescale(1);
+	increment_ = static_cast<uint32_t>(std::lround(incrementExact_));
+}
+
+void DecayingHistogram::rescale(int shift)
+{
+	uint64_t total = 0;
+	for (uint32_t &b : bins_) {
+		b >>= shift;
+		total += b;
+	}
+	total_ = total;
+	if (shift == 8)
+		incrementExact_ /= 256.0;
+}
+
+size_t DecayingHistogram::collect(const QuantisedLabTable &lab, WeightedLab *out) const
+{
+	size_t n = 0;
+	for (uint32_t i = 0; i < kQuantisedColours; ++i)
+		if (bins_[i])
+			out[n++] = { lab[i], bins_[i] };
+	return n;
+}
+
+} // namespace depthkey

@@ -1,0 +1,43 @@
+// Depth seeding (paper 6.1), at the depth camera's resolution where it is
+// cheap (160x124 on the SR-2):
+//   trusted   = near <= depth <= far, min_amplitude <= amplitude < max_amplitude
+//               (a weak echo says nothing, a saturated one lies);
+//   subset    = the largest 4-connected component of erode(trusted, erode_px):
+//               surely lecturer;
+//   superset  = dilate(subset, dilate_px); everything outside is surely board;
+//   undecided = superset minus subset, where SIOX decides;
+//   learnBoard = outside dilate(subset, dilate_px + margin_px): board pixels
+//               far enough from the lecturer that a late depth frame or the
+//               light scattered onto the board cannot put the lecturer there.
+#pragma once
+
+#include "algo/frames.hpp"
+#include "algo/morphology.hpp"
+#include "config/settings.hpp"
+
+namespace depthkey {
+
+struct DepthSeeds {
+	Gray8Image labels;          // trimap labels (algo/trimap.hpp), ToF resolution
+	Gray8Image learnBoard;      // 255 where board colours may be learned
+	int lecturerDepthMm = 0;    // mean depth of the surely-lecturer pixels; 0 = none
+	int lecturerPixels = 0;
+};
+
+class DepthSeeder
+{
+public:
+	void configure(const SegmentationSettings &segmentation, const LearningSettings &learning);
+
+	// A frame whose images differ in size from each other gives no lecturer.
+	void seed(const DepthFrame &depth, DepthSeeds &out);
+
+private:
+	SegmentationSettings settings_;
+	int marginPx_ = 2;
+	Gray8Image trusted_, subset_, superset_, far_;
+	MorphologyScratch morphology_;
+	ComponentScratch components_;
+};
+
+} // namespace depthkey

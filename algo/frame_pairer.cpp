@@ -1,0 +1,77 @@
+#include "algo/frame_pairer.hpp"
+
+namespace depthkey {
+
+void FramePairer::configure(int64_t offsetNs, uint64_t maxSkewNs)
+{
+	offsetNs_ = offsetNs;
+	maxSkewNs_ = maxSkewNs;
+}
+
+void FramePairer::clear()
+{
+	for (size_t i = 0; i < count_; i++)
+		slots_[i].used = false;
+	count_ = 0;
+	next_ = 0;
+}
+
+int64_t FramePairer::corrected(const DepthFrame &frame) const
+{
+	return static_cast<int64_t>(frame.timestampNs) + offsetNs_;
+}
+
+void FramePairer::addDepth(const DepthFrame &frame)
+{
+	const DepthFrame *last = newest();
+	if (last && frame.timestampNs <= last->timestampNs) {
+		stats_.depthOutOfOrder++;
+		return;
+	}
+	Slot &slot = slots_[next_];
+	if (count_ == kHistory && !slot.used)
+		stats_.depthUnused++;
+	slot.frame = frame; // same size: the vectors reuse their storage
+	slot.used = false;
+	next_ = (next_ + 1) % kHistory;
+	if (count_ < kHistory)
+		count_++;
+}
+
+const DepthFrame *FramePairer::match(uint64_t colourNs)
+{
+	Slot *best = nullptr;
+	uint64_t bestSkew = 0;
+	for (size_t i = 0; i < count_; i++) {
+		int64_t d = corrected(slots_[i].frame) - static_cast<int64_t>(colourNs);
+		uint64_t skew = static_cast<uint64_t>(d < 0 ? -d : d);
+		if (!best || skew < bestSkew) {
+			best = &slots_[i];
+			bestSkew = skew;
+		}
+	}
+	if (!best || bestSkew > maxSkewNs_) {
+		stats_.unpaired++;
+		return nullptr;
+	}
+	best->used = true;
+	stats_.paired++;
+	return &best->frame;
+}
+
+const DepthFrame *FramePairer::newest() const
+{
+	if (count_ == 0)
+		return nullptr;
+	return &slots_[(next_ + kHistory - 1) % kHistory].frame;
+}
+
+bool FramePairer::newestNs(int64_t &ns) const
+{
+	const DepthFrame *frame = newest();
+	if (frame)
+		ns = corrected(*frame);
+	return frame != nullptr;
+}
+
+} // namespace depthkey

@@ -1,0 +1,66 @@
+// Soft synchronisation of two free-running cameras (Friedland et al.: the
+// ToF camera and the webcam are not triggered together, their frames are
+// paired by time). Depth frames are kept in a short history; each colour
+// frame is paired with the depth frame whose corrected time (timestamp +
+// offset, the depth camera's latency) is nearest, if it is within maxSkew.
+//
+// Drop policy:
+//  - a colour frame with no depth frame within maxSkew is not keyed (the
+//    daemon publishes it unkeyed, marked offline) and counted unpaired;
+//  - a depth frame may serve several colour frames (depth runs slower);
+//  - a depth frame that leaves the history without ever being paired is
+//    counted unused (depth faster than colour, or colour missing);
+//  - a depth frame older than the newest one held is refused and counted
+//    (it would pair wrongly); the history is cleared on a camera restart.
+// Pure: times are handed in, nothing is read from a clock.
+#pragma once
+
+#include "algo/frames.hpp"
+
+#include <array>
+#include <cstdint>
+
+namespace depthkey {
+
+struct PairingStats {
+	uint64_t paired = 0;
+	uint64_t unpaired = 0;
+	uint64_t depthUnused = 0;
+	uint64_t depthOutOfOrder = 0;
+};
+
+class FramePairer
+{
+public:
+	static constexpr size_t kHistory = 4;
+
+	void configure(int64_t offsetNs, uint64_t maxSkewNs);
+	void clear();
+
+	void addDepth(const DepthFrame &frame);
+	// The depth frame to key colourNs with, or nullptr. Valid until the next
+	// addDepth/clear.
+	const DepthFrame *match(uint64_t colourNs);
+
+	// The newest depth frame, paired or not (snapshots); nullptr if none.
+	const DepthFrame *newest() const;
+	// Corrected time of the newest depth frame; false when there is none.
+	bool newestNs(int64_t &ns) const;
+	const PairingStats &stats() const { return stats_; }
+
+private:
+	struct Slot {
+		DepthFrame frame;
+		bool used = false;
+	};
+	int64_t corrected(const DepthFrame &frame) const;
+
+	std::array<Slot, kHistory> slots_;
+	size_t count_ = 0;  // valid slots
+	size_t next_ = 0;   // slot the next frame goes into
+	int64_t offsetNs_ = 0;
+	uint64_t maxSkewNs_ = 150'000'000;
+	PairingStats stats_;
+};
+
+} // namespace depthkey

@@ -1,0 +1,35 @@
+// Carries the depth seeds from ToF resolution into the colour image: each
+// surely-lecturer or undecided ToF pixel is mapped (DepthMapper, with its own
+// depth) and painted as a block of its footprint (the colour size of a ToF
+// pixel, plus one pixel of overlap so stretched areas get no gaps). Where
+// blocks overlap the higher label wins (lecturer over undecided over board):
+// the lecturer is the nearest surface in the scene, so this is the z-buffer's
+// "nearest wins" without storing depths. Everything not painted is board.
+//
+// Only the region painted (the ROI, plus a one pixel border) is touched; the
+// previous frame's ROI is cleared first, so the trimap is board everywhere
+// else without clearing the whole image.
+#pragma once
+
+#include "algo/depth_mapper.hpp"
+#include "algo/depth_seeder.hpp"
+#include "algo/trimap.hpp"
+
+namespace depthkey {
+
+class SeedMapper
+{
+public:
+	void configure(const DepthMapper &mapper);
+
+	// trimap is resized to the mapper's colour size; roi receives the
+	// painted region (empty when there is no lecturer).
+	void map(const DepthSeeds &seeds, const Gray16Image &depthMm, Gray8Image &trimap, Roi &roi);
+
+private:
+	const DepthMapper *mapper_ = nullptr;
+	int footprintW_ = 1, footprintH_ = 1;
+	Roi previous_;
+};
+
+} // namespace depthkey

@@ -1,0 +1,59 @@
+// SIOX on the undecided band of a trimap, then its post-processing, then the
+// soft alpha. Only band pixels are ever computed or changed, so the seeds are
+// never contradicted (surely lecturer stays 255, surely board stays 0) and
+// the cost follows the band's size, not the image's:
+//   1. classify: each band pixel gets its colour's cached decision (one
+//      lookup, SioxClassifier);
+//   2. smoothing: `smoothing` passes of a 3x3 box average of the confidence
+//      (as SIOX's smoothcm with weights 1/3), then a threshold at one half;
+//   3. components: keep every 4-connected lecturer region of the band that
+//      touches a surely-lecturer pixel (not only the largest: a hand behind a
+//      thin undecided wrist stays), drop the rest;
+//   4. holes: a board region of the band that reaches no surely-board pixel
+//      and not the image border is enclosed by the lecturer: fill it;
+//   5. soft alpha: band pixels on the final boundary take their colour's
+//      confidence (the distance ratio), kept on the side of the decision so
+//      that thresholding the alpha at 128 gives back the mask.
+#pragma once
+
+#include "algo/image.hpp"
+#include "algo/siox_classifier.hpp"
+#include "algo/trimap.hpp"
+#include "config/settings.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace depthkey {
+
+class SioxRefiner
+{
+public:
+	void configure(const SioxSettings &settings) { settings_ = settings; }
+
+	// roi must contain every non-board trimap pixel with one pixel to spare
+	// (or the image border). alpha is resized to the image and written
+	// everywhere: 0 outside the ROI.
+	void refine(const RgbImage &colour, const Gray8Image &trimap, const Roi &roi,
+		    SioxClassifier &classifier, Gray8Image &alpha);
+
+	// The band pixels of the last refine(), for previews and tests.
+	size_t bandPixels() const { return band_.size(); }
+
+private:
+	void collectAndClassify(const RgbImage &colour, const Gray8Image &trimap, const Roi &roi,
+				SioxClassifier &classifier);
+	void smooth();
+	void keepComponentsTouchingLecturer();
+	void fillHoles();
+	void writeAlpha(const Roi &roi, Gray8Image &alpha) const;
+
+	SioxSettings settings_;
+	int width_ = 0, height_ = 0;
+	Gray8Image work_;             // seeds as in the trimap, band pixels 0 / 255
+	std::vector<int32_t> band_;   // indices of the band pixels
+	std::vector<uint8_t> colourConfidence_, next_;
+	std::vector<int32_t> stack_;
+};
+
+} // namespace depthkey

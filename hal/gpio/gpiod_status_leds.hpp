@@ -1,0 +1,53 @@
+// Status LEDs on GPIO lines through libgpiod 1.6's C++ binding. A thin
+// writer: the legend is ledPatternsFor(), this only requests the lines and
+// writes each level when it changes, on a 125 ms event-loop timer. The C++
+// binding throws; every call is wrapped here and becomes a negative errno.
+// A line that fails is released and reported once through onFault; the
+// other LEDs and the daemon go on.
+#pragma once
+
+#include "hal/gpio/led_patterns.hpp"
+#include "hal/status_leds.hpp"
+
+#include <functional>
+#include <memory>
+#include <string>
+
+namespace gpiod {
+class chip;
+class line;
+} // namespace gpiod
+
+namespace depthkey {
+
+class GpiodStatusLeds : public StatusLeds
+{
+public:
+	// Called once per failed line (and once if the chip cannot be opened):
+	// the LED's name ("" for the chip), the negative errno and what failed.
+	using FaultHandler = std::function<void(const std::string &led, int error,
+						const std::string &detail)>;
+
+	explicit GpiodStatusLeds(FaultHandler onFault);
+	~GpiodStatusLeds() override;
+
+	int open(EventLoop &loop, const LedSettings &settings) override;
+	void show(const StatusSummary &summary) override;
+	void close() override;
+
+	int linesInUse() const;
+
+private:
+	void tick();
+	void release(size_t led, int error, const std::string &what);
+
+	FaultHandler onFault_;
+	std::unique_ptr<gpiod::chip> chip_;
+	std::array<std::unique_ptr<gpiod::line>, kStatusLedCount> lines_;
+	std::array<int, kStatusLedCount> written_{}; // -1 = unknown
+	LedPatterns patterns_{};
+	EventSource timer_;
+	unsigned tick_ = 0;
+};
+
+} // namespace depthkey

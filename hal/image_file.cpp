@@ -1,0 +1,87 @@
+#include "hal/image_file.hpp"
+
+#include <cerrno>
+#include <cstring>
+#include <sys/stat.h>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+namespace depthkey {
+
+namespace {
+
+// imread says nothing about why it failed: tell a missing file from one
+// that is not an image.
+int readMat(const std::string &path, int flags, cv::Mat &mat, std::string &error)
+{
+	struct stat st;
+	if (::stat(path.c_str(), &st) < 0) {
+		int err = errno;
+		error = path + ": " + std::strerror(err);
+		return -err;
+	}
+	try {
+		mat = cv::imread(path, flags);
+	} catch (const cv::Exception &e) {
+		mat.release();
+	}
+	if (mat.empty()) {
+		error = path + ": not an image file OpenCV can read";
+		return -EINVAL;
+	}
+	if (mat.depth() != CV_8U) {
+		error = path + ": must have 8 bits per channel";
+		return -EINVAL;
+	}
+	return 0;
+}
+
+} // namespace
+
+int readRgbImage(const std::string &path, RgbImage &out, std::string &error)
+{
+	cv::Mat mat;
+	int ret = readMat(path, cv::IMREAD_COLOR | cv::IMREAD_ANYDEPTH, mat, error);
+	if (ret < 0)
+		return ret;
+	out.resize(mat.cols, mat.rows);
+	cv::Mat rgb(mat.rows, mat.cols, CV_8UC3, out.data());
+	cv::cvtColor(mat, rgb, cv::COLOR_BGR2RGB);
+	return 0;
+}
+
+int readGray8Image(const std::string &path, Gray8Image &out, std::string &error)
+{
+	cv::Mat mat;
+	int ret = readMat(path, cv::IMREAD_UNCHANGED, mat, error);
+	if (ret < 0)
+		return ret;
+	if (mat.channels() != 1) {
+		error = path + ": must be a single-channel (grey) 8-bit image, has " +
+			std::to_string(mat.channels()) + " channels";
+		return -EINVAL;
+	}
+	out.resize(mat.cols, mat.rows);
+	for (int y = 0; y < mat.rows; ++y)
+		std::memcpy(out.row(y), mat.ptr<uint8_t>(y), size_t(mat.cols));
+	return 0;
+}
+
+int writeGray8Png(const std::string &path, const Gray8Image &image, std::string &error)
+{
+	cv::Mat mat(image.height(), image.width(), CV_8UC1, const_cast<uint8_t *>(image.data()));
+	bool ok = false;
+	try {
+		ok = cv::imwrite(path, mat);
+	} catch (const cv::Exception &e) {
+		ok = false;
+	}
+	if (!ok) {
+		error = path + ": cannot write PNG";
+		return -EIO;
+	}
+	return 0;
+}
+
+} // namespace depthkey

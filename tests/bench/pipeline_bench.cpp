@@ -1,0 +1,176 @@
+// Per-frame cost of the pipeline and of each stage (mapping + seeding,
+// learning, SIOX on the band with post-processing, compositing), on the
+// skeleton's simulated scene after learning, at 640x480 and 1920x1080 colour
+// with 160x124 depth; and depthkey-siox's segmentation of a 640x480 still
+// with a 10 px band.
+#include "algo/colour_learner.hpp"
+#include "algo/composite.hpp"
+#include "algo/depth_mapper.hpp"
+#include "algo/depth_seeder.hpp"
+#include "algo/pipeline.hpp"
+#include "algo/seed_mapper.hpp"
+#include "algo/siox_refiner.hpp"
+#include "algo/still_siox.hpp"
+#include "hal/sim/simple_scene.hpp"
+#include "tests/synthetic_still.hpp"
+
+#include <benchmark/benchmark.h>
+
+#include <map>
+#include <memory>
+#include <vector>
+
+using namespace depthkey;
+
+namespace {
+
+constexpr int kFrames = 8; // distinct frames cycled through (motion, new colours)
+
+struct Inputs {
+	std::vector<ColourFrame> colour;
+	std::vector<DepthFrame> depth;
+};
+
+const Inputs &inputs(int w, int h)
+{
+	static std::map<std::pair<int, int>, std::unique_ptr<Inputs>> cache;
+	auto &slot = cache[{ w, h }];
+	if (!slot) {
+		slot = std::make_unique<Inputs>();
+		SimpleScene scene(1);
+		for (int i = 0; i < kFrames; ++i) {
+			ColourFrame c;
+			c.rgb.resize(w, h);
+			scene.renderColour(1.0 + i * 0.04, c.rgb);
+			DepthFrame d;
+			d.depthMm.resize(160, 124);
+			d.amplitude.resize(160, 124);
+			d.intensity.resize(160, 124);
+			scene.renderDepth(1.0 + i * 0.04, d);
+			slot->colour.push_back(std::move(c));
+			slot->depth.push_back(std::move(d));
+		}
+	}
+	return *slot;
+}
+
+MappingModel identity(int w, int h)
+{
+	MappingModel m;
+	m.colourWidth = w;
+	m.colourHeight = h;
+	return m;
+}
+
+void BM_PipelineFrame(benchmark::State &state)
+{
+	const int w = int(state.range(0)), h = int(state.range(1));
+	const Inputs &in = inputs(w, h);
+	auto pipeline = std::make_unique<Pipeline>();
+	pipeline->configure(Settings{}, identity(w, h));
+	PipelineOutput out;
+	for (int i = 0; i < 30; ++i) // past learning
+		pipeline->process(in.colour[i % kFrames], in.depth[i % kFrames], out);
+	int i = 0;
+	for (auto _ : state) {
+		pipeline->process(in.colour[i % kFrames], in.depth[i % kFrames], out);
+		++i;
+		benchmark::DoNotOptimize(out.alpha.data());
+	}
+	state.counters["band_px"] = double(pipeline->status().bandPixels);
+}
+
+// The stages one by one, with the state a running pipeline has.
+struct Stages {
+	QuantisedLabTable lab;
+	SioxClassifier classifier{ lab };
+	ColourLearner learner{ lab };
+	DepthMapper mapper;
+	DepthSeeder seeder;
+	SeedMapper seedMapper;
+	SioxRefiner refiner;
+	DepthSeeds seeds;
+	Gray8Image trimap, alpha;
+	Roi roi;
+	RgbImage board, composite;
+	RgbaImage layer;
+
+	Stages(int w, int h)
+	{
+		Settings s;
+		mapper.configure(identity(w, h));
+		seedMapper.configure(mapper);
+		seeder.configure(s.segmentation, s.learning);
+		learner.configure(s.learning);
+		refiner.configure(s.siox);
+		board = RgbImage(w, h, Rgb8{ 30, 60, 40 });
+		const Inputs &in = inputs(w, h);
+		for (int i = 0; i < 30; ++i)
+			run(in, i);
+	}
+	void seed(const Inputs &in, int i)
+	{
+		seeder.seed(in.depth[i % kFrames], seeds);
+		seedMapper.map(seeds, in.depth[i % kFrames].depthMm, trimap, roi);
+	}
+	void run(const Inputs &in, int i)
+	{
+		seed(in, i);
+		learner.learn(in.colour[i % kFrames].rgb, trimap, seeds.learnBoard, classifier);
+		refiner.refine(in.colour[i % kFrames].rgb, trimap, roi, classifier, alpha);
+	}
+};
+
+void BM_Stage(benchmark::State &state, int stage)
+{
+	const int w = int(state.range(0)), h = int(state.range(1));
+	const Inputs &in = inputs(w, h);
+	auto s = std::make_unique<Stages>(w, h);
+	int i = 0;
+	for (auto _ : state) {
+		const RgbImage &rgb = in.colour[i % kFrames].rgb;
+		switch (stage) {
+		case 0:
+			s->seed(in, i);
+			break;
+		case 1:
+			s->learner.learn(rgb, s->trimap, s->seeds.learnBoard, s->classifier);
+			break;
+		case 2:
+			s->refiner.refine(rgb, s->trimap, s->roi, s->classifier, s->alpha);
+			break;
+		default:
+			composite(rgb, s->alpha, s->board, 128, s->composite);
+			lecturerLayer(rgb, s->alpha, s->layer);
+			break;
+		}
+		++i;
+		benchmark::ClobberMemory();
+	}
+}
+
+void BM_SeedAndMap(benchmark::State &state) { BM_Stage(state, 0); }
+void BM_Learn(benchmark::State &state) { BM_Stage(state, 1); }
+void BM_SioxBand(benchmark::State &state) { BM_Stage(state, 2); }
+void BM_CompositeOutputs(benchmark::State &state) { BM_Stage(state, 3); }
+
+void BM_DepthkeySioxStill(benchmark::State &state)
+{
+	test::SyntheticStill still = test::makeStill(640, 480, 10, 2);
+	auto siox = std::make_unique<StillSiox>();
+	Gray8Image mask, alpha;
+	for (auto _ : state) {
+		siox->segment(still.image, still.trimap, mask, alpha);
+		benchmark::DoNotOptimize(mask.data());
+	}
+}
+
+} // namespace
+
+#define SIZES ->Args({ 640, 480 })->Args({ 1920, 1080 })->Unit(benchmark::kMicrosecond)
+BENCHMARK(BM_PipelineFrame) SIZES;
+BENCHMARK(BM_SeedAndMap) SIZES;
+BENCHMARK(BM_Learn) SIZES;
+BENCHMARK(BM_SioxBand) SIZES;
+BENCHMARK(BM_CompositeOutputs) SIZES;
+BENCHMARK(BM_DepthkeySioxStill)->Unit(benchmark::kMicrosecond);

@@ -1,0 +1,123 @@
+// Finding the pattern in both cameras on the simulator's images, with the
+// ToF noise of the paper, and failing clearly when it is not in view.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include "algo/circle_grid_detector.hpp"
+#include "hal/sim/calibration_pattern.hpp"
+
+namespace depthkey {
+namespace {
+
+class CircleGridDetector : public ::testing::Test
+{
+protected:
+	void SetUp() override
+	{
+		rig_.configure(640, 480, true, 60);
+		renderer_.configure(rig_, board_, sim::PatternConditions{});
+	}
+
+	// True centres of the board's circles in the ToF image.
+	std::vector<ImagePoint> tofTruth(const sim::PatternPose &pose) const
+	{
+		const double deg = 3.14159265358979323846 / 180.0;
+		Eigen::Matrix3d r = (Eigen::AngleAxisd(pose.yawDeg * deg, Eigen::Vector3d::UnitY()) *
+				     Eigen::AngleAxisd(pose.pitchDeg * deg, Eigen::Vector3d::UnitX()) *
+				     Eigen::AngleAxisd(pose.rollDeg * deg, Eigen::Vector3d::UnitZ()))
+					    .toRotationMatrix();
+		std::vector<ImagePoint> out;
+		for (int j = 0; j < board_.grid.count(); j++) {
+			Eigen::Vector3d local((j % board_.grid.cols - (board_.grid.cols - 1) / 2.0) * board_.spacingM,
+					      (j / board_.grid.cols - (board_.grid.rows - 1) / 2.0) * board_.spacingM, 0);
+			ImagePoint p;
+			rig_.tof().project(rig_.toTof(pose.centre + r * local), p.x, p.y);
+			out.push_back(p);
+		}
+		return out;
+	}
+
+	CameraRig rig_;
+	sim::PatternBoard board_;
+	sim::PatternRenderer renderer_;
+	ColourFrame colour_;
+	DepthFrame depth_;
+};
+
+TEST_F(CircleGridDetector, FindsTheFarCornerPatternThroughToFNoise)
+{
+	// 2.5 m in a corner: the smallest circles (about 3.5 ToF pixels) where
+	// vignetting leaves the least amplitude, so the most depth noise.
+	sim::PatternPose pose = renderer_.poseFor({ 2.5, 1, 1 }, 3);
+	renderer_.render(pose, 3, colour_, depth_);
+	std::vector<ImagePoint> found;
+	ASSERT_EQ(findAmplitudeGrid(depth_.amplitude, board_.grid, found), 0);
+	std::vector<ImagePoint> truth = tofTruth(pose);
+	double sum = 0;
+	for (size_t i = 0; i < truth.size(); i++)
+		sum += std::pow(found[i].x - truth[i].x, 2) + std::pow(found[i].y - truth[i].y, 2);
+	// A tenth of a ToF pixel: about 0.4 colour pixels per point before the
+	// fit averages hundreds of them.
+	EXPECT_LT(std::sqrt(sum / truth.size()), 0.1);
+
+	CalibrationView view;
+	std::string error;
+	ASSERT_EQ(pairView(colour_, depth_, board_.grid, view, error), 0) << error;
+	EXPECT_EQ(view.points.size(), 35u);
+	EXPECT_NEAR(view.depthM, 2.5, 0.08);
+}
+
+TEST_F(CircleGridDetector, PatternOutOfViewNamesBothCameras)
+{
+	sim::PatternPose pose;
+	pose.centre = { 6.0, 0.0, 1.5 };        // far to the right of both
+	renderer_.render(pose, 1, colour_, depth_);
+	CalibrationView view;
+	std::string error;
+	EXPECT_EQ(pairView(colour_, depth_, board_.grid, view, error), -ENOENT);
+	EXPECT_EQ(error, "neither camera sees the whole 7x5 grid");
+}
+
+TEST_F(CircleGridDetector, PatternSeenOnlyByTheWiderToFNamesTheColourCamera)
+{
+	// The ToF's lens is wider: at the left edge the colour image cuts the
+	// board while the ToF still sees all of it.
+	sim::PatternPose pose;
+	pose.centre = { -1.1, 0.0, 2.5 };
+	renderer_.render(pose, 1, colour_, depth_);
+	CalibrationView view;
+	std::string error;
+	EXPECT_EQ(pairView(colour_, depth_, board_.grid, view, error), -ENOENT);
+	EXPECT_EQ(error, "the colour camera does not see the whole 7x5 grid");
+}
+
+TEST_F(CircleGridDetector, PatternHiddenFromTheToFNamesIt)
+{
+	renderer_.render(renderer_.poseFor({ 1.6, 0, 0 }, 0), 1, colour_, depth_);
+	std::fill_n(depth_.amplitude.data(), depth_.amplitude.size(), uint16_t{ 800 });
+	CalibrationView view;
+	std::string error;
+	EXPECT_EQ(pairView(colour_, depth_, board_.grid, view, error), -ENOENT);
+	EXPECT_EQ(error, "the ToF camera does not see the whole 7x5 grid in its amplitude image");
+}
+
+TEST(DepthAround, TakesThePaperNotTheNoisyCircle)
+{
+	DepthFrame d;
+	d.depthMm = Gray16Image(20, 20, 1500);
+	d.amplitude = Gray16Image(20, 20, 4000);
+	// A dark circle of wild depths in the middle, one invalid pixel.
+	for (int y = 7; y <= 13; y++)
+		for (int x = 7; x <= 13; x++) {
+			d.amplitude.at(x, y) = 200;
+			d.depthMm.at(x, y) = static_cast<uint16_t>(900 + 97 * ((x * 7 + y * 13) % 11));
+		}
+	d.depthMm.at(3, 10) = 0;
+	EXPECT_DOUBLE_EQ(depthAround(d, { 10, 10 }, 8.0), 1.5);
+	d.depthMm = Gray16Image(20, 20, 0);
+	EXPECT_EQ(depthAround(d, { 10, 10 }, 8.0), 0.0);
+}
+
+} // namespace
+} // namespace depthkey

@@ -1,0 +1,104 @@
+// Soft synchronisation: nearest depth within the skew, the offset, and the
+// drop policy's counters.
+#include <gtest/gtest.h>
+
+#include "algo/frame_pairer.hpp"
+
+using namespace depthkey;
+
+namespace {
+
+constexpr uint64_t kMs = 1'000'000;
+
+DepthFrame depthAt(uint64_t ms)
+{
+	DepthFrame f;
+	f.depthMm.resize(2, 1);
+	f.depthMm.at(0, 0) = static_cast<uint16_t>(ms); // identifies the frame
+	f.timestampNs = ms * kMs;
+	return f;
+}
+
+int matchedMs(FramePairer &p, uint64_t colourMs)
+{
+	const DepthFrame *d = p.match(colourMs * kMs);
+	return d ? d->depthMm.at(0, 0) : -1;
+}
+
+} // namespace
+
+TEST(FramePairer, PairsTheNearestDepthWithinTheSkew)
+{
+	FramePairer p;
+	p.configure(0, 60 * kMs);
+	EXPECT_EQ(matchedMs(p, 1000), -1); // nothing yet
+	p.addDepth(depthAt(1000));
+	p.addDepth(depthAt(1100));
+	EXPECT_EQ(matchedMs(p, 1040), 1000);
+	EXPECT_EQ(matchedMs(p, 1060), 1100);
+	EXPECT_EQ(matchedMs(p, 1160), 1100); // exactly max skew
+	EXPECT_EQ(matchedMs(p, 1161), -1);   // too far: unkeyed
+	EXPECT_EQ(matchedMs(p, 930), -1);
+	EXPECT_EQ(p.stats().paired, 3u);
+	EXPECT_EQ(p.stats().unpaired, 3u);
+}
+
+TEST(FramePairer, OffsetShiftsDepthTimestamps)
+{
+	FramePairer p;
+	p.configure(-80 * kMs, 30 * kMs); // depth stamped 80 ms after exposure
+	p.addDepth(depthAt(1080));
+	p.addDepth(depthAt(1180));
+	EXPECT_EQ(matchedMs(p, 1000), 1080);
+	EXPECT_EQ(matchedMs(p, 1090), 1180);
+	EXPECT_EQ(matchedMs(p, 1150), -1);
+}
+
+TEST(FramePairer, UnusedAndOutOfOrderDepthFramesAreCounted)
+{
+	FramePairer p;
+	p.configure(0, 20 * kMs);
+	for (uint64_t t = 0; t < 8; t++)
+		p.addDepth(depthAt(1000 + 100 * t)); // 8 frames through a history of 4
+	EXPECT_EQ(p.stats().depthUnused, 4u);
+	EXPECT_EQ(matchedMs(p, 1700), 1700);
+	p.addDepth(depthAt(1500)); // older than the newest: refused
+	EXPECT_EQ(p.stats().depthOutOfOrder, 1u);
+	EXPECT_EQ(p.newest()->depthMm.at(0, 0), 1700);
+	for (uint64_t t = 8; t < 12; t++)
+		p.addDepth(depthAt(1000 + 100 * t));
+	EXPECT_EQ(p.stats().depthUnused, 4u + 3u); // 1700 was used
+}
+
+TEST(FramePairer, ClearForgetsHistory)
+{
+	FramePairer p;
+	p.configure(0, 100 * kMs);
+	p.addDepth(depthAt(1000));
+	p.clear();
+	int64_t ns = 0;
+	EXPECT_FALSE(p.newestNs(ns));
+	EXPECT_EQ(p.newest(), nullptr);
+	EXPECT_EQ(matchedMs(p, 1000), -1);
+	p.addDepth(depthAt(500)); // after a restart, any time is accepted
+	EXPECT_TRUE(p.newestNs(ns));
+	EXPECT_EQ(ns, static_cast<int64_t>(500 * kMs));
+}
+
+TEST(FramePairer, DepthSlowerThanColourIsReused)
+{
+	FramePairer p;
+	p.configure(0, 150 * kMs);
+	int keyed = 0;
+	// Depth at 10 fps, colour at 25 fps, both free running, depth 30 ms late.
+	uint64_t nextDepth = 30;
+	for (uint64_t c = 0; c < 1000; c += 40) {
+		while (nextDepth <= c) {
+			p.addDepth(depthAt(1000 + nextDepth));
+			nextDepth += 100;
+		}
+		keyed += matchedMs(p, 1000 + c) >= 0;
+	}
+	EXPECT_EQ(keyed, 24); // all but the first colour frame (before any depth)
+	EXPECT_EQ(p.stats().depthUnused, 0u);
+}

@@ -1,0 +1,263 @@
+// The whole pipeline on the skeleton's simulated scene (hal/sim/simple_scene:
+// same scene for both cameras, ground truth from figureAt) and on synthetic
+// frames: accuracy against the depth-only keyer, zero heap allocations per
+// frame in steady state, the fixed-point mapping against MappingModel, and
+// the seeding stages against simple references.
+#include "algo/depth_mapper.hpp"
+#include "algo/depth_range_keyer.hpp"
+#include "algo/depth_seeder.hpp"
+#include "algo/morphology.hpp"
+#include "algo/pipeline.hpp"
+#include "hal/sim/simple_scene.hpp"
+#include "tests/allocation_counter.hpp"
+#include "tests/synthetic_still.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+using namespace depthkey;
+using namespace depthkey::test;
+
+namespace {
+
+struct SimFrames {
+	SimpleScene scene{ 1 };
+	ColourFrame colour;
+	DepthFrame depth;
+	Gray8Image truth;
+
+	SimFrames(int w, int h)
+	{
+		colour.rgb.resize(w, h);
+		depth.depthMm.resize(160, 124);
+		depth.amplitude.resize(160, 124);
+		depth.intensity.resize(160, 124);
+		truth.resize(w, h);
+	}
+	void render(double t)
+	{
+		scene.renderColour(t, colour.rgb);
+		scene.renderDepth(t, depth);
+		for (int y = 0; y < truth.height(); ++y)
+			for (int x = 0; x < truth.width(); ++x)
+				truth.at(x, y) = scene.figureAt(t, (x + 0.5) / truth.width(), (y + 0.5) / truth.height()) ? 255 : 0;
+	}
+};
+
+MappingModel identity(int w, int h)
+{
+	MappingModel m;
+	m.colourWidth = w;
+	m.colourHeight = h;
+	return m;
+}
+
+} // namespace
+
+TEST(Pipeline, BeatsTheDepthOnlyKeyerOnTheSimulatedScene)
+{
+	SimFrames sim(640, 480);
+	Pipeline pipeline;
+	pipeline.configure(Settings{}, identity(640, 480));
+	DepthRangeKeyer keyer;
+	keyer.configure(640, 480, 160, 124);
+	PipelineOutput out;
+	Gray8Image depthOnly;
+	double iouPipeline = 0, iouDepth = 0;
+	int scored = 0;
+	for (int frame = 0; frame < 60; ++frame) {
+		sim.render(frame * 0.04);
+		pipeline.process(sim.colour, sim.depth, out);
+		if (frame < 25)
+			continue; // learning
+		keyer.key(sim.depth.depthMm, 500, 1600, depthOnly);
+		iouPipeline += intersectionOverUnion(out.alpha, sim.truth);
+		iouDepth += intersectionOverUnion(depthOnly, sim.truth);
+		++scored;
+	}
+	EXPECT_FALSE(pipeline.status().learning);
+	EXPECT_GT(pipeline.status().lecturerCentroids, 0u);
+	std::printf("simple scene, %d frames: mean IoU pipeline %.4f, depth-only %.4f\n", scored,
+		    iouPipeline / scored, iouDepth / scored);
+	EXPECT_GE(iouPipeline / scored, 0.97);
+	EXPECT_GT(iouPipeline / scored, iouDepth / scored);
+}
+
+TEST(Pipeline, NoHeapAllocationPerFrameInSteadyState)
+{
+	if (!allocationCounting())
+		GTEST_SKIP() << "allocations are not counted under AddressSanitizer (the plain build counts them)";
+	for (auto [w, h] : { std::pair{ 640, 480 }, std::pair{ 960, 540 } }) {
+		SimFrames sim(w, h);
+		Pipeline pipeline;
+		Settings settings;
+		settings.learning.initialFrames = 30; // the first derivation falls in the counted frames
+		pipeline.configure(settings, identity(w, h));
+		PipelineOutput out;
+		for (int frame = 0; frame < 25; ++frame) { // warm-up: buffers reach their sizes
+			sim.render(frame * 0.04);
+			pipeline.process(sim.colour, sim.depth, out);
+		}
+		int derivationsBefore = pipeline.status().derivations;
+		size_t allocations = 0;
+		for (int frame = 25; frame < 45; ++frame) {
+			sim.render(frame * 0.04);
+			CountAllocations counter;
+			pipeline.process(sim.colour, sim.depth, out);
+			allocations += counter.count();
+		}
+		EXPECT_EQ(allocations, 0u) << w << "x" << h;
+		EXPECT_GT(pipeline.status().derivations, derivationsBefore);
+		std::printf("%dx%d: 20 frames, %d signature derivations, %zu allocations\n", w, h,
+			    pipeline.status().derivations - derivationsBefore, allocations);
+	}
+}
+
+TEST(DepthMapper, FixedPointWithinHalfAPixelOfTheModel)
+{
+	// A paper model and a parallax model with coefficients of the size a
+	// calibration gives (tens of pixels of parallax at 1 m).
+	for (MappingKind kind : { MappingKind::Paper, MappingKind::Parallax }) {
+		MappingModel model;
+		model.kind = kind;
+		model.colourWidth = 1920;
+		model.colourHeight = 1080;
+		if (kind == MappingKind::Paper) {
+			model.x = { 960, 1000, 5, -30, 12 };
+			model.y = { 540, 560, -4, 20, -8 };
+		} else {
+			model.x = { 940, 1010, 8, 3, -6, 2, -35, 4, -3, 1, 40, -3, 2, 6 };
+			model.y = { 530, 5, 570, -2, 4, 3, 2, -28, 3, 1, -6, 1, -2, -3 };
+		}
+		DepthMapper mapper;
+		mapper.configure(model);
+		double worst = 0;
+		for (int v = 0; v < model.tofHeight; v += 3)
+			for (int u = 0; u < model.tofWidth; u += 3)
+				for (int z = 400; z <= 7500; z += 137) {
+					double x, y;
+					model.map(u, v, z / 1000.0, x, y);
+					int32_t xq, yq;
+					mapper.map(v * model.tofWidth + u, z, xq, yq);
+					worst = std::max({ worst, std::fabs(xq / 256.0 - x), std::fabs(yq / 256.0 - y) });
+				}
+		std::printf("mapping %s: max |fixed - model| = %.5f px\n", mappingKindName(kind), worst);
+		EXPECT_LE(worst, 0.5);
+		EXPECT_LE(worst, 0.01); // in fact: Q8 rounding
+	}
+}
+
+TEST(Morphology, ErodeAndDilateMatchBruteForce)
+{
+	std::mt19937 rng(2);
+	std::bernoulli_distribution on(0.6);
+	Gray8Image in(37, 23), out;
+	MorphologyScratch scratch;
+	for (int trial = 0; trial < 4; ++trial) {
+		for (size_t i = 0; i < in.size(); ++i)
+			in.data()[i] = on(rng) ? 255 : 0;
+		for (int r = 0; r <= 5; ++r)
+			for (bool erode : { true, false }) {
+				(erode ? erodeSquare : dilateSquare)(in, r, out, scratch);
+				for (int y = 0; y < in.height(); ++y)
+					for (int x = 0; x < in.width(); ++x) {
+						bool all = true, any = false;
+						for (int yy = std::max(0, y - r); yy <= std::min(in.height() - 1, y + r); ++yy)
+							for (int xx = std::max(0, x - r); xx <= std::min(in.width() - 1, x + r); ++xx) {
+								all = all && in.at(xx, yy);
+								any = any || in.at(xx, yy);
+							}
+						ASSERT_EQ(out.at(x, y), (erode ? all : any) ? 255 : 0) << r << " " << x << "," << y;
+					}
+			}
+	}
+}
+
+TEST(Morphology, LargestComponentMatchesAFloodFillReference)
+{
+	std::mt19937 rng(8);
+	std::bernoulli_distribution on(0.5);
+	ComponentScratch scratch;
+	for (int trial = 0; trial < 20; ++trial) {
+		Gray8Image mask(31, 17);
+		for (size_t i = 0; i < mask.size(); ++i)
+			mask.data()[i] = on(rng) ? 255 : 0;
+		// Reference: label by repeated relaxation (min label of 4-neighbours).
+		const int w = mask.width(), n = int(mask.size());
+		std::vector<int> label(n);
+		for (int i = 0; i < n; ++i)
+			label[i] = mask.data()[i] ? i : -1;
+		for (bool changed = true; changed;) {
+			changed = false;
+			for (int i = 0; i < n; ++i) {
+				if (label[i] < 0)
+					continue;
+				int x = i % w;
+				for (int q : { x > 0 ? i - 1 : -1, x + 1 < w ? i + 1 : -1, i - w, i + w < n ? i + w : -1 })
+					if (q >= 0 && label[q] >= 0 && label[q] < label[i]) {
+						label[i] = label[q];
+						changed = true;
+					}
+			}
+		}
+		std::vector<int> size(n, 0);
+		for (int l : label)
+			if (l >= 0)
+				size[l]++;
+		int best = -1;
+		for (int i = 0; i < n; ++i)
+			if (best < 0 || size[i] > size[best])
+				best = i;
+		Gray8Image got = mask;
+		int kept = keepLargestComponent(got, scratch);
+		ASSERT_EQ(kept, size[best]);
+		for (int i = 0; i < n; ++i)
+			ASSERT_EQ(got.data()[i] != 0, label[i] == best) << trial << " " << i;
+	}
+}
+
+TEST(DepthSeeder, RejectsUntrustedDepthAndSeparatesSubsetBandAndBoard)
+{
+	DepthFrame depth;
+	depth.depthMm = Gray16Image(40, 30, 2000);
+	depth.amplitude = Gray16Image(40, 30, 3000);
+	for (int y = 5; y < 25; ++y)
+		for (int x = 10; x < 30; ++x)
+			depth.depthMm.at(x, y) = 1200;
+	for (int y = 0; y < 3; ++y)
+		for (int x = 0; x < 3; ++x)
+			depth.depthMm.at(x, y) = 1000; // small in-range blob: not the largest
+	depth.amplitude.at(20, 15) = 65535;       // saturated inside the lecturer
+	Settings settings;
+	settings.segmentation.maxAmplitude = 60000;
+	settings.segmentation.erodePx = 1;
+	settings.segmentation.dilatePx = 2;
+	DepthSeeder seeder;
+	seeder.configure(settings.segmentation, settings.learning);
+	DepthSeeds seeds;
+	seeder.seed(depth, seeds);
+	EXPECT_EQ(seeds.labels.at(15, 10), kTrimapLecturer);
+	EXPECT_EQ(seeds.labels.at(20, 15), kTrimapUndecided); // untrusted: eroded around
+	EXPECT_EQ(seeds.labels.at(10, 5), kTrimapUndecided);  // the edge
+	EXPECT_EQ(seeds.labels.at(9, 15), kTrimapUndecided);  // dilated beyond
+	EXPECT_EQ(seeds.labels.at(8, 15), kTrimapBoard);
+	EXPECT_EQ(seeds.labels.at(1, 1), kTrimapBoard);       // smaller blob
+	EXPECT_EQ(seeds.labels.at(37, 15), kTrimapBoard);
+	EXPECT_EQ(seeds.learnBoard.at(37, 15), 255);
+	EXPECT_EQ(seeds.learnBoard.at(7, 15), 0);             // margin: not learned
+	EXPECT_EQ(seeds.lecturerDepthMm, 1200);
+}
+
+TEST(Pipeline, AccuracyGateOnTheSimulatedLecture)
+{
+	// The gate of issue 4 (>= 300 frames of the simulated lecture with all
+	// artefacts: mean IoU >= 0.97, boundary F(2 px) >= 0.90, clearly above
+	// depth-only) needs the lecture simulator and depthkey-eval of issue 3,
+	// which are not on main yet. The skeleton's SimpleScene above has no
+	// artefacts (no parallax, halo, noise growth or desynchronisation), so
+	// passing on it would prove nothing about the gate.
+	GTEST_SKIP() << "simulated lecture scene (issue 3) not available on this branch yet";
+}

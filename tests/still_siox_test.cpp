@@ -1,0 +1,232 @@
+// SIOX on still images with a known answer: depthkey's fixed-point SIOX
+// against the truth and against the double SIOX 1.13 reference
+// (tests/siox_reference.hpp) on trimaps shaped like depth seeds; the
+// post-processing rules; and the depthkey-siox tool end to end.
+#include "algo/still_siox.hpp"
+#include "hal/image_file.hpp"
+#include "tests/siox_reference.hpp"
+#include "tests/synthetic_still.hpp"
+#include "tests/test_paths.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+#include <string>
+#include <unistd.h>
+
+using namespace depthkey;
+using namespace depthkey::test;
+
+TEST(StillSiox, AtLeastAsAccurateAsTheReferenceOnDepthSeedTrimaps)
+{
+	StillSiox siox;
+	double sumOurs = 0, sumRef = 0;
+	int images = 0;
+	for (int band : { 5, 10, 20 }) {
+		for (uint32_t seed : { 1u, 2u, 3u }) {
+			SyntheticStill s = makeStill(320, 240, band, seed);
+			Gray8Image mask, alpha;
+			ASSERT_EQ(siox.segment(s.image, s.trimap, mask, alpha), 0);
+			Gray8Image ref = referenceSegmentate(s.image, s.trimap);
+			double ours = intersectionOverUnion(mask, s.truth), theirs = intersectionOverUnion(ref, s.truth);
+			std::printf("band %2d seed %u: IoU depthkey %.4f, reference SIOX 1.13 %.4f\n", band, seed, ours, theirs);
+			EXPECT_GE(ours, 0.97);
+			sumOurs += ours;
+			sumRef += theirs;
+			++images;
+		}
+	}
+	std::printf("mean IoU over %d images: depthkey %.4f, reference %.4f\n", images, sumOurs / images, sumRef / images);
+	EXPECT_GE(sumOurs / images, sumRef / images);
+}
+
+TEST(StillSiox, SeedsAreNeverContradicted)
+{
+	// Random colours and a random trimap: whatever SIOX decides, surely
+	// lecturer stays 255 and surely board stays 0.
+	std::mt19937 rng(4);
+	std::uniform_int_distribution<int> byte(0, 255), label(0, 2);
+	RgbImage image(64, 48);
+	Gray8Image trimap(64, 48), mask, alpha;
+	for (size_t i = 0; i < image.size(); ++i) {
+		image.data()[i] = { uint8_t(byte(rng)), uint8_t(byte(rng)), uint8_t(byte(rng)) };
+		int l = label(rng);
+		trimap.data()[i] = l == 0 ? kTrimapBoard : l == 1 ? kTrimapLecturer : uint8_t(1 + byte(rng) % 254);
+	}
+	StillSiox siox;
+	ASSERT_EQ(siox.segment(image, trimap, mask, alpha), 0);
+	for (size_t i = 0; i < trimap.size(); ++i) {
+		if (trimap.data()[i] == kTrimapLecturer) {
+			ASSERT_EQ(alpha.data()[i], 255) << i;
+		}
+		if (trimap.data()[i] == kTrimapBoard) {
+			ASSERT_EQ(alpha.data()[i], 0) << i;
+		}
+		ASSERT_EQ(mask.data()[i], alpha.data()[i] >= 128 ? 255 : 0);
+	}
+}
+
+namespace {
+
+// A body seed and a hand seed, joined only through the undecided band; the
+// band is lecturer-coloured except the wrist, which looks like the board.
+struct HandScene {
+	RgbImage image{ 120, 60, Rgb8{ 30, 60, 40 } };
+	Gray8Image trimap{ 120, 60, kTrimapBoard };
+};
+
+HandScene handScene()
+{
+	HandScene s;
+	const Rgb8 shirt{ 150, 40, 50 };
+	for (int y = 10; y < 50; ++y)
+		for (int x = 10; x < 110; ++x) {
+			s.trimap.at(x, y) = kTrimapUndecided;
+			bool wrist = x >= 68 && x < 72;
+			bool lecturer = (x >= 14 && x < 60 && y >= 14 && y < 46) ||        // body and its edge
+					(x >= 60 && x < 80 && y >= 28 && y < 32 && !wrist) || // forearm, cut at the wrist
+					(x >= 80 && x < 100 && y >= 20 && y < 40);            // hand
+			if (lecturer)
+				s.image.at(x, y) = shirt;
+		}
+	for (int y = 18; y < 42; ++y)
+		for (int x = 18; x < 56; ++x)
+			s.trimap.at(x, y) = kTrimapLecturer; // body seed
+	for (int y = 26; y < 34; ++y)
+		for (int x = 86; x < 94; ++x)
+			s.trimap.at(x, y) = kTrimapLecturer; // hand seed
+	// Lecturer-coloured clutter in the band touching no seed: dropped.
+	for (int y = 44; y < 48; ++y)
+		for (int x = 96; x < 104; ++x)
+			s.image.at(x, y) = shirt;
+	return s;
+}
+
+} // namespace
+
+TEST(StillSiox, HandBehindAnUndecidedWristSurvivesAndStrayBlobsGo)
+{
+	HandScene s = handScene();
+	StillSiox siox;
+	Gray8Image mask, alpha;
+	ASSERT_EQ(siox.segment(s.image, s.trimap, mask, alpha), 0);
+	EXPECT_EQ(mask.at(82, 22), 255);  // hand edge, undecided, beyond the wrist
+	EXPECT_EQ(mask.at(98, 38), 255);
+	EXPECT_EQ(mask.at(70, 30), 0);    // the wrist looks like board
+	EXPECT_EQ(mask.at(15, 15), 255);  // body edge
+	EXPECT_EQ(mask.at(100, 46), 0);   // stray lecturer-coloured blob, no seed
+	EXPECT_EQ(mask.at(105, 15), 0);   // band board
+}
+
+TEST(StillSiox, EnclosedHoleWithoutBoardSeedIsFilledOneWithASeedStays)
+{
+	const Rgb8 shirt{ 150, 40, 50 }, board{ 30, 60, 40 };
+	RgbImage image(60, 40, board);
+	Gray8Image trimap(60, 40, kTrimapBoard), mask, alpha;
+	for (int y = 5; y < 35; ++y)
+		for (int x = 5; x < 55; ++x) {
+			trimap.at(x, y) = kTrimapLecturer;
+			image.at(x, y) = shirt;
+		}
+	// Two board-coloured undecided holes inside the lecturer seed; the
+	// second has a surely-board pixel in it (board seen through the arm).
+	for (int y = 12; y < 20; ++y)
+		for (int x = 10; x < 18; ++x) {
+			trimap.at(x, y) = kTrimapUndecided;
+			image.at(x, y) = board;
+			trimap.at(x + 25, y) = kTrimapUndecided;
+			image.at(x + 25, y) = board;
+		}
+	trimap.at(39, 16) = kTrimapBoard;
+	StillSiox siox;
+	ASSERT_EQ(siox.segment(image, trimap, mask, alpha), 0);
+	EXPECT_EQ(mask.at(14, 16), 255);
+	EXPECT_EQ(mask.at(38, 16), 0);
+	EXPECT_EQ(mask.at(39, 16), 0);
+}
+
+TEST(StillSiox, RefusesMismatchedSizesAndTrimapsWithoutBoard)
+{
+	StillSiox siox;
+	RgbImage image(10, 10);
+	Gray8Image trimap(9, 10), mask, alpha;
+	EXPECT_EQ(siox.segment(image, trimap, mask, alpha), -EINVAL);
+	Gray8Image allLecturer(10, 10, kTrimapLecturer);
+	EXPECT_EQ(siox.segment(image, allLecturer, mask, alpha), -ENODATA);
+}
+
+namespace {
+
+struct TempDir {
+	std::string path;
+	TempDir()
+	{
+		char tmpl[] = "/tmp/depthkey-siox-XXXXXX";
+		path = mkdtemp(tmpl);
+	}
+	~TempDir() { std::system(("rm -rf " + path).c_str()); }
+};
+
+int runTool(const std::string &args)
+{
+	std::string cmd = binDir() + "/depthkey-siox " + args + " 2>/dev/null";
+	int status = std::system(cmd.c_str());
+	return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+int writeRgbPng(const std::string &path, const RgbImage &image)
+{
+	// Binary PPM: any image file OpenCV reads will do for the tool's input.
+	std::FILE *f = std::fopen(path.c_str(), "wb");
+	if (!f)
+		return -1;
+	std::fprintf(f, "P6\n%d %d\n255\n", image.width(), image.height());
+	std::fwrite(image.data(), 3, image.size(), f);
+	std::fclose(f);
+	return 0;
+}
+
+} // namespace
+
+TEST(DepthkeySiox, SegmentsASyntheticImageAndWritesMaskAndAlpha)
+{
+	TempDir dir;
+	SyntheticStill s = makeStill(320, 240, 10, 2);
+	std::string error;
+	ASSERT_EQ(writeRgbPng(dir.path + "/image.ppm", s.image), 0);
+	ASSERT_EQ(writeGray8Png(dir.path + "/trimap.png", s.trimap, error), 0) << error;
+	ASSERT_EQ(runTool(dir.path + "/image.ppm " + dir.path + "/trimap.png " + dir.path + "/mask.png --alpha " +
+			  dir.path + "/alpha.png"),
+		  0);
+	Gray8Image mask, alpha;
+	ASSERT_EQ(readGray8Image(dir.path + "/mask.png", mask, error), 0) << error;
+	ASSERT_EQ(readGray8Image(dir.path + "/alpha.png", alpha, error), 0) << error;
+	EXPECT_GE(intersectionOverUnion(mask, s.truth), 0.97);
+	size_t fractional = 0;
+	for (size_t i = 0; i < mask.size(); ++i) {
+		ASSERT_TRUE(mask.data()[i] == 0 || mask.data()[i] == 255);
+		ASSERT_EQ(mask.data()[i], alpha.data()[i] >= 128 ? 255 : 0);
+		fractional += alpha.data()[i] != 0 && alpha.data()[i] != 255;
+	}
+	EXPECT_GT(fractional, 100u); // the boundary is soft
+}
+
+TEST(DepthkeySiox, FailsClearlyOnBadInput)
+{
+	TempDir dir;
+	SyntheticStill s = makeStill(64, 48, 6, 1);
+	std::string error;
+	writeRgbPng(dir.path + "/image.ppm", s.image);
+	writeGray8Png(dir.path + "/trimap.png", s.trimap, error);
+	Gray8Image small(10, 10);
+	writeGray8Png(dir.path + "/small.png", small, error);
+	writeRgbPng(dir.path + "/colour-trimap.ppm", s.image);
+	EXPECT_EQ(runTool(""), 1);
+	EXPECT_EQ(runTool(dir.path + "/missing.png " + dir.path + "/trimap.png " + dir.path + "/m.png"), 1);
+	EXPECT_EQ(runTool(dir.path + "/image.ppm " + dir.path + "/small.png " + dir.path + "/m.png"), 1);
+	EXPECT_EQ(runTool(dir.path + "/image.ppm " + dir.path + "/colour-trimap.ppm " + dir.path + "/m.png"), 1);
+	EXPECT_EQ(runTool(dir.path + "/image.ppm " + dir.path + "/trimap.png " + dir.path + "/m.png --smoothing 9"), 1);
+	EXPECT_EQ(runTool(dir.path + "/image.ppm " + dir.path + "/trimap.png /nonexistent-dir/m.png"), 1);
+}
