@@ -19,7 +19,7 @@ fail_setup() {
 	exit 1
 }
 
-for tool in depthkeyd depthkey-sr2-emulator depthkey-hil-sr2-probe depthkey-hil-shm-watch; do
+for tool in depthkeyd depthkey-calibrate depthkey-sr2-emulator depthkey-hil-sr2-probe depthkey-hil-shm-watch; do
 	[ -x "$bin/$tool" ] || fail_setup "$bin/$tool is missing (make hil builds it)"
 done
 "$tree/tests/vm/prepare.sh" >/dev/null || fail_setup "cannot prepare the VM kernel (tests/vm/prepare.sh)"
@@ -31,6 +31,10 @@ prepared=$(date +%s)
 
 rm -rf "$results"
 mkdir -p "$results"
+# The daemon in the VM runs calibrated, as a set-up box would: the mapping of
+# the simulator's camera rig, which the emulated devices render.
+"$bin/depthkey-calibrate" --sim --output "$results/calibration.toml" >"$results/calibrate.log" 2>&1 ||
+	fail_setup "depthkey-calibrate --sim failed: $(tail -n1 "$results/calibrate.log")"
 "$tree/tests/vm/run.sh" --results "$results" --layer "$udev" --timeout "${HIL_TIMEOUT:-1200}" \
 	--env "HIL_BIN=$bin" --env "HIL_SECTIONS=${HIL_SECTIONS:-all}" -- bash "$here/guest/main.sh" >"$results/console.txt" 2>&1
 vm_status=$?

@@ -4,15 +4,18 @@
 // the recovery once it is back.
 //
 //   depthkey-hil-shm-watch [--name /depthkey.composite] --until MASK=VALUE
-//                          [--count N] [--since UPTIME] [--timeout S] [--alpha]
+//                          [--count N] [--since UPTIME] [--timeout S]
+//                          [--alpha-between MIN MAX]
 //
 // Succeeds (exit 0) when N consecutive new frames have (flags & MASK) == VALUE
 // and prints the time from UPTIME (seconds of CLOCK_BOOTTIME as in
 // /proc/uptime, default: when it started) to the first of them being seen,
 // and that moment itself ("at T"): a watcher started before a device returns
 // sees the first good frame at once, whenever the return is known.
-// --alpha also prints the share of pixels with alpha > 0 in the last frame
-// (RGBA streams). Exit 1 on timeout, with the last flags seen.
+// --alpha-between also requires the share of pixels with alpha > 0 in the
+// last frame (RGBA streams) to lie in [MIN, MAX], and prints it: the keyed
+// lecturer, neither nothing nor everything. Exit 1 on timeout or a share out
+// of range, with what was seen.
 #include "hal/depthkey_shm.h"
 
 #include <chrono>
@@ -39,6 +42,7 @@ struct Options {
 	int count = 1;
 	double since = -1, timeout = 10;
 	bool alpha = false;
+	double alphaMin = 0, alphaMax = 1;
 };
 
 bool parse(int argc, char **argv, Options &o)
@@ -46,8 +50,10 @@ bool parse(int argc, char **argv, Options &o)
 	bool until = false;
 	for (int i = 1; i < argc; i++) {
 		std::string arg = argv[i];
-		if (arg == "--alpha") {
+		if (arg == "--alpha-between" && i + 2 < argc) {
 			o.alpha = true;
+			o.alphaMin = std::atof(argv[++i]);
+			o.alphaMax = std::atof(argv[++i]);
 			continue;
 		}
 		if (i + 1 >= argc)
@@ -87,7 +93,7 @@ int main(int argc, char **argv)
 	Options o;
 	if (!parse(argc, argv, o)) {
 		std::fprintf(stderr, "usage: depthkey-hil-shm-watch [--name /obj] --until MASK=VALUE [--count N]\n"
-				     "       [--since UPTIME] [--timeout S] [--alpha]\n");
+				     "       [--since UPTIME] [--timeout S] [--alpha-between MIN MAX]\n");
 		return 2;
 	}
 	const double start = uptimeNow();
@@ -136,10 +142,14 @@ int main(int argc, char **argv)
 		std::printf("shm-watch: %s flags&0x%x==0x%x after %.3f s at %.3f (frame %llu flags 0x%x, %llu frames seen)",
 			    o.name.c_str(), o.mask, o.value, runStart - since, runStart, (unsigned long long)info.frame,
 			    info.flags, (unsigned long long)seen);
-		if (o.alpha)
-			std::printf(" alpha %.3f", alphaShare(pixels, reader));
-		std::printf("\n");
-		return 0;
+		if (!o.alpha) {
+			std::printf("\n");
+			return 0;
+		}
+		double share = alphaShare(pixels, reader);
+		bool inRange = share >= o.alphaMin && share <= o.alphaMax;
+		std::printf(" alpha>0 on %.3f of the pixels%s\n", share, inRange ? "" : ", out of range");
+		return inRange ? 0 : 1;
 	}
 	std::printf("shm-watch: %s timeout after %.1f s waiting for flags&0x%x==0x%x: %s, last frame %llu flags 0x%x, "
 		    "%llu new frames seen\n",

@@ -18,8 +18,8 @@ cat >"$DK_CONFIG" <<TOML
 [colour]
 backend = "v4l2"
 device = "/dev/video0"
-width = 320
-height = 180
+width = 640
+height = 480
 fps = 15
 pixel_format = "yuyv"
 timeout_ms = 500
@@ -33,6 +33,10 @@ timeout_ms = 500
 # Wider than the default 1.5 depth periods: under TCG the SR-2's frames come
 # irregularly, and one dropped frame must not unpair colour frames.
 max_skew_ms = 350
+
+[mapping]
+# Fitted by tests/hil/run.sh with depthkey-calibrate --sim (640x480 colour).
+calibration_file = "$VM_RESULTS/calibration.toml"
 
 [leds]
 backend = "gpiod"
@@ -134,13 +138,16 @@ fault() {
 	hil_timestamp >"$DK_LOG" &
 hil_wait 20 pidof depthkeyd && DK_PID=$(pidof depthkeyd)
 check_flags daemon-frames-from-both-cameras "$ONLINE=$ONLINE" 10 --timeout 60
-check_flags daemon-lecturer-keyed-by-sr2-depth "$ONLINE=$ONLINE" 3 --name /depthkey.lecturer --alpha
+# The simulated figure covers about a fifth of the view: keyed from the SR-2's
+# depth, the lecturer layer is neither empty nor everything.
+check_flags daemon-lecturer-keyed-by-sr2-depth "$ONLINE=$ONLINE" 3 --name /depthkey.lecturer \
+	--alpha-between 0.05 0.6
 hil_check daemon-sr2-output-mode hil_wait 10 grep -q 'register 0x02 = 0xc0' "$SR2_LOG"
 hil_check daemon-sr2-integration-time hil_wait 10 grep -q 'register 0x09 = 0x28' "$SR2_LOG"
 check_led led-power-heartbeat $LED_POWER blinking
 check_led led-depth-on $LED_DEPTH on
 check_led led-colour-on $LED_COLOUR on
-check_led led-calibration-missing $LED_CALIBRATION blinking
+check_led led-calibration-loaded $LED_CALIBRATION off
 check_led led-error-off $LED_ERROR off
 
 # --- SR-2 faults ----------------------------------------------------------------
