@@ -42,11 +42,11 @@ grep '^hil: ' "$results/console.txt"
 passed=$(grep -c '^PASS ' "$results/results" 2>/dev/null)
 failed=$(grep -c '^FAIL ' "$results/results" 2>/dev/null)
 skipped=$(grep -c '^SKIP ' "$results/results" 2>/dev/null)
-if [ "$vm_status" -ne 0 ] && [ "${failed:-0}" -eq 0 ]; then
-	# The VM failed before or besides any check: QEMU did not start, timed
-	# out or the guest script broke. Never a pass.
+if ! grep -qx END "$results/results" 2>/dev/null || [ "$vm_status" -ne 0 ] && [ "${failed:-0}" -eq 0 ]; then
+	# QEMU did not start, the VM timed out or the guest script broke before
+	# its end: never a pass.
 	tail -n 30 "$results/console.txt" | sed 's/^/hil: console: /'
-	echo "hil: FAIL vm: the VM run ended with status $vm_status (see $results/console.txt)"
+	echo "hil: FAIL suite: the VM run did not complete (status $vm_status; see $results/console.txt)"
 	failed=$((${failed:-0} + 1))
 fi
 if [ -s "$results/recovery" ]; then

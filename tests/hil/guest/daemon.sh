@@ -59,6 +59,8 @@ if ! out=$("$HIL_BIN/depthkeyd" --check-config "$DK_CONFIG" 2>&1); then
 fi
 
 shm_watch() { "$HIL_BIN/depthkey-hil-shm-watch" "$@"; }
+lost_count() { grep -c "$1 lost" "$DK_LOG"; }
+lost_more_than() { [ "$(lost_count "$1")" -gt "$2" ]; }
 daemon_alive() { kill -0 "$DK_PID" 2>/dev/null; }
 
 # check_flags NAME MASK=VALUE COUNT [watch options]: COUNT consecutive new
@@ -153,19 +155,29 @@ check_led led-error-off $LED_ERROR off
 # --- SR-2 faults ----------------------------------------------------------------
 sr2() { sr2_cmd "$@"; }
 if hil_section sr2; then
-fault sr2-unplug "sr2 unplug" $DEPTH_OK $LED_DEPTH sr2_replug
-fault sr2-stall "sr2 stall" $DEPTH_OK $LED_DEPTH "sr2 resume"
-fault sr2-corrupt-frames "sr2 corrupt 100000" $DEPTH_OK $LED_DEPTH "sr2 corrupt 0"
-fault sr2-flat-frames "sr2 flat 100000" $DEPTH_OK $LED_DEPTH "sr2 flat 0"
-fault sr2-short-frames "sr2 short 100000" $DEPTH_OK $LED_DEPTH "sr2 short 0"
-fault sr2-request-stalls "sr2 halt 100000" $DEPTH_OK $LED_DEPTH "sr2 halt 0"
-# One bad frame is dropped, not a lost camera: depth stays online.
-sr2_cmd corrupt 1
-if out=$(shm_watch --until "$DEPTH_OK=0" --timeout 3); then
-	hil_fail sr2-one-corrupt-frame-dropped "depth went offline for one bad frame: $out"
-else
-	hil_pass sr2-one-corrupt-frame-dropped "depth stayed online for 3 s"
-fi
+	fault sr2-unplug "sr2 unplug" $DEPTH_OK $LED_DEPTH sr2_replug
+	fault sr2-stall "sr2 stall" $DEPTH_OK $LED_DEPTH "sr2 resume"
+	fault sr2-corrupt-frames "sr2 corrupt 100000" $DEPTH_OK $LED_DEPTH "sr2 corrupt 0"
+	fault sr2-flat-frames "sr2 flat 100000" $DEPTH_OK $LED_DEPTH "sr2 flat 0"
+	fault sr2-short-frames "sr2 short 100000" $DEPTH_OK $LED_DEPTH "sr2 short 0"
+	fault sr2-request-stalls "sr2 halt 100000" $DEPTH_OK $LED_DEPTH "sr2 halt 0"
+	# One bad frame is dropped and counted, not a lost camera. (Depth may still
+	# miss the pairing window for a frame or two under TCG's uneven timing, so
+	# this is judged by the daemon's own account, not the frame flags.)
+	sr2_dropped() { sed -n 's/.* depth sr2 [a-z]* [0-9.]* fps \([0-9]*\) dropped.*/\1/p' "$DK_LOG" | tail -n1; }
+	dropped_more_than() { [ "$(sr2_dropped)" -gt "$1" ]; }
+	lost=$(lost_count sr2) dropped=$(sr2_dropped)
+	sr2_cmd corrupt 1
+	if hil_wait 15 dropped_more_than "${dropped:-0}"; then
+		if [ "$(lost_count sr2)" -eq "$lost" ]; then
+			hil_pass sr2-one-corrupt-frame-dropped "dropped count $dropped -> $(sr2_dropped), camera not lost"
+		else
+			hil_fail sr2-one-corrupt-frame-dropped "one corrupt frame made the camera lost"
+		fi
+	else
+		hil_fail sr2-one-corrupt-frame-dropped "the dropped count stayed ${dropped:-?}"
+	fi
+	check_led sr2-one-corrupt-frame-led-on $LED_DEPTH on
 fi
 
 # --- webcam (vivid) faults ---------------------------------------------------
@@ -174,8 +186,6 @@ fi
 # and lets it return by closing that fd. Injected errors hit the next such
 # call (stream on, buffer allocation) when the daemon re-opens it.
 vivid() { v4l2-ctl -d /dev/video0 -c "$1=1"; }
-lost_count() { grep -c "$1 lost" "$DK_LOG"; }
-lost_more_than() { [ "$(lost_count "$1")" -gt "$2" ]; }
 webcam_unplug() {
 	local name=$1 since
 	shift

@@ -53,10 +53,16 @@ sr2_cmd replug
 hil_check sr2-replug hil_wait 20 sr2_present
 
 # --- the daemon on these devices --------------------------------------------
-. "$here/daemon.sh"
+if bash -n "$here/daemon.sh"; then
+	. "$here/daemon.sh"
+else
+	hil_fail daemon-suite "tests/hil/guest/daemon.sh does not parse"
+fi
 
 # --- end ----------------------------------------------------------------------
 echo quit >"$SR2_FIFO"
 hil_wait 10 sh -c "! kill -0 $SR2_PID"
 dmesg >"$HIL_LOGS/dmesg.log"
+# run.sh counts a suite that did not get here (a script error) as failed.
+echo "END" >>"$HIL_RESULTS"
 ! grep -q '^FAIL' "$HIL_RESULTS"
