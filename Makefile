@@ -6,6 +6,8 @@
 #   make hil        the hardware-in-the-loop suite alone (QEMU VM, tests/hil/)
 #   make bench      run the Google Benchmark suite (medians)
 #   make deps       install missing Debian 12 packages (idempotent, quiet when all there)
+#   make deb        build the Debian package into build/deb/ (see debian/)
+#   make boot-test  boot the package with systemd in the QEMU VM (in `make test` too)
 #   make install DESTDIR=... PREFIX=...
 #   make clean
 #   make SAN=1 ... build with AddressSanitizer + UndefinedBehaviorSanitizer (in build/san/)
@@ -19,12 +21,15 @@
 PREFIX ?= /usr/local
 DESTDIR ?=
 SAN ?= 0
+# The package build (debian/rules) compiles apart, in build/deb/, with
+# Debian's hardening flags, and never touches the developer's build/.
+BUILDROOT ?= build
 
 ifeq ($(SAN),1)
-BUILD := build/san
+BUILD := $(BUILDROOT)/san
 SANFLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
 else
-BUILD := build
+BUILD := $(BUILDROOT)
 SANFLAGS :=
 endif
 BIN := $(BUILD)/bin
@@ -61,7 +66,7 @@ JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 # Keep tool objects (intermediates of the pattern rule) so nothing rebuilds twice.
 .SECONDARY:
 
-.PHONY: all run test check hil bench deps install clean
+.PHONY: all run test check hil bench deps deb deb-deps package-test boot-test install clean
 .DEFAULT_GOAL := all
 
 # The SR-2 emulator is built (for the HIL tests) but not installed.
@@ -81,6 +86,9 @@ run: deps
 # when the VM cannot start).
 test: deps
 	@$(MAKE) --no-print-directory -j$(JOBS) check $(HIL_TOOLS)
+ifneq ($(SAN),1)
+	@$(MAKE) --no-print-directory package-test
+endif
 	@tests/hil/run.sh $(BIN)
 
 hil: deps
@@ -97,7 +105,7 @@ bench: deps
 
 $(OBJ)/%.o: %.cpp
 	@mkdir -p $(dir $@)
-	$(CXX) $(CXXFLAGS) $(PKG_CFLAGS) -c $< -o $@
+	$(CXX) $(CPPFLAGS) $(CXXFLAGS) $(PKG_CFLAGS) -c $< -o $@
 
 $(LIB): $(call obj,$(LIB_SRCS))
 	@mkdir -p $(dir $@)
@@ -134,11 +142,60 @@ $(BENCH): $(call obj,$(BENCH_SRCS)) $(LIB)
 	@mkdir -p $(dir $@)
 	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -lbenchmark -o $@
 
-install: all
-	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/include/depthkey
-	install -m 0755 $(DAEMON) $(TOOLS) $(DESTDIR)$(PREFIX)/bin/
+# Where the system files go; the defaults are Debian 12's (pkg-config's
+# systemd.pc and udev.pc say the same). The unit names $(PREFIX)/sbin/depthkeyd.
+UNITDIR ?= /lib/systemd/system
+UDEVRULESDIR ?= /lib/udev/rules.d
+SYSUSERSDIR ?= /usr/lib/sysusers.d
+TMPFILESDIR ?= /usr/lib/tmpfiles.d
+MANDIR ?= $(PREFIX)/share/man
+# A tool's page is installed with the tool: man/depthkey-NAME.1 for tools/NAME.cpp.
+TOOL_MANS := $(patsubst tools/%.cpp,man/depthkey-%.1,$(TOOL_SRCS))
+# depthkey.toml(5) is generated from the commented config/depthkey.toml.
+CONFIG_MAN := $(BUILD)/man/depthkey.toml.5
+VERSION = $(shell sed -n 's/^\#define DEPTHKEY_VERSION "\(.*\)"/\1/p' daemon/version.hpp)
+
+$(CONFIG_MAN): config/depthkey.toml man/depthkey.toml.5.awk daemon/version.hpp
+	@mkdir -p $(dir $@)
+	awk -v version=$(VERSION) -f man/depthkey.toml.5.awk config/depthkey.toml > $@
+
+install: all $(CONFIG_MAN)
+	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/sbin $(DESTDIR)$(PREFIX)/include/depthkey
+	install -m 0755 $(DAEMON) $(DESTDIR)$(PREFIX)/sbin/
+	install -m 0755 $(TOOLS) $(DESTDIR)$(PREFIX)/bin/
 	install -m 0644 hal/depthkey_shm.h $(DESTDIR)$(PREFIX)/include/depthkey/
 	install -D -m 0644 config/depthkey.toml $(DESTDIR)/etc/depthkey/depthkey.toml
+	install -d $(DESTDIR)$(UNITDIR)
+	sed 's|/usr/sbin/depthkeyd|$(PREFIX)/sbin/depthkeyd|' packaging/depthkeyd.service \
+	    > $(DESTDIR)$(UNITDIR)/depthkeyd.service
+	install -D -m 0644 packaging/60-depthkey.rules $(DESTDIR)$(UDEVRULESDIR)/60-depthkey.rules
+	install -D -m 0644 packaging/depthkey.sysusers $(DESTDIR)$(SYSUSERSDIR)/depthkey.conf
+	install -D -m 0644 packaging/depthkey.metainfo.xml $(DESTDIR)$(PREFIX)/share/metainfo/depthkey.metainfo.xml
+	install -D -m 0644 packaging/depthkey.tmpfiles $(DESTDIR)$(TMPFILESDIR)/depthkey.conf
+	install -d $(DESTDIR)$(MANDIR)/man1 $(DESTDIR)$(MANDIR)/man5 $(DESTDIR)$(MANDIR)/man8
+	install -m 0644 $(CONFIG_MAN) $(DESTDIR)$(MANDIR)/man5/
+	for page in man/depthkeyd.8 $(TOOL_MANS); do \
+	    sed 's/@VERSION@/$(VERSION)/' $$page > $(DESTDIR)$(MANDIR)/man$${page##*.}/$${page#man/}; \
+	done
+
+# The Debian package (debhelper; debian/ must sit at the top of the source
+# tree, where dpkg-buildpackage looks). Output: build/deb/*.deb.
+deb: deb-deps
+	@packaging/build-deb.sh
+
+deb-deps:
+	@packaging/install-deps.sh packaging/deb-deps.txt
+
+# The package's tests (in `make test`, not repeated by SAN=1): offline checks
+# of the unit and lintian on the host, then the boot test in the QEMU VM.
+DEB_FILE = build/deb/depthkey_$(VERSION)_$(shell dpkg --print-architecture).deb
+
+package-test: deb
+	@tests/package/offline_checks.sh $(DEB_FILE)
+	@tests/boot/boot_test.sh $(DEB_FILE)
+
+boot-test: deb
+	@tests/boot/boot_test.sh $(DEB_FILE)
 
 clean:
 	rm -rf build

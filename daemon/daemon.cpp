@@ -55,6 +55,10 @@ int Daemon::start(const Settings &settings)
 	ret = EventLoop::blockSignals({ SIGTERM, SIGINT, SIGHUP, SIGUSR1 });
 	if (ret < 0)
 		return ret;
+	// SIGUSR2 keeps its default action (terminate) unless a test armed a fault.
+	testFault_ = testFaultFromEnvironment();
+	if (testFault_ != TestFault::None && EventLoop::blockSignals({ SIGUSR2 }) == 0)
+		loop_.addSignal(SIGUSR2, [this] { injectTestFault(); }, sigusr2_);
 	loop_.addSignal(SIGTERM, [this] { stop(); }, sigterm_);
 	loop_.addSignal(SIGINT, [this] { stop(); }, sigint_);
 	loop_.addSignal(SIGHUP, [this] { reload(); }, sighup_);
@@ -123,11 +127,15 @@ void Daemon::startCameras()
 		[this, colourName](const DeviceStatus &s) { onDeviceStatus(colourName, s); });
 	if (ret < 0)
 		onDeviceStatus(colourName, { DeviceState::Lost, ret, "cannot start" });
+	else
+		logger().info("colour camera " + colourName + " started", { { "DEVICE", colourName } });
 	ret = depth_->start(
 		loop_, [this](const DepthFrame &f) { onDepthFrame(f); },
 		[this, depthName](const DeviceStatus &s) { onDeviceStatus(depthName, s); });
 	if (ret < 0)
 		onDeviceStatus(depthName, { DeviceState::Lost, ret, "cannot start" });
+	else
+		logger().info("depth camera " + depthName + " started", { { "DEVICE", depthName } });
 }
 
 void Daemon::stopCameras()
@@ -191,6 +199,8 @@ bool Daemon::depthFresh(uint64_t nowNs) const
 
 void Daemon::publish(uint64_t captureNs, uint32_t flags)
 {
+	if (framesStalled_)
+		return;
 	if (!sinkOpen_ && openOutput() < 0)
 		return;
 	int ret = sink_->publishComposite(output_.composite, captureNs, flags);
@@ -264,7 +274,7 @@ void Daemon::onStatusTick()
 	char text[512];
 	std::snprintf(text, sizeof(text),
 		      "colour %s %s %.1f fps %llu dropped; depth %s %s %.1f fps %llu dropped; "
-		      "paired %llu unpaired %llu; output %.1f fps",
+		      "paired %llu unpaired %llu; output %.1f fps; %s",
 		      colour_ ? colour_->name().c_str() : "-", deviceStateName(cs.state),
 		      rate(colourFrames_, colourFramesAtStatus_),
 		      static_cast<unsigned long long>(cs.droppedFrames),
@@ -272,7 +282,8 @@ void Daemon::onStatusTick()
 		      rate(depthFrames_, depthFramesAtStatus_),
 		      static_cast<unsigned long long>(ds.droppedFrames),
 		      static_cast<unsigned long long>(ps.paired),
-		      static_cast<unsigned long long>(ps.unpaired), rate(published_, publishedAtStatus_));
+		      static_cast<unsigned long long>(ps.unpaired), rate(published_, publishedAtStatus_),
+		      summary().calibrated ? "calibrated" : "not calibrated (identity mapping)");
 	statusAtUs_ = now;
 	notifier_.status(text);
 	// In a terminal there is no STATUS= to look at: say it every few seconds.
@@ -342,6 +353,19 @@ void Daemon::apply(const Settings &next)
 		leds_->close();
 		leds_ = factory_.statusLeds(next);
 		leds_->open(loop_, next.leds);
+	}
+}
+
+void Daemon::injectTestFault()
+{
+	if (testFault_ == TestFault::Stall) {
+		logger().warning("TEST FAULT: frames stalled, the watchdog is no longer fed",
+				 { { "TEST_FAULT", "stall" } });
+		framesStalled_ = true;
+	} else if (testFault_ == TestFault::Hang) {
+		logger().warning("TEST FAULT: event loop hanging, the watchdog is no longer fed",
+				 { { "TEST_FAULT", "hang" } });
+		hangForever();
 	}
 }
 

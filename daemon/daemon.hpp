@@ -8,6 +8,7 @@
 #include "config/settings.hpp"
 #include "daemon/device_factory.hpp"
 #include "daemon/service_notifier.hpp"
+#include "daemon/test_fault.hpp"
 #include "hal/camera.hpp"
 #include "hal/event_loop.hpp"
 #include "hal/frame_sink.hpp"
@@ -50,6 +51,7 @@ private:
 	void onWatchdogTick();
 	void reload();
 	void writeSnapshot();
+	void injectTestFault();
 	void stop();
 
 	int openOutput();
@@ -76,7 +78,7 @@ private:
 	std::unique_ptr<StatusLeds> leds_;
 	bool sinkOpen_ = false;
 
-	EventSource sigterm_, sigint_, sighup_, sigusr1_;
+	EventSource sigterm_, sigint_, sighup_, sigusr1_, sigusr2_;
 	EventSource frameTick_, statusTick_, watchdogTick_;
 
 	Pipeline pipeline_;
@@ -90,6 +92,8 @@ private:
 	RgbImage noSignal_;
 	std::string noSignalText_;
 
+	TestFault testFault_ = TestFault::None;
+	bool framesStalled_ = false; // TEST-ONLY "stall" fault injected
 	bool ready_ = false;
 	bool underSystemd_ = false;
 	uint64_t statusTicks_ = 0;

@@ -22,6 +22,13 @@ MappingModel identityMapping(const Settings &settings)
 	return model;
 }
 
+// The journal line names the first problem; `depthkey-calibrate` or a look at
+// the file shows the rest.
+std::string moreErrors(size_t count)
+{
+	return count > 1 ? " (and " + std::to_string(count - 1) + " more)" : std::string();
+}
+
 } // namespace
 
 void Daemon::configurePipeline()
@@ -39,6 +46,7 @@ void Daemon::configurePipeline()
 		if (!result.ok()) {
 			logger().errorOnce("calibration",
 					   "calibration refused: " + result.errors.front().toString() +
+						   moreErrors(result.errors.size()) +
 						   (calibrated_ ? "; keeping the previous calibration"
 								: "; mapping by plain scaling"),
 					   { { "DEVICE", "calibration" }, { "CALIBRATION_FILE", path } });

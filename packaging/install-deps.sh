@@ -1,11 +1,11 @@
 #!/bin/sh
-# Installs the Debian packages listed in build-deps.txt that are not installed yet.
-# Idempotent and silent when everything is present, so `make run`/`make test` can
-# call it every time.
+# Installs the Debian packages listed in build-deps.txt (or in the lists given
+# as arguments) that are not installed yet. Idempotent and silent when
+# everything is present, so `make run`/`make test` can call it every time.
 set -eu
-list="$(dirname "$0")/build-deps.txt"
+[ $# -gt 0 ] || set -- "$(dirname "$0")/build-deps.txt"
 missing=""
-for pkg in $(grep -v '^#' "$list"); do
+for pkg in $(cat "$@" | grep -v '^#'); do
     status=$(dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null || true)
     case "$status" in
         *"install ok installed"*) ;;

@@ -160,3 +160,23 @@ TEST_F(DaemonIntegration, SigintStopsCleanly)
 	ASSERT_TRUE(WIFEXITED(status));
 	EXPECT_EQ(WEXITSTATUS(status), 0);
 }
+
+// A corrupt calibration file is refused with file:line; the daemon runs on,
+// mapping by plain scaling, and says so.
+TEST_F(DaemonIntegration, CorruptCalibrationIsRefusedWithFileAndLine)
+{
+	std::string calibration = daemon_.writeFile("calibration.toml", "format = 1\n[calibration]\nmodel = 7\n");
+	config_ = daemon_.writeFile("depthkey.toml",
+				    configText(prefix_, "[mapping]\ncalibration_file = \"" + calibration + "\"\n"));
+	ASSERT_TRUE(daemon_.start({ "--config", config_ }));
+	ASSERT_TRUE(daemon_.waitForNotify("READY=1", 10s)) << daemon_.log();
+	EXPECT_TRUE(daemon_.running());
+	std::string log = daemon_.log();
+	// The first problem in file order: [calibration] on line 2 lacks keys.
+	EXPECT_NE(log.find("calibration.toml:2:"), std::string::npos) << log;
+	EXPECT_NE(log.find("plain scaling"), std::string::npos) << log;
+	ASSERT_EQ(daemon_.signal(SIGTERM), 0);
+	int status = daemon_.waitExit(5s);
+	ASSERT_TRUE(WIFEXITED(status));
+	EXPECT_EQ(WEXITSTATUS(status), 0);
+}

@@ -64,6 +64,8 @@ bool DaemonProcess::start(const std::vector<std::string> &args, unsigned long wa
 		setenv("NOTIFY_SOCKET", socketPath.c_str(), 1);
 		setenv("DEPTHKEY_LOG", "stderr", 1);
 		unsetenv("WATCHDOG_PID");
+		for (const auto &[name, value] : env_)
+			setenv(name.c_str(), value.c_str(), 1);
 		if (watchdogUsec)
 			setenv("WATCHDOG_USEC", std::to_string(watchdogUsec).c_str(), 1);
 		else

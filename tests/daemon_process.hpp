@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace depthkey::test {
@@ -17,6 +18,9 @@ public:
 	// A fresh temporary folder for config, notify socket and logs.
 	const std::string &dir() const { return dir_; }
 	std::string writeFile(const std::string &name, const std::string &text) const;
+
+	// An extra environment variable for the daemon (set before start()).
+	void setEnv(const std::string &name, const std::string &value) { env_.push_back({ name, value }); }
 
 	// Starts depthkeyd with args; watchdogUsec > 0 sets WATCHDOG_USEC.
 	bool start(const std::vector<std::string> &args, unsigned long watchdogUsec = 0);
@@ -44,6 +48,7 @@ private:
 	int pid_ = -1;
 	int exitStatus_ = -1;
 	std::vector<std::string> messages_;
+	std::vector<std::pair<std::string, std::string>> env_;
 };
 
 } // namespace depthkey::test

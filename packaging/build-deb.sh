@@ -1,0 +1,33 @@
+#!/bin/sh
+# `make deb`: builds the Debian package (binary only, unsigned) into
+# build/deb/. debian/ sits at the top of the tree because that is where
+# dpkg-buildpackage and debhelper look for it.
+set -eu
+cd "$(dirname "$0")/.."
+
+# One version: the daemon's --version and the package's must agree.
+code=$(sed -n 's/^#define DEPTHKEY_VERSION "\(.*\)"/\1/p' daemon/version.hpp)
+pkg=$(dpkg-parsechangelog -S Version)
+if [ "$code" != "$pkg" ]; then
+	echo "make deb: daemon/version.hpp says $code but debian/changelog says $pkg" >&2
+	exit 1
+fi
+
+arch=$(dpkg-architecture -qDEB_HOST_ARCH)
+mkdir -p build/deb
+# What `dpkg-buildpackage -b -us -uc` does, less the .buildinfo/.changes that
+# it can only write next to the source tree (..): nothing is uploaded.
+# dh_builddeb --destdir (debian/rules) puts the .deb into build/deb/.
+{
+	dpkg-checkbuilddeps &&
+	debian/rules clean &&
+	DEB_BUILD_OPTIONS="parallel=2 ${DEB_BUILD_OPTIONS:-}" debian/rules build &&
+	debian/rules binary
+} >build/deb/build.log 2>&1 || {
+	tail -40 build/deb/build.log >&2
+	echo "make deb: the package build failed, full log in build/deb/build.log" >&2
+	exit 1
+}
+deb="build/deb/depthkey_${pkg}_${arch}.deb"
+test -f "$deb"
+echo "$deb"
