@@ -2,7 +2,8 @@
 #
 #   make            build everything into build/bin/
 #   make run        install missing packages, build, start depthkeyd on simulated devices
-#   make test       install missing packages, build, run every test
+#   make test       install missing packages, build, run every test, then the HIL suite
+#   make hil        the hardware-in-the-loop suite alone (QEMU VM, tests/hil/)
 #   make bench      run the Google Benchmark suite (medians)
 #   make deps       install missing Debian 12 packages (idempotent, quiet when all there)
 #   make deb        build the Debian package into build/deb/ (see debian/)
@@ -47,12 +48,14 @@ LDFLAGS += $(SANFLAGS)
 
 LIB_SRCS := $(filter-out daemon/main.cpp,$(wildcard algo/*.cpp hal/*.cpp hal/*/*.cpp config/*.cpp daemon/*.cpp))
 TOOL_SRCS := $(wildcard tools/*.cpp)
+SR2EMU_SRCS := $(wildcard tools/sr2_emulator/*.cpp)
 TEST_SRCS := $(wildcard tests/*.cpp)
 BENCH_SRCS := $(wildcard tests/bench/*.cpp)
 
 LIB := $(BUILD)/libdepthkey.a
 DAEMON := $(BIN)/depthkeyd
 TOOLS := $(patsubst tools/%.cpp,$(BIN)/depthkey-%,$(TOOL_SRCS))
+SR2EMU := $(BIN)/depthkey-sr2-emulator
 TESTS := $(BIN)/depthkey-tests
 BENCH := $(BIN)/depthkey-bench
 
@@ -63,10 +66,11 @@ JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 # Keep tool objects (intermediates of the pattern rule) so nothing rebuilds twice.
 .SECONDARY:
 
-.PHONY: all run test check bench deps deb deb-deps package-test boot-test install clean
+.PHONY: all run test check hil bench deps deb deb-deps package-test boot-test install clean
 .DEFAULT_GOAL := all
 
-all: $(DAEMON) $(TOOLS)
+# The SR-2 emulator is built (for the HIL tests) but not installed.
+all: $(DAEMON) $(TOOLS) $(SR2EMU)
 
 deps:
 	@packaging/install-deps.sh
@@ -77,11 +81,19 @@ run: deps
 	@$(MAKE) --no-print-directory -j$(JOBS) all
 	@sh daemon/run-sim.sh $(BIN)
 
+# The unit tests, then the hardware-in-the-loop suite: the real daemon in a
+# QEMU VM against emulated devices (tests/hil/run.sh; it fails, never skips,
+# when the VM cannot start).
 test: deps
-	@$(MAKE) --no-print-directory -j$(JOBS) check
+	@$(MAKE) --no-print-directory -j$(JOBS) check $(HIL_TOOLS)
 ifneq ($(SAN),1)
 	@$(MAKE) --no-print-directory package-test
 endif
+	@tests/hil/run.sh $(BIN)
+
+hil: deps
+	@$(MAKE) --no-print-directory -j$(JOBS) all $(HIL_TOOLS)
+	@tests/hil/run.sh $(BIN)
 
 check: all $(TESTS)
 	@$(TESTS) --gtest_brief=1
@@ -105,6 +117,20 @@ $(DAEMON): $(call obj,daemon/main.cpp) $(LIB)
 	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -o $@
 
 $(BIN)/depthkey-%: $(OBJ)/tools/%.o $(LIB)
+	@mkdir -p $(dir $@)
+	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -o $@
+
+# The emulated SR-2 (a USB gadget for the HIL tests) is several files.
+$(SR2EMU): $(call obj,$(SR2EMU_SRCS)) $(LIB)
+	@mkdir -p $(dir $@)
+	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -o $@
+
+# Helpers of the HIL suite (tests/hil/NAME.cpp -> depthkey-hil-NAME, with _
+# as -): a bare libusb SR-2 client, a shared-memory flag watcher.
+HIL_TOOLS := $(BIN)/depthkey-hil-sr2-probe $(BIN)/depthkey-hil-shm-watch
+$(BIN)/depthkey-hil-sr2-probe: $(OBJ)/tests/hil/sr2_probe.o
+$(BIN)/depthkey-hil-shm-watch: $(OBJ)/tests/hil/shm_watch.o
+$(HIL_TOOLS):
 	@mkdir -p $(dir $@)
 	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -o $@
 

@@ -50,19 +50,29 @@ vm_kernel_release() {
 	echo "$pkg"
 }
 
-# Downloads Debian package NAME (current candidate) into the cache unless a
-# file for it is there already; prints the .deb's path.
+# Downloads Debian package NAME, at VERSION or else at apt's candidate
+# version, into the cache unless it is there already; prints the .deb's path.
 vm_fetch_deb() {
-	local name=$1 deb
+	local name=$1 version=${2:-} deb
+	if [ -z "$version" ]; then
+		version=$(apt-cache show --no-all-versions "$name" 2>/dev/null | sed -n 's/^Version: //p' | head -n1)
+	fi
 	mkdir -p "$VM_DEBS"
-	deb=$(ls "$VM_DEBS/${name}_"*.deb 2>/dev/null | head -n1)
+	# Offline, or apt lists without the package: take what the cache has.
+	if [ -z "$version" ]; then
+		deb=$(ls -t "$VM_DEBS/${name}_"*.deb 2>/dev/null | head -n1)
+		[ -n "$deb" ] || vm_die "apt knows no package $name (apt-get update?)"
+		echo "$deb"
+		return
+	fi
+	deb=$(ls "$VM_DEBS/${name}_${version//:/%3a}_"*.deb 2>/dev/null | head -n1)
 	if [ -z "$deb" ]; then
-		vm_log "downloading $name"
-		(cd "$VM_DEBS" && apt-get -o APT::Sandbox::User=root download -qq "$name" >/dev/null 2>&1) ||
+		vm_log "downloading $name $version"
+		(cd "$VM_DEBS" && apt-get -o APT::Sandbox::User=root download -qq "$name=$version" >/dev/null 2>&1) ||
 			{ apt-get -o DPkg::Lock::Timeout=600 update -qq >/dev/null 2>&1;
-			  (cd "$VM_DEBS" && apt-get -o APT::Sandbox::User=root download -qq "$name" >/dev/null); } ||
-			vm_die "apt-get download $name failed"
-		deb=$(ls "$VM_DEBS/${name}_"*.deb | head -n1)
+			  (cd "$VM_DEBS" && apt-get -o APT::Sandbox::User=root download -qq "$name=$version" >/dev/null); } ||
+			vm_die "apt-get download $name=$version failed"
+		deb=$(ls "$VM_DEBS/${name}_${version//:/%3a}_"*.deb | head -n1)
 	fi
 	echo "$deb"
 }
