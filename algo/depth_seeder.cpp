@@ -34,7 +34,11 @@ void DepthSeeder::seed(const DepthFrame &depth, DepthSeeds &out)
 	}
 
 	erodeSquare(trusted_, settings_.erodePx, subset_, morphology_, path_);
-	out.lecturerPixels = keepLargestComponent(subset_, components_);
+	// Of the in-range areas, the one with the most pixels in front of the
+	// static background is the lecturer (a desk in range never is); the
+	// largest when nothing has moved yet.
+	background_.update(depth.depthMm, moving_);
+	out.lecturerPixels = keepPreferredComponent(subset_, moving_, components_);
 	dilateSquare(subset_, settings_.dilatePx, superset_, morphology_, path_);
 	dilateSquare(subset_, settings_.dilatePx + marginPx_, far_, morphology_, path_);
 

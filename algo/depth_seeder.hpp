@@ -2,8 +2,10 @@
 // cheap (160x124 on the SR-2):
 //   trusted   = near <= depth <= far, min_amplitude <= amplitude < max_amplitude
 //               (a weak echo says nothing, a saturated one lies);
-//   subset    = the largest 4-connected component of erode(trusted, erode_px):
-//               surely lecturer;
+//   subset    = the 4-connected component of erode(trusted, erode_px) with
+//               the most pixels in front of the static background
+//               (algo/static_background.hpp: a desk in range is furniture,
+//               not the lecturer), the largest when none: surely lecturer;
 //   superset  = dilate(subset, dilate_px); everything outside is surely board;
 //   undecided = superset minus subset, where SIOX decides;
 //   learnBoard = outside dilate(subset, dilate_px + margin_px): board pixels
@@ -13,6 +15,7 @@
 
 #include "algo/frames.hpp"
 #include "algo/morphology.hpp"
+#include "algo/static_background.hpp"
 #include "config/settings.hpp"
 
 namespace depthkey {
@@ -37,7 +40,8 @@ private:
 	SegmentationSettings settings_;
 	int marginPx_ = 2;
 	KernelPath path_ = bestKernelPath();
-	Gray8Image trusted_, subset_, superset_, far_;
+	Gray8Image trusted_, subset_, superset_, far_, moving_;
+	StaticBackground background_;
 	MorphologyScratch morphology_;
 	ComponentScratch components_;
 };

@@ -56,7 +56,7 @@ void dilateSquare(const Gray8Image &in, int radius, Gray8Image &out, MorphologyS
 
 // Labels live in a grid one pixel larger on every side whose border is
 // never set, so the flood visits the 4 neighbours without bounds checks.
-int keepLargestComponent(Gray8Image &mask, ComponentScratch &scratch)
+static int keepBestComponent(Gray8Image &mask, const uint8_t *preferred, ComponentScratch &scratch)
 {
 	constexpr int32_t kUnset = -2, kUnvisited = -1;
 	const int w = mask.width(), h = mask.height(), stride = w + 2;
@@ -73,19 +73,23 @@ int keepLargestComponent(Gray8Image &mask, ComponentScratch &scratch)
 		for (int x = 0; x < w; ++x)
 			l[x] = row[x] ? kUnvisited : kUnset;
 	}
-	int bestLabel = -1, bestSize = 0, label = 0;
+	int bestLabel = -1, bestSize = 0, bestPreferred = 0, label = 0;
 	for (int y = 0; y < h; ++y) {
 		const int rowStart = (y + 1) * stride + 1;
 		for (int start = rowStart; start < rowStart + w; ++start) {
 			if (labels[start] != kUnvisited)
 				continue;
 			// Each pixel is pushed once (labelled when pushed): w * h entries suffice.
-			int top = 0, size = 0;
+			int top = 0, size = 0, preferredSize = 0;
 			labels[start] = label;
 			stack[top++] = start;
 			while (top) {
 				const int p = stack[--top];
 				++size;
+				if (preferred) {
+					const int py = p / stride - 1, px = p % stride - 1;
+					preferredSize += preferred[size_t(py) * w + px] != 0;
+				}
 				for (int q : { p - 1, p + 1, p - stride, p + stride }) {
 					if (labels[q] == kUnvisited) {
 						labels[q] = label;
@@ -93,8 +97,9 @@ int keepLargestComponent(Gray8Image &mask, ComponentScratch &scratch)
 					}
 				}
 			}
-			if (size > bestSize) {
+			if (preferredSize > bestPreferred || (preferredSize == bestPreferred && size > bestSize)) {
 				bestSize = size;
+				bestPreferred = preferredSize;
 				bestLabel = label;
 			}
 			++label;
@@ -107,6 +112,17 @@ int keepLargestComponent(Gray8Image &mask, ComponentScratch &scratch)
 			row[x] = l[x] == bestLabel && bestLabel >= 0 ? 255 : 0;
 	}
 	return bestSize;
+}
+
+int keepLargestComponent(Gray8Image &mask, ComponentScratch &scratch)
+{
+	return keepBestComponent(mask, nullptr, scratch);
+}
+
+int keepPreferredComponent(Gray8Image &mask, const Gray8Image &preferred, ComponentScratch &scratch)
+{
+	bool sizesMatch = preferred.width() == mask.width() && preferred.height() == mask.height();
+	return keepBestComponent(mask, sizesMatch ? preferred.data() : nullptr, scratch);
 }
 
 } // namespace depthkey

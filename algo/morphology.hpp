@@ -36,4 +36,9 @@ struct ComponentScratch {
 // component met first in raster order.
 int keepLargestComponent(Gray8Image &mask, ComponentScratch &scratch);
 
+// Keeps only the 4-connected component of mask holding the most pixels where
+// preferred is non-zero (same size as mask), the larger one on a tie (so with
+// no preferred pixels at all, the largest); returns its size in pixels.
+int keepPreferredComponent(Gray8Image &mask, const Gray8Image &preferred, ComponentScratch &scratch);
+
 } // namespace depthkey

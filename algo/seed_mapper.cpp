@@ -1,6 +1,7 @@
 #include "algo/seed_mapper.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 
 namespace depthkey {
@@ -8,10 +9,23 @@ namespace depthkey {
 void SeedMapper::configure(const DepthMapper &mapper)
 {
 	mapper_ = &mapper;
-	// ceil(colour / tof) + 1 pixel of overlap.
-	footprintW_ = (mapper.colourWidth() + mapper.tofWidth() - 1) / std::max(1, mapper.tofWidth()) + 1;
-	footprintH_ = (mapper.colourHeight() + mapper.tofHeight() - 1) / std::max(1, mapper.tofHeight()) + 1;
 	previous_ = {};
+}
+
+// The footprint of ToF pixel i at depth z: the colour-pixel step to its right
+// and lower neighbours at the same depth (the left / upper one on the last
+// column / row), rounded up, plus one pixel of overlap. Measured from the
+// mapping itself, since a wider ToF lens, lens distortion and parallax make
+// one ToF pixel cover more colour pixels than colour size / ToF size.
+static void footprintAt(const DepthMapper &mapper, int i, int u, int v, int z, int32_t xQ8, int32_t yQ8,
+			int &w, int &h)
+{
+	const int tw = mapper.tofWidth(), th = mapper.tofHeight();
+	int32_t nx, ny, unused;
+	mapper.map(u + 1 < tw ? i + 1 : u > 0 ? i - 1 : i, z, nx, unused);
+	mapper.map(v + 1 < th ? i + tw : v > 0 ? i - tw : i, z, unused, ny);
+	w = (std::abs(nx - xQ8) + 255) / 256 + 1;
+	h = (std::abs(ny - yQ8) + 255) / 256 + 1;
 }
 
 void SeedMapper::map(const DepthSeeds &seeds, const Gray16Image &depthMm, Gray8Image &trimap, Roi &roi)
@@ -34,7 +48,6 @@ void SeedMapper::map(const DepthSeeds &seeds, const Gray16Image &depthMm, Gray8I
 		previous_ = roi;
 		return;
 	}
-	const int halfW = footprintW_ * 128, halfH = footprintH_ * 128; // footprint / 2 in Q8
 	const uint8_t *labels = seeds.labels.data();
 	const uint16_t *depth = depthMm.data();
 	for (int i = 0; i < tw * th; ++i) {
@@ -46,9 +59,11 @@ void SeedMapper::map(const DepthSeeds &seeds, const Gray16Image &depthMm, Gray8I
 		int z = depth[i] ? depth[i] : seeds.lecturerDepthMm;
 		int32_t xQ8, yQ8;
 		mapper_->map(i, z, xQ8, yQ8);
-		int x0 = std::max(0, (xQ8 - halfW + 128) >> 8), y0 = std::max(0, (yQ8 - halfH + 128) >> 8);
-		int x1 = std::min(cw, ((xQ8 - halfW + 128) >> 8) + footprintW_);
-		int y1 = std::min(ch, ((yQ8 - halfH + 128) >> 8) + footprintH_);
+		int fw, fh;
+		footprintAt(*mapper_, i, i % tw, i / tw, z, xQ8, yQ8, fw, fh);
+		const int left = (xQ8 - fw * 128 + 128) >> 8, top = (yQ8 - fh * 128 + 128) >> 8; // centred
+		int x0 = std::max(0, left), y0 = std::max(0, top);
+		int x1 = std::min(cw, left + fw), y1 = std::min(ch, top + fh);
 		if (x0 >= x1 || y0 >= y1)
 			continue;
 		// Lecturer is the highest label: max() with it is a plain store,

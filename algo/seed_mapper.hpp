@@ -1,7 +1,8 @@
 // Carries the depth seeds from ToF resolution into the colour image: each
 // surely-lecturer or undecided ToF pixel is mapped (DepthMapper, with its own
-// depth) and painted as a block of its footprint (the colour size of a ToF
-// pixel, plus one pixel of overlap so stretched areas get no gaps). Where
+// depth) and painted as a block of its footprint (the colour-pixel step to
+// its neighbouring ToF pixels at that depth, plus one pixel of overlap, so
+// neighbouring blocks always touch, whatever the lenses' scales). Where
 // blocks overlap the higher label wins (lecturer over undecided over board):
 // the lecturer is the nearest surface in the scene, so this is the z-buffer's
 // "nearest wins" without storing depths. Everything not painted is board.
@@ -28,7 +29,6 @@ public:
 
 private:
 	const DepthMapper *mapper_ = nullptr;
-	int footprintW_ = 1, footprintH_ = 1;
 	Roi previous_;
 };
 

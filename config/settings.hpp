@@ -68,7 +68,7 @@ struct PairingSettings {
 // Depth seeding (paper 6.1), at the depth camera's resolution.
 struct SegmentationSettings {
 	int nearMm = 500;                   // lecturer depth interval [near, far]
-	int farMm = 1600;
+	int farMm = 1850;                   // 150 mm in front of the simulated board (2000 mm)
 	int minAmplitude = 100;             // 0..65535: weaker echoes are not trusted
 	int maxAmplitude = 65535;           // 1..65535: at or above = saturated, not trusted
 	int erodePx = 2;                    // 0..20 ToF px: in-range mask -> surely lecturer

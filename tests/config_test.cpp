@@ -315,10 +315,10 @@ TEST(ConfigLoader, NearMustBeLessThanFar)
 	EXPECT_EQ(onlyError("[segmentation]\nnear_mm = 1600\nfar_mm = 1600\n"),
 		  (ConfigError{ kFile, 3, 10, "segmentation.far_mm",
 				"near_mm (1600) must be less than far_mm (1600)" }));
-	// Against the default far_mm (1600): the key that is in the file is blamed.
+	// Against the default far_mm (1850): the key that is in the file is blamed.
 	EXPECT_EQ(onlyError("[segmentation]\nnear_mm = 2000\n"),
 		  (ConfigError{ kFile, 2, 11, "segmentation.near_mm",
-				"near_mm (2000) must be less than far_mm (1600)" }));
+				"near_mm (2000) must be less than far_mm (1850)" }));
 	// An invalid value is reported once, not again as a cross-field error.
 	EXPECT_EQ(onlyError("[segmentation]\nnear_mm = 9000\nfar_mm = 400\n").key,
 		  "segmentation.near_mm");

@@ -1,0 +1,68 @@
+// SeedMapper: the ToF seeds painted into the colour image leave no gaps, even
+// where one ToF pixel covers more colour pixels than colour size / ToF size
+// (a ToF lens wider than the colour camera's, as in the simulated rig).
+
+#include "algo/depth_mapper.hpp"
+#include "algo/seed_mapper.hpp"
+
+#include <gtest/gtest.h>
+
+using namespace depthkey;
+
+namespace {
+
+// A solid block of surely-lecturer ToF pixels [u0, u1) x [v0, v1) at zMm.
+void solidSeeds(int tw, int th, int u0, int v0, int u1, int v1, int zMm, DepthSeeds &seeds, Gray16Image &depth)
+{
+	seeds.labels.resize(tw, th);
+	depth.resize(tw, th);
+	seeds.lecturerPixels = 0;
+	for (int v = 0; v < th; ++v)
+		for (int u = 0; u < tw; ++u) {
+			bool in = u >= u0 && u < u1 && v >= v0 && v < v1;
+			seeds.labels.at(u, v) = in ? kTrimapLecturer : kTrimapBoard;
+			depth.at(u, v) = uint16_t(in ? zMm : 2000);
+			seeds.lecturerPixels += in;
+		}
+	seeds.lecturerDepthMm = zMm;
+}
+
+} // namespace
+
+TEST(SeedMapper, WideToFLensLeavesNoGapsInsideTheMappedSeeds)
+{
+	// x2 = 320 + 560 s, y2 = 240 + 420 t: the ToF image spans 1.75 times the
+	// colour image, so a ToF pixel covers 7 x 6.8 colour pixels, not 4 x 3.9.
+	MappingModel model;
+	model.kind = MappingKind::Paper;
+	model.x = { 319.5, 560, 0, 0, 0 };
+	model.y = { 239.5, 420, 0, 0, 0 };
+	DepthMapper mapper;
+	mapper.configure(model);
+	SeedMapper seedMapper;
+	seedMapper.configure(mapper);
+
+	DepthSeeds seeds;
+	Gray16Image depth;
+	solidSeeds(model.tofWidth, model.tofHeight, 60, 50, 100, 80, 1500, seeds, depth);
+	Gray8Image trimap;
+	Roi roi;
+	seedMapper.map(seeds, depth, trimap, roi);
+
+	// The mapped centres of the block's corner pixels bound what must be solid.
+	int32_t x0, y0, x1, y1;
+	mapper.map(50 * model.tofWidth + 60, 1500, x0, y0);
+	mapper.map(79 * model.tofWidth + 99, 1500, x1, y1);
+	int holes = 0, inside = 0;
+	for (int y = (y0 >> 8) + 1; y < (y1 >> 8); ++y)
+		for (int x = (x0 >> 8) + 1; x < (x1 >> 8); ++x) {
+			holes += trimap.at(x, y) != kTrimapLecturer;
+			++inside;
+		}
+	EXPECT_GT(inside, 200 * 150);
+	EXPECT_EQ(holes, 0);
+	// Nothing far outside the block: the footprint is the local step, not more.
+	EXPECT_EQ(trimap.at((x0 >> 8) - 10, (y0 >> 8) - 10), kTrimapBoard);
+	EXPECT_EQ(trimap.at((x1 >> 8) + 10, (y1 >> 8) + 10), kTrimapBoard);
+	EXPECT_FALSE(roi.empty());
+}
