@@ -9,6 +9,9 @@ DK_CONFIG=/run/hil-depthkey.toml
 DK_LOG=$HIL_LOGS/depthkeyd.log
 RECOVERY_LOG=$VM_RESULTS/recovery
 RECOVERY_LIMIT_MS=2000
+# The sanitizer build runs several times slower under TCG: there the 2 s are
+# not judged (reported as skipped), only that the daemon recovers at all.
+HIL_TIMING=${HIL_TIMING:-1}
 # Shared-memory flags (hal/depthkey_shm.h).
 ONLINE=0x7 COLOUR_OK=0x2 DEPTH_OK=0x4
 # LED lines on the simulated chip (the README's legend).
@@ -103,7 +106,10 @@ recovery_check() {
 		ms=$(awk -v a="${BASH_REMATCH[1]}" -v b="$since" 'BEGIN { printf "%d", (a - b) * 1000 }')
 		seconds=$(awk -v ms="$ms" 'BEGIN { printf "%.3f", ms / 1000 }')
 		echo "$name $seconds" >>"$RECOVERY_LOG"
-		if [ "$ms" -le "$RECOVERY_LIMIT_MS" ]; then
+		if [ "$HIL_TIMING" != 1 ]; then
+			hil_pass "$name-recovery" "whole frames again $seconds s after the device returned"
+			hil_skip "$name-recovery-time" "not judged in the sanitizer build ($seconds s)"
+		elif [ "$ms" -le "$RECOVERY_LIMIT_MS" ]; then
 			hil_pass "$name-recovery" "whole frames again $seconds s after the device returned"
 		else
 			hil_fail "$name-recovery" "whole frames again only $seconds s after the device returned (limit 2 s)"
@@ -219,7 +225,8 @@ webcam_error() {
 		ms=$(awk -v a="$back" -v b="$since" 'BEGIN { printf "%d", (a - b) * 1000 }')
 		seconds=$(awk -v ms="$ms" 'BEGIN { printf "%.3f", ms / 1000 }')
 		echo "$name $seconds" >>"$RECOVERY_LOG"
-		[ "$ms" -le "$RECOVERY_LIMIT_MS" ] &&
+		[ "$HIL_TIMING" != 1 ] && hil_skip "$name-recovery-time" "not judged in the sanitizer build ($seconds s)"
+		[ "$HIL_TIMING" != 1 ] || [ "$ms" -le "$RECOVERY_LIMIT_MS" ] &&
 			hil_pass "$name-recovery" "streaming again $seconds s after the error" ||
 			hil_fail "$name-recovery" "streaming again only $seconds s after the error (limit 2 s)"
 	else
