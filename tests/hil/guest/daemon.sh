@@ -9,6 +9,10 @@ DK_CONFIG=/run/hil-depthkey.toml
 DK_LOG=$HIL_LOGS/depthkeyd.log
 RECOVERY_LOG=$VM_RESULTS/recovery
 RECOVERY_LIMIT_MS=2000
+# HIL_SANITIZER=1: the binaries are the sanitizer build, several times slower
+# under TCG and holding freed memory in ASan's quarantine: recovery times and
+# VmRSS are then reported as skipped; recovery itself is still asserted.
+HIL_SANITIZER=${HIL_SANITIZER:-0}
 # Shared-memory flags (hal/depthkey_shm.h).
 ONLINE=0x7 COLOUR_OK=0x2 DEPTH_OK=0x4
 # LED lines on the simulated chip (the README's legend).
@@ -103,7 +107,10 @@ recovery_check() {
 		ms=$(awk -v a="${BASH_REMATCH[1]}" -v b="$since" 'BEGIN { printf "%d", (a - b) * 1000 }')
 		seconds=$(awk -v ms="$ms" 'BEGIN { printf "%.3f", ms / 1000 }')
 		echo "$name $seconds" >>"$RECOVERY_LOG"
-		if [ "$ms" -le "$RECOVERY_LIMIT_MS" ]; then
+		if [ "$HIL_SANITIZER" = 1 ]; then
+			hil_pass "$name-recovery" "whole frames again $seconds s after the device returned"
+			hil_skip "$name-recovery-time" "not judged in the sanitizer build ($seconds s)"
+		elif [ "$ms" -le "$RECOVERY_LIMIT_MS" ]; then
 			hil_pass "$name-recovery" "whole frames again $seconds s after the device returned"
 		else
 			hil_fail "$name-recovery" "whole frames again only $seconds s after the device returned (limit 2 s)"
@@ -219,7 +226,8 @@ webcam_error() {
 		ms=$(awk -v a="$back" -v b="$since" 'BEGIN { printf "%d", (a - b) * 1000 }')
 		seconds=$(awk -v ms="$ms" 'BEGIN { printf "%.3f", ms / 1000 }')
 		echo "$name $seconds" >>"$RECOVERY_LOG"
-		[ "$ms" -le "$RECOVERY_LIMIT_MS" ] &&
+		[ "$HIL_SANITIZER" = 1 ] && hil_skip "$name-recovery-time" "not judged in the sanitizer build ($seconds s)"
+		[ "$HIL_SANITIZER" = 1 ] || [ "$ms" -le "$RECOVERY_LIMIT_MS" ] &&
 			hil_pass "$name-recovery" "streaming again $seconds s after the error" ||
 			hil_fail "$name-recovery" "streaming again only $seconds s after the error (limit 2 s)"
 	else
@@ -269,10 +277,15 @@ if hil_section leak; then
 		[ "$fds_after" -eq "$fds_before" ] && hil_pass no-fd-leak "$fds_before fds before, $fds_after after" ||
 			hil_fail no-fd-leak "$fds_before fds before, $fds_after after 50 cycles"
 		# Freed memory may stay in the allocator's pools: allow 1 MB, far
-		# less than 50 frames' worth.
-		[ $((rss_after - rss_before)) -le 1024 ] &&
-			hil_pass no-memory-leak "VmRSS $rss_before kB before, $rss_after kB after" ||
-			hil_fail no-memory-leak "VmRSS grew from $rss_before kB to $rss_after kB over 50 cycles"
+		# less than 50 frames' worth. AddressSanitizer holds freed memory in
+		# quarantine, so the sanitizer build leaves this to LeakSanitizer.
+		if [ "$HIL_SANITIZER" = 1 ]; then
+			hil_skip no-memory-leak "VmRSS $rss_before -> $rss_after kB not judged under ASan (quarantine)"
+		else
+			[ $((rss_after - rss_before)) -le 1024 ] &&
+				hil_pass no-memory-leak "VmRSS $rss_before kB before, $rss_after kB after" ||
+				hil_fail no-memory-leak "VmRSS grew from $rss_before kB to $rss_after kB over 50 cycles"
+		fi
 	else
 		hil_fail sr2-50-replug-cycles "cycle $((cycles + 1)): $why"
 	fi
