@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -96,15 +97,23 @@ TEST_F(DaemonIntegration, ReadyWatchdogFramesReloadAndStop)
 	EXPECT_TRUE(second.info.flags & DK_SHM_FLAG_ONLINE);
 	EXPECT_EQ(second.info.online, 1u);
 
-	// The lecturer layer: some pixels keyed in (alpha 255), most of the
-	// board keyed out (alpha 0) — the sim's figure covers roughly 15 %.
-	ShmFrame lecturer;
-	ASSERT_TRUE(readFrame(prefix_ + ".lecturer", lecturer, 2s));
-	size_t opaque = 0, pixels = lecturer.pixels.size() / 4;
-	for (size_t i = 0; i < pixels; ++i)
-		opaque += lecturer.pixels[i * 4 + 3] == 255;
-	EXPECT_GT(opaque, pixels / 20);
-	EXPECT_LT(opaque, pixels / 2);
+	// The lecturer layer: over a second of frames the simulated lecturer is
+	// keyed in somewhere (alpha > 0), and the board is never keyed as a whole.
+	// The share varies as he walks, turns and leaves the view, so take the
+	// largest seen rather than one frame's.
+	size_t mostOpaque = 0, pixels = 0;
+	for (int i = 0; i < 10; ++i) {
+		ShmFrame lecturer;
+		ASSERT_TRUE(readFrame(prefix_ + ".lecturer", lecturer, 2s));
+		pixels = lecturer.pixels.size() / 4;
+		size_t opaque = 0;
+		for (size_t p = 0; p < pixels; ++p)
+			opaque += lecturer.pixels[p * 4 + 3] != 0;
+		EXPECT_LT(opaque, pixels * 3 / 5) << "frame " << lecturer.info.frame;
+		mostOpaque = std::max(mostOpaque, opaque);
+		std::this_thread::sleep_for(100ms);
+	}
+	EXPECT_GT(mostOpaque, pixels / 100);
 
 	// A broken config on SIGHUP is refused, naming file and line; the
 	// daemon runs on with the old one.
