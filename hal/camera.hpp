@@ -25,6 +25,17 @@ struct DeviceStatus {
 	int error = 0;          // negative errno of the last failure, 0 if none
 	std::string detail;     // what failed and where, for the journal
 	uint64_t droppedFrames = 0; // short, corrupt or error-flagged frames refused
+
+	// Sets state, error and detail; true when any of them changed, i.e. when
+	// the daemon should hear about it (the drop counter alone does not count).
+	bool set(DeviceState newState, int newError, const std::string &newDetail)
+	{
+		bool changed = newState != state || newError != error || newDetail != detail;
+		state = newState;
+		error = newError;
+		detail = newDetail;
+		return changed;
+	}
 };
 
 template<typename Frame>

@@ -76,11 +76,7 @@ void Sr2Camera::stop()
 
 void Sr2Camera::setStatus(DeviceState state, int error, const std::string &detail)
 {
-	bool changed = state != status_.state || error != status_.error || detail != status_.detail;
-	status_.state = state;
-	status_.error = error;
-	status_.detail = detail;
-	if (changed && onStatus_)
+	if (status_.set(state, error, detail) && onStatus_)
 		onStatus_(status_);
 }
 

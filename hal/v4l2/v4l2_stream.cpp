@@ -54,11 +54,7 @@ void V4l2Stream::stop()
 
 void V4l2Stream::setStatus(DeviceState state, int error, const std::string &detail)
 {
-	bool changed = state != status_.state || error != status_.error || detail != status_.detail;
-	status_.state = state;
-	status_.error = error;
-	status_.detail = detail;
-	if (changed && onStatus_)
+	if (status_.set(state, error, detail) && onStatus_)
 		onStatus_(status_);
 }
 
