@@ -12,52 +12,95 @@
 
 namespace depthkey {
 
-class SimColourCamera : public ColourCamera
+// What both simulated cameras share: a periodic timer on the event loop that
+// renders a frame into a reused buffer, stamps it and hands it over.
+template<typename Frame>
+class PeriodicSimCamera : public Camera<Frame>
 {
 public:
-	SimColourCamera(const ColourCameraSettings &settings, const SimSettings &sim);
-	std::string name() const override { return "sim-colour"; }
-	int start(EventLoop &loop, FrameHandler onFrame, StatusHandler onStatus) override;
-	void stop() override;
+	using typename Camera<Frame>::FrameHandler;
+	using typename Camera<Frame>::StatusHandler;
+
+	int start(EventLoop &loop, FrameHandler onFrame, StatusHandler onStatus) override
+	{
+		loop_ = &loop;
+		onFrame_ = std::move(onFrame);
+		prepare();
+		frame_.sequence = 0;
+		int ret = loop.addPeriodic(1000000u / fps(), [this] { capture(); }, timer_);
+		if (ret < 0)
+			return ret;
+		status_ = { DeviceState::Streaming, 0, "" };
+		onStatus(status_);
+		return 0;
+	}
+	void stop() override
+	{
+		timer_.reset();
+		status_ = { DeviceState::Stopped, 0, "" };
+	}
 	DeviceStatus status() const override { return status_; }
 
+protected:
+	virtual int fps() const = 0;
+	virtual void prepare() = 0;
+	// Renders the scene for capture time nowUs; frame.sequence is the
+	// previous frame's number.
+	virtual void render(uint64_t nowUs, Frame &frame) = 0;
+
 private:
-	void capture();
+	void capture()
+	{
+		uint64_t now = loop_->nowUs();
+		render(now, frame_);
+		frame_.timestampNs = now * 1000u;
+		frame_.sequence++;
+		onFrame_(frame_);
+	}
+
+	EventLoop *loop_ = nullptr;
+	EventSource timer_;
+	FrameHandler onFrame_;
+	Frame frame_;
+	DeviceStatus status_;
+};
+
+class SimColourCamera : public PeriodicSimCamera<ColourFrame>
+{
+public:
+	SimColourCamera(const ColourCameraSettings &settings, const SimSettings &sim)
+		: settings_(settings), sim_(sim) {}
+	std::string name() const override { return "sim-colour"; }
+
+private:
+	int fps() const override { return settings_.fps; }
+	void prepare() override;
+	void render(uint64_t nowUs, ColourFrame &frame) override;
 
 	ColourCameraSettings settings_;
 	SimSettings sim_;
 	LectureSimulator simulator_;
-	EventLoop *loop_ = nullptr;
-	EventSource timer_;
-	FrameHandler onFrame_;
-	ColourFrame frame_;
-	DeviceStatus status_;
 };
 
-class SimDepthCamera : public DepthCamera
+class SimDepthCamera : public PeriodicSimCamera<DepthFrame>
 {
 public:
-	SimDepthCamera(const DepthCameraSettings &settings, const SimSettings &sim);
+	SimDepthCamera(const DepthCameraSettings &settings, const SimSettings &sim)
+		: settings_(settings), sim_(sim) {}
 	std::string name() const override { return "sim-depth"; }
-	int start(EventLoop &loop, FrameHandler onFrame, StatusHandler onStatus) override;
-	void stop() override;
-	DeviceStatus status() const override { return status_; }
 
 	static constexpr int kWidth = LectureSimulator::kTofWidth;  // the SR-2's sensor
 	static constexpr int kHeight = LectureSimulator::kTofHeight;
 
 private:
-	void capture();
+	int fps() const override { return settings_.fps; }
+	void prepare() override;
+	void render(uint64_t nowUs, DepthFrame &frame) override;
 
 	DepthCameraSettings settings_;
 	SimSettings sim_;
 	LectureSimulator simulator_;
 	sim::SimTiming timing_;
-	EventLoop *loop_ = nullptr;
-	EventSource timer_;
-	FrameHandler onFrame_;
-	DepthFrame frame_;
-	DeviceStatus status_;
 };
 
 } // namespace depthkey
