@@ -17,6 +17,7 @@
 #include <vector>
 
 using namespace depthkey;
+using depthkey::test::openStatus;
 using depthkey::test::ShmName;
 
 namespace {
@@ -46,14 +47,6 @@ struct RawMap {
 	void *base;
 	size_t size;
 };
-
-int openStatus(const char *name)
-{
-	dk_shm_reader r;
-	int ret = dk_shm_open(name, &r);
-	dk_shm_close(&r);
-	return ret;
-}
 
 } // namespace
 

@@ -10,19 +10,8 @@
 #include <sys/stat.h>
 
 using namespace depthkey;
+using depthkey::test::openStatus;
 using depthkey::test::ShmName;
-
-namespace {
-
-int openStatus(const char *name)
-{
-	dk_shm_reader r;
-	int ret = dk_shm_open(name, &r);
-	dk_shm_close(&r);
-	return ret;
-}
-
-} // namespace
 
 TEST(ShmRingWriter, BadArgumentsRejected)
 {

@@ -2,6 +2,8 @@
 // concurrent test run) uses, removed again when the test ends.
 #pragma once
 
+#include "hal/depthkey_shm.h"
+
 #include <atomic>
 #include <string>
 #include <sys/mman.h>
@@ -30,5 +32,14 @@ public:
 private:
 	std::string name_;
 };
+
+// What a reader gets when it opens the object: 0 or a negative errno.
+inline int openStatus(const char *name)
+{
+	dk_shm_reader r;
+	int ret = dk_shm_open(name, &r);
+	dk_shm_close(&r);
+	return ret;
+}
 
 } // namespace depthkey::test
