@@ -15,19 +15,75 @@ constexpr double kMisfitSmoothing = 0.2;
 
 } // namespace
 
-void deriveSignatures(const DecayingHistogram &lecturer, const DecayingHistogram &board,
-		      const QuantisedLabTable &lab, std::vector<WeightedLab> &points,
-		      SioxClassifier &classifier)
+// Colours more frequent (each class's counts over its own total) in the
+// rival class are dropped from a class's samples before its signature is
+// built, since SIOX's nearest-centroid rule lets even a small stray cluster
+// claim a colour: they came from the seeds' errors
+// (the board seen through the gap between arm and body, which the depth
+// camera's coarse pixels call lecturer; an arm the depth camera did not
+// seed, learned as board). Densities are compared in coarse cells (16
+// levels per channel), since sensor noise scatters one surface over many
+// fine cells.
+constexpr int kCoarseShift = 2;
+constexpr int kCoarseBits = kQuantBits - kCoarseShift;
+constexpr double kRivalRatio = 1.0;
+
+static uint32_t coarseCell(uint32_t quantised)
 {
-	points.resize(kQuantisedColours);
-	size_t n = lecturer.collect(lab, points.data());
-	classifier.lecturer().build(points.data(), n);
-	n = board.collect(lab, points.data());
-	classifier.board().build(points.data(), n);
+	constexpr uint32_t mask = (1u << kQuantBits) - 1;
+	uint32_t r = (quantised >> (2 * kQuantBits)) & mask, g = (quantised >> kQuantBits) & mask, b = quantised & mask;
+	return ((r >> kCoarseShift) << (2 * kCoarseBits)) | ((g >> kCoarseShift) << kCoarseBits) | (b >> kCoarseShift);
+}
+
+constexpr size_t kCoarseCells = size_t(1) << (3 * kCoarseBits);
+
+SignatureScratch::SignatureScratch()
+	: points(kQuantisedColours), lecturerCells(kCoarseCells), boardCells(kCoarseCells)
+{
+}
+
+static void coarseDensity(const DecayingHistogram &h, std::vector<uint64_t> &cells)
+{
+	std::fill(cells.begin(), cells.end(), uint64_t{ 0 });
+	for (uint32_t i = 0; i < kQuantisedColours; ++i)
+		if (uint32_t b = h.bin(i))
+			cells[coarseCell(i)] += b;
+}
+
+static size_t collectUnrivalled(const DecayingHistogram &own, const std::vector<uint64_t> &ownCells,
+				const std::vector<uint64_t> &rivalCells, double rivalScale,
+				const QuantisedLabTable &lab, WeightedLab *out)
+{
+	size_t n = 0;
+	for (uint32_t i = 0; i < kQuantisedColours; ++i) {
+		uint32_t b = own.bin(i);
+		if (!b)
+			continue;
+		uint32_t cell = coarseCell(i);
+		if (double(rivalCells[cell]) * rivalScale > kRivalRatio * double(ownCells[cell]))
+			continue;
+		out[n++] = { lab[i], b };
+	}
+	return n;
+}
+
+void deriveSignatures(const DecayingHistogram &lecturer, const DecayingHistogram &board,
+		      const QuantisedLabTable &lab, SignatureScratch &scratch, SioxClassifier &classifier)
+{
+	std::vector<uint64_t> &lecturerCells = scratch.lecturerCells, &boardCells = scratch.boardCells;
+	WeightedLab *points = scratch.points.data();
+	coarseDensity(lecturer, lecturerCells);
+	coarseDensity(board, boardCells);
+	// Densities: each class's counts over its own total.
+	const double lt = double(std::max<uint64_t>(1, lecturer.total())), bt = double(std::max<uint64_t>(1, board.total()));
+	size_t n = collectUnrivalled(lecturer, lecturerCells, boardCells, lt / bt, lab, points);
+	classifier.lecturer().build(points, n);
+	n = collectUnrivalled(board, boardCells, lecturerCells, bt / lt, lab, points);
+	classifier.board().build(points, n);
 	classifier.signaturesChanged();
 }
 
-ColourLearner::ColourLearner(const QuantisedLabTable &lab) : lab_(lab), points_(kQuantisedColours)
+ColourLearner::ColourLearner(const QuantisedLabTable &lab) : lab_(lab)
 {
 }
 
@@ -51,13 +107,32 @@ void ColourLearner::reset()
 	baseline_ = -1.0;
 }
 
-bool ColourLearner::learn(const RgbImage &colour, const Gray8Image &trimap, const Gray8Image &learnBoard,
-			  SioxClassifier &classifier)
+// True when no pixel marginPx away from (x, y), along the rows, columns and
+// diagonals, carries a lecturer or undecided label (outside the image counts
+// as board).
+static bool farFromLecturer(const Gray8Image &trimap, int x, int y, int marginPx)
+{
+	const int w = trimap.width(), h = trimap.height();
+	for (int dy = -marginPx; dy <= marginPx; dy += marginPx) {
+		int yy = y + dy;
+		if (yy < 0 || yy >= h)
+			continue;
+		const uint8_t *row = trimap.row(yy);
+		for (int dx = -marginPx; dx <= marginPx; dx += marginPx) {
+			int xx = x + dx;
+			if (xx >= 0 && xx < w && row[xx] != kTrimapBoard)
+				return false;
+		}
+	}
+	return true;
+}
+
+bool ColourLearner::learn(const RgbImage &colour, const Gray8Image &trimap, int marginPx, SioxClassifier &classifier)
 {
 	const int w = colour.width(), h = colour.height();
-	const int tw = learnBoard.width(), th = learnBoard.height();
-	if (trimap.width() != w || trimap.height() != h || tw == 0 || th == 0)
+	if (trimap.width() != w || trimap.height() != h)
 		return false;
+	marginPx = std::max(1, marginPx);
 	int step = std::max(1, static_cast<int>(std::sqrt(double(w) * h / settings_.samples)));
 	int offset = (frames_ * 7) % step; // jitter: a different sub-grid each frame
 	bool judge = classifier.ready() && derivations_ > 0;
@@ -65,10 +140,9 @@ bool ColourLearner::learn(const RgbImage &colour, const Gray8Image &trimap, cons
 	for (int y = offset; y < h; y += step) {
 		const Rgb8 *c = colour.row(y);
 		const uint8_t *t = trimap.row(y);
-		const uint8_t *learn = learnBoard.row(y * th / h);
 		for (int x = offset; x < w; x += step) {
 			bool isLecturer = t[x] == kTrimapLecturer;
-			if (!isLecturer && !learn[x * tw / w])
+			if (!isLecturer && (t[x] != kTrimapBoard || !farFromLecturer(trimap, x, y, marginPx)))
 				continue;
 			uint32_t q = quantiseColour(c[x]);
 			(isLecturer ? lecturer_ : board_).add(q);
@@ -97,7 +171,7 @@ bool ColourLearner::learn(const RgbImage &colour, const Gray8Image &trimap, cons
 	}
 	if (!due || lecturer_.total() == 0 || board_.total() == 0)
 		return false;
-	deriveSignatures(lecturer_, board_, lab_, points_, classifier);
+	deriveSignatures(lecturer_, board_, lab_, scratch_, classifier);
 	++derivations_;
 	baseline_ = -1.0;
 	return true;

@@ -19,11 +19,18 @@
 
 namespace depthkey {
 
+// Work space of deriveSignatures, sized once.
+struct SignatureScratch {
+	SignatureScratch();
+	std::vector<WeightedLab> points;                // kQuantisedColours
+	std::vector<uint64_t> lecturerCells, boardCells; // coarse colour densities
+};
+
 // Builds both signatures from the histograms and resets the decision cache.
-// points is work space with room for kQuantisedColours.
+// A colour more frequent in the other class's samples is left out of a
+// class's signature: it came from the seeds' errors.
 void deriveSignatures(const DecayingHistogram &lecturer, const DecayingHistogram &board,
-		      const QuantisedLabTable &lab, std::vector<WeightedLab> &points,
-		      SioxClassifier &classifier);
+		      const QuantisedLabTable &lab, SignatureScratch &scratch, SioxClassifier &classifier);
 
 class ColourLearner
 {
@@ -33,10 +40,14 @@ public:
 	void configure(const LearningSettings &settings);
 	void reset();
 
-	// trimap at colour resolution, learnBoard at ToF resolution. Returns
-	// true when the signatures were re-derived.
-	bool learn(const RgbImage &colour, const Gray8Image &trimap, const Gray8Image &learnBoard,
-		   SioxClassifier &classifier);
+	// Board colours are taken only from surely-board pixels of the trimap
+	// (colour resolution) with no other label within marginPx colour pixels
+	// in any of 8 directions, so a late depth frame or light scattered onto
+	// the board cannot teach the lecturer's colours as board. Judged in the
+	// colour image itself: the depth camera's view differs (wider lens,
+	// parallax), so a ToF-resolution mask cannot be looked up by scaling.
+	// Returns true when the signatures were re-derived.
+	bool learn(const RgbImage &colour, const Gray8Image &trimap, int marginPx, SioxClassifier &classifier);
 
 	int frames() const { return frames_; }
 	int derivations() const { return derivations_; }
@@ -46,7 +57,7 @@ private:
 	const QuantisedLabTable &lab_;
 	LearningSettings settings_;
 	DecayingHistogram lecturer_, board_;
-	std::vector<WeightedLab> points_;
+	SignatureScratch scratch_;
 	int frames_ = 0;
 	int derivations_ = 0;
 	double misfit_ = 0.0;     // smoothed share of misclassified samples

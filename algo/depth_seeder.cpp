@@ -6,10 +6,18 @@
 
 namespace depthkey {
 
-void DepthSeeder::configure(const SegmentationSettings &segmentation, const LearningSettings &learning)
+// Pixels set in both masks (same size).
+static int countSet(const Gray8Image &a, const Gray8Image &b)
+{
+	int n = 0;
+	for (size_t i = 0; i < a.size(); ++i)
+		n += a.data()[i] && b.data()[i];
+	return n;
+}
+
+void DepthSeeder::configure(const SegmentationSettings &segmentation)
 {
 	settings_ = segmentation;
-	marginPx_ = learning.marginPx;
 }
 
 void DepthSeeder::seed(const DepthFrame &depth, DepthSeeds &out)
@@ -17,7 +25,6 @@ void DepthSeeder::seed(const DepthFrame &depth, DepthSeeds &out)
 	const int w = depth.depthMm.width(), h = depth.depthMm.height();
 	const size_t n = static_cast<size_t>(w) * h;
 	out.labels.resize(w, h);
-	out.learnBoard.resize(w, h);
 	trusted_.resize(w, h);
 	bool amplitudeOk = depth.amplitude.width() == w && depth.amplitude.height() == h;
 
@@ -33,21 +40,32 @@ void DepthSeeder::seed(const DepthFrame &depth, DepthSeeds &out)
 		t[i] = inRange && trusted ? 255 : 0;
 	}
 
-	erodeSquare(trusted_, settings_.erodePx, subset_, morphology_, path_);
 	// Of the in-range areas, the one with the most pixels in front of the
 	// static background is the lecturer (a desk in range never is); the
 	// largest when nothing has moved yet.
 	background_.update(depth.depthMm, moving_);
-	out.lecturerPixels = keepPreferredComponent(subset_, moving_, components_);
-	dilateSquare(subset_, settings_.dilatePx, superset_, morphology_, path_);
-	dilateSquare(subset_, settings_.dilatePx + marginPx_, far_, morphology_, path_);
+	const bool anyMoving = countSet(trusted_, moving_) > 0;
+	for (int r = settings_.erodePx; r >= 0; --r) {
+		erodeSquare(trusted_, r, subset_, morphology_, path_);
+		out.lecturerPixels = keepPreferredComponent(subset_, moving_, components_);
+		// A lecturer only partly in view (an arm reaching in from the
+		// edge) is thinner than the erosion: erode less rather than lose
+		// him, or pick the desk instead.
+		if (!anyMoving || countSet(subset_, moving_) > 0)
+			break;
+	}
+	// The superset grows from the lecturer's whole in-range area (the
+	// component holding the subset, before erosion), so an arm thinner than
+	// the erosion still lies in the band for SIOX to decide.
+	reach_ = trusted_;
+	keepComponentsTouching(reach_, subset_, components_);
+	dilateSquare(reach_, settings_.dilatePx, superset_, morphology_, path_);
 
 	uint64_t depthSum = 0;
-	const uint8_t *sub = subset_.data(), *sup = superset_.data(), *f = far_.data();
-	uint8_t *labels = out.labels.data(), *learn = out.learnBoard.data();
+	const uint8_t *sub = subset_.data(), *sup = superset_.data();
+	uint8_t *labels = out.labels.data();
 	for (size_t i = 0; i < n; ++i) {
 		labels[i] = sub[i] ? kTrimapLecturer : sup[i] ? kTrimapUndecided : kTrimapBoard;
-		learn[i] = f[i] ? 0 : 255;
 		if (sub[i])
 			depthSum += d[i];
 	}

@@ -7,10 +7,7 @@
 //               (algo/static_background.hpp: a desk in range is furniture,
 //               not the lecturer), the largest when none: surely lecturer;
 //   superset  = dilate(subset, dilate_px); everything outside is surely board;
-//   undecided = superset minus subset, where SIOX decides;
-//   learnBoard = outside dilate(subset, dilate_px + margin_px): board pixels
-//               far enough from the lecturer that a late depth frame or the
-//               light scattered onto the board cannot put the lecturer there.
+//   undecided = superset minus subset, where SIOX decides.
 #pragma once
 
 #include "algo/frames.hpp"
@@ -22,7 +19,6 @@ namespace depthkey {
 
 struct DepthSeeds {
 	Gray8Image labels;          // trimap labels (algo/trimap.hpp), ToF resolution
-	Gray8Image learnBoard;      // 255 where board colours may be learned
 	int lecturerDepthMm = 0;    // mean depth of the surely-lecturer pixels; 0 = none
 	int lecturerPixels = 0;
 };
@@ -30,7 +26,7 @@ struct DepthSeeds {
 class DepthSeeder
 {
 public:
-	void configure(const SegmentationSettings &segmentation, const LearningSettings &learning);
+	void configure(const SegmentationSettings &segmentation);
 	void setKernelPath(KernelPath path) { path_ = path; }
 
 	// A frame whose images differ in size from each other gives no lecturer.
@@ -38,9 +34,8 @@ public:
 
 private:
 	SegmentationSettings settings_;
-	int marginPx_ = 2;
 	KernelPath path_ = bestKernelPath();
-	Gray8Image trusted_, subset_, superset_, far_, moving_;
+	Gray8Image trusted_, subset_, reach_, superset_, moving_;
 	StaticBackground background_;
 	MorphologyScratch morphology_;
 	ComponentScratch components_;

@@ -125,4 +125,38 @@ int keepPreferredComponent(Gray8Image &mask, const Gray8Image &preferred, Compon
 	return keepBestComponent(mask, sizesMatch ? preferred.data() : nullptr, scratch);
 }
 
+int keepComponentsTouching(Gray8Image &mask, const Gray8Image &seeds, ComponentScratch &scratch)
+{
+	const int w = mask.width(), h = mask.height();
+	if (w == 0 || h == 0 || seeds.width() != w || seeds.height() != h)
+		return 0;
+	// Flood from every seed pixel inside the mask; kept pixels are marked
+	// 1 in labels (0 = not in the mask, or not reached yet).
+	scratch.labels.assign(size_t(w) * h, 0);
+	scratch.stack.resize(size_t(w) * h);
+	uint8_t *m = mask.data();
+	const uint8_t *s = seeds.data();
+	int32_t *kept = scratch.labels.data(), *stack = scratch.stack.data();
+	int top = 0, size = 0;
+	for (int i = 0; i < w * h; ++i)
+		if (m[i] && s[i] && !kept[i]) {
+			kept[i] = 1;
+			stack[top++] = i;
+			while (top) {
+				const int p = stack[--top], x = p % w;
+				++size;
+				const int next[4] = { x > 0 ? p - 1 : -1, x + 1 < w ? p + 1 : -1, p >= w ? p - w : -1,
+						      p + w < w * h ? p + w : -1 };
+				for (int q : next)
+					if (q >= 0 && m[q] && !kept[q]) {
+						kept[q] = 1;
+						stack[top++] = q;
+					}
+			}
+		}
+	for (int i = 0; i < w * h; ++i)
+		m[i] = kept[i] ? 255 : 0;
+	return size;
+}
+
 } // namespace depthkey

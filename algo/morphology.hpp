@@ -41,4 +41,9 @@ int keepLargestComponent(Gray8Image &mask, ComponentScratch &scratch);
 // no preferred pixels at all, the largest); returns its size in pixels.
 int keepPreferredComponent(Gray8Image &mask, const Gray8Image &preferred, ComponentScratch &scratch);
 
+// Keeps the 4-connected components of mask that hold a non-zero pixel of
+// seeds (same size; morphological reconstruction), in place, and returns
+// their size in pixels.
+int keepComponentsTouching(Gray8Image &mask, const Gray8Image &seeds, ComponentScratch &scratch);
+
 } // namespace depthkey

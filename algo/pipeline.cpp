@@ -23,7 +23,7 @@ void Pipeline::configure(const Settings &settings, const MappingModel &mapping)
 	settings_ = settings;
 	mapping_ = mapping;
 	opacityQ8_ = opacityToQ8(settings.composite.opacity);
-	seeder_.configure(settings.segmentation, settings.learning);
+	seeder_.configure(settings.segmentation);
 	learner_.configure(settings.learning);
 	refiner_.configure(settings.siox);
 	if (reseed)
@@ -96,7 +96,8 @@ void Pipeline::process(const ColourFrame &colour, const DepthFrame &depth, Pipel
 	ensureSizes(colour.rgb.width(), colour.rgb.height(), depth.depthMm.width(), depth.depthMm.height());
 	seeder_.seed(depth, seeds_);
 	seedMapper_.map(seeds_, depth.depthMm, trimap_, roi_);
-	learner_.learn(colour.rgb, trimap_, seeds_.learnBoard, classifier_);
+	learner_.learn(colour.rgb, trimap_, settings_.learning.marginPx * seedMapper_.colourPixelsPerTofPixel(),
+		       classifier_);
 	// Until the first signatures exist the classifier calls every colour
 	// lecturer: the output is the depth superset, which never cuts the
 	// lecturer off.
@@ -115,6 +116,13 @@ void Pipeline::compose(const RgbImage &colour, PipelineOutput &out) const
 {
 	compositeRoi(colour, out.alpha, board_, roi_, opacityQ8_, out.composite, kernelPath_);
 	lecturerLayer(colour, out.alpha, out.lecturer, kernelPath_);
+}
+
+void Pipeline::confidence(const RgbImage &colour, Gray8Image &out) const
+{
+	out.resize(colour.width(), colour.height());
+	for (size_t i = 0; i < colour.size(); ++i)
+		out.data()[i] = classifier_.ready() ? classifier_.decideLab(lab_[quantiseColour(colour.data()[i])]) : 255;
 }
 
 void Pipeline::passThrough(const ColourFrame &colour, PipelineOutput &out)

@@ -67,6 +67,10 @@ public:
 	// Stage images of the last frame, for snapshots and previews.
 	const Gray8Image &trimap() const { return trimap_; }
 	const DepthSeeds &seeds() const { return seeds_; }
+	// SIOX's confidence (algo/siox_classifier.hpp) for every pixel of an
+	// image, not only the band: shows which colours the signatures confuse.
+	// For previews; allocates.
+	void confidence(const RgbImage &colour, Gray8Image &out) const;
 
 private:
 	void ensureSizes(int colourWidth, int colourHeight, int depthWidth, int depthHeight);

@@ -61,6 +61,10 @@ void collectPipelineStages(const ColourFrame &colour, const DepthFrame &depth, c
 		stages.add("seeds-tof", StageKind::Seeds, pipeline.seeds().labels);
 	if (!pipeline.trimap().empty())
 		stages.add("seeds", StageKind::Seeds, pipeline.trimap());
+	if (!colour.rgb.empty()) {
+		Gray8Image &confidence = stages.ownGray("siox-confidence", StageKind::Mask);
+		pipeline.confidence(colour.rgb, confidence);
+	}
 	if (!output.alpha.empty()) {
 		// The hard decision, before the soft matte.
 		Gray8Image &segmentation = stages.ownGray("segmentation", StageKind::Mask);

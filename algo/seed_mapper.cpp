@@ -28,6 +28,19 @@ static void footprintAt(const DepthMapper &mapper, int i, int u, int v, int z, i
 	h = (std::abs(ny - yQ8) + 255) / 256 + 1;
 }
 
+int SeedMapper::colourPixelsPerTofPixel() const
+{
+	const int tw = mapper_->tofWidth(), th = mapper_->tofHeight();
+	if (tw < 2 || th < 2)
+		return 1;
+	const int u = tw / 2, v = th / 2, i = v * tw + u;
+	int32_t x, y;
+	mapper_->map(i, 1500, x, y);
+	int w, h;
+	footprintAt(*mapper_, i, u, v, 1500, x, y, w, h);
+	return std::max(1, std::max(w, h) - 1); // without the one pixel of overlap
+}
+
 void SeedMapper::map(const DepthSeeds &seeds, const Gray16Image &depthMm, Gray8Image &trimap, Roi &roi)
 {
 	const int cw = mapper_->colourWidth(), ch = mapper_->colourHeight();

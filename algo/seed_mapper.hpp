@@ -27,6 +27,10 @@ public:
 	// painted region (empty when there is no lecturer).
 	void map(const DepthSeeds &seeds, const Gray16Image &depthMm, Gray8Image &trimap, Roi &roi);
 
+	// Colour pixels one ToF pixel spans at the image centre, at the depth a
+	// lecturer stands (1.5 m), rounded up: converts radii given in ToF pixels.
+	int colourPixelsPerTofPixel() const;
+
 private:
 	const DepthMapper *mapper_ = nullptr;
 	Roi previous_;

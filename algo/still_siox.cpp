@@ -7,7 +7,7 @@
 
 namespace depthkey {
 
-StillSiox::StillSiox() : classifier_(lab_), points_(kQuantisedColours)
+StillSiox::StillSiox() : classifier_(lab_)
 {
 }
 
@@ -27,7 +27,7 @@ int StillSiox::segment(const RgbImage &colour, const Gray8Image &trimap, Gray8Im
 	}
 	if (board_.total() == 0)
 		return -ENODATA;
-	deriveSignatures(lecturer_, board_, lab_, points_, classifier_);
+	deriveSignatures(lecturer_, board_, lab_, scratch_, classifier_);
 	refiner_.refine(colour, trimap, Roi{ 0, 0, w, h }, classifier_, alpha);
 	mask.resize(w, h);
 	for (size_t i = 0; i < alpha.size(); ++i)

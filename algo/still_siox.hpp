@@ -4,6 +4,7 @@
 // the same classification, post-processing and soft alpha as the pipeline.
 #pragma once
 
+#include "algo/colour_learner.hpp"
 #include "algo/decaying_histogram.hpp"
 #include "algo/siox_classifier.hpp"
 #include "algo/siox_refiner.hpp"
@@ -30,7 +31,7 @@ private:
 	SioxClassifier classifier_;
 	SioxRefiner refiner_;
 	DecayingHistogram lecturer_, board_;
-	std::vector<WeightedLab> points_;
+	SignatureScratch scratch_;
 };
 
 } // namespace depthkey

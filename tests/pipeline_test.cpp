@@ -261,18 +261,17 @@ TEST(DepthSeeder, RejectsUntrustedDepthAndSeparatesSubsetBandAndBoard)
 	settings.segmentation.erodePx = 1;
 	settings.segmentation.dilatePx = 2;
 	DepthSeeder seeder;
-	seeder.configure(settings.segmentation, settings.learning);
+	seeder.configure(settings.segmentation);
 	DepthSeeds seeds;
 	seeder.seed(depth, seeds);
 	EXPECT_EQ(seeds.labels.at(15, 10), kTrimapLecturer);
 	EXPECT_EQ(seeds.labels.at(20, 15), kTrimapUndecided); // untrusted: eroded around
 	EXPECT_EQ(seeds.labels.at(10, 5), kTrimapUndecided);  // the edge
 	EXPECT_EQ(seeds.labels.at(9, 15), kTrimapUndecided);  // dilated beyond
-	EXPECT_EQ(seeds.labels.at(8, 15), kTrimapBoard);
+	EXPECT_EQ(seeds.labels.at(8, 15), kTrimapUndecided);  // the in-range area, dilated
+	EXPECT_EQ(seeds.labels.at(7, 15), kTrimapBoard);
 	EXPECT_EQ(seeds.labels.at(1, 1), kTrimapBoard);       // smaller blob
 	EXPECT_EQ(seeds.labels.at(37, 15), kTrimapBoard);
-	EXPECT_EQ(seeds.learnBoard.at(37, 15), 255);
-	EXPECT_EQ(seeds.learnBoard.at(7, 15), 0);             // margin: not learned
 	EXPECT_EQ(seeds.lecturerDepthMm, 1200);
 }
 

@@ -32,6 +32,21 @@ void room(bool lecturer, std::mt19937 &random, DepthFrame &frame)
 				frame.depthMm.at(x, y) = 1400;
 }
 
+// A seeder (erode 1, dilate 2, far 1800 mm) that has seen the empty room
+// for a second.
+void seedEmptyRoom(std::mt19937 &random, DepthSeeder &seeder, DepthSeeds &seeds, DepthFrame &frame)
+{
+	Settings settings;
+	settings.segmentation.erodePx = 1;
+	settings.segmentation.dilatePx = 2;
+	settings.segmentation.farMm = 1800;
+	seeder.configure(settings.segmentation);
+	for (int i = 0; i < 30; ++i) {
+		room(false, random, frame);
+		seeder.seed(frame, seeds);
+	}
+}
+
 } // namespace
 
 TEST(StaticBackground, FurnitureAndNoiseAreStaticSomeoneInFrontOfTheBoardMoves)
@@ -100,22 +115,63 @@ TEST(Morphology, PreferredComponentHasTheMostPreferredPixelsElseTheLargest)
 TEST(DepthSeeder, ADeskLargerThanTheLecturerIsNotTheLecturer)
 {
 	std::mt19937 random(3);
-	Settings settings;
-	settings.segmentation.erodePx = 1;
-	settings.segmentation.dilatePx = 2;
-	settings.segmentation.farMm = 1800;
 	DepthSeeder seeder;
-	seeder.configure(settings.segmentation, settings.learning);
 	DepthSeeds seeds;
 	DepthFrame frame;
-	for (int i = 0; i < 30; ++i) { // the empty room
-		room(false, random, frame);
-		seeder.seed(frame, seeds);
-	}
+	seedEmptyRoom(random, seeder, seeds, frame);
 	EXPECT_EQ(seeds.labels.at(35, 25), kTrimapLecturer); // only the desk in range: largest
 	room(true, random, frame);
 	seeder.seed(frame, seeds);
 	EXPECT_EQ(seeds.labels.at(10, 18), kTrimapLecturer);
 	EXPECT_EQ(seeds.labels.at(35, 25), kTrimapBoard);
 	EXPECT_EQ(seeds.lecturerDepthMm, 1400);
+}
+
+TEST(DepthSeeder, AnArmThinnerThanTheErosionIsStillSeeded)
+{
+	std::mt19937 random(4);
+	DepthSeeder seeder;
+	DepthSeeds seeds;
+	DepthFrame frame;
+	seedEmptyRoom(random, seeder, seeds, frame);
+	// Only an arm, 2 pixels thick, reaches into view: the erosion leaves
+	// nothing of it, and the desk would be the only in-range area left.
+	room(false, random, frame);
+	for (int x = 0; x < 12; ++x)
+		for (int y = 8; y < 10; ++y)
+			frame.depthMm.at(x, y) = 1400;
+	seeder.seed(frame, seeds);
+	EXPECT_EQ(seeds.labels.at(6, 8), kTrimapLecturer);
+	EXPECT_EQ(seeds.labels.at(6, 11), kTrimapUndecided);
+	EXPECT_EQ(seeds.labels.at(35, 25), kTrimapBoard); // not the desk
+	EXPECT_EQ(seeds.lecturerDepthMm, 1400);
+
+	// The whole lecturer in view with a 1-pixel arm stretched out: the body
+	// is the subset, the arm (gone in the eroded mask) lies in the band.
+	room(true, random, frame);
+	for (int x = 15; x < 25; ++x)
+		frame.depthMm.at(x, 12) = 1400;
+	seeder.seed(frame, seeds);
+	EXPECT_EQ(seeds.labels.at(10, 18), kTrimapLecturer);
+	EXPECT_EQ(seeds.labels.at(24, 12), kTrimapUndecided);
+	EXPECT_EQ(seeds.labels.at(26, 12), kTrimapUndecided); // dilated beyond its end
+	EXPECT_EQ(seeds.labels.at(27, 12), kTrimapBoard);
+}
+
+TEST(Morphology, ComponentsTouchingSeedsAreKeptTheRestDropped)
+{
+	Gray8Image mask(12, 6, 0), seeds(12, 6, 0);
+	for (int x = 0; x < 4; ++x)
+		mask.at(x, 1) = 255; // component A: 4 pixels
+	for (int y = 0; y < 6; ++y)
+		mask.at(6, y) = 255; // component B: 6 pixels
+	mask.at(10, 3) = mask.at(11, 3) = mask.at(11, 4) = 255; // component C: 3 pixels
+	seeds.at(2, 1) = seeds.at(11, 4) = 255;                  // in A and C
+	seeds.at(8, 0) = 255;                                     // outside every component
+	ComponentScratch scratch;
+	EXPECT_EQ(keepComponentsTouching(mask, seeds, scratch), 7);
+	EXPECT_EQ(mask.at(0, 1), 255);
+	EXPECT_EQ(mask.at(10, 3), 255);
+	EXPECT_EQ(mask.at(6, 2), 0);
+	EXPECT_EQ(mask.at(8, 0), 0);
 }

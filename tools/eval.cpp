@@ -35,13 +35,14 @@ struct Options {
 	std::string method = "pipeline";
 	long simSeed = -1;
 	long frames = 0;
+	long previewEvery = 0; // 0 = the four spread frames
 };
 
 void usage(FILE *out)
 {
 	std::fprintf(out, "usage: depthkey-eval [--config FILE] (--sequence DIR | --sim SEED --frames N)\n"
 			  "                     [--method depth-only|pipeline] [--csv FILE] [--preview DIR]\n"
-			  "                     [--save-sequence DIR]\n");
+			  "                     [--preview-every N] [--save-sequence DIR]\n");
 }
 
 bool parseNumber(const char *text, long min, long &out)
@@ -89,6 +90,12 @@ int parseOptions(int argc, char **argv, Options &o)
 			o.csv = argv[++i];
 		} else if (arg == "--preview" && hasValue) {
 			o.preview = argv[++i];
+		} else if (arg == "--preview-every" && hasValue) {
+			if (!parseNumber(argv[++i], 1, o.previewEvery)) {
+				std::fprintf(stderr, "depthkey-eval: --preview-every needs a whole number >= 1, not '%s'\n",
+					     argv[i]);
+				return 2;
+			}
 		} else if (arg == "--save-sequence" && hasValue) {
 			o.saveSequence = argv[++i];
 		} else {
@@ -354,7 +361,7 @@ int main(int argc, char **argv)
 				return 1;
 			}
 		}
-		if (!o.preview.empty() && depth && isPreviewFrame(frame, o.frames)) {
+		if (!o.preview.empty() && depth && (o.previewEvery ? frame % o.previewEvery == 0 : isPreviewFrame(frame, o.frames))) {
 			StageImages stages;
 			method.stages(colour, *depth, truth, stages);
 			char prefix[32];

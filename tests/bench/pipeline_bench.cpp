@@ -102,7 +102,7 @@ struct Stages {
 		Settings s;
 		mapper.configure(identity(w, h));
 		seedMapper.configure(mapper);
-		seeder.configure(s.segmentation, s.learning);
+		seeder.configure(s.segmentation);
 		learner.configure(s.learning);
 		refiner.configure(s.siox);
 		board = RgbImage(w, h, Rgb8{ 30, 60, 40 });
@@ -118,7 +118,7 @@ struct Stages {
 	void run(const Inputs &in, int i)
 	{
 		seed(in, i);
-		learner.learn(in.colour[i % kFrames].rgb, trimap, seeds.learnBoard, classifier);
+		learner.learn(in.colour[i % kFrames].rgb, trimap, 8, classifier);
 		refiner.refine(in.colour[i % kFrames].rgb, trimap, roi, classifier, alpha);
 	}
 };
@@ -136,7 +136,7 @@ void BM_Stage(benchmark::State &state, int stage)
 			s->seed(in, i);
 			break;
 		case 1:
-			s->learner.learn(rgb, s->trimap, s->seeds.learnBoard, s->classifier);
+			s->learner.learn(rgb, s->trimap, 8, s->classifier);
 			break;
 		case 2:
 			s->refiner.refine(rgb, s->trimap, s->roi, s->classifier, s->alpha);
