@@ -6,13 +6,13 @@
 
 namespace depthkey {
 
-// Pixels set in both masks (same size).
-static int countSet(const Gray8Image &a, const Gray8Image &b)
+// Moving pixels in range but outside the chosen lecturer's area.
+static int movingOutside(const Gray8Image &trusted, const Gray8Image &chosen, const Gray8Image &moving)
 {
-	int n = 0;
-	for (size_t i = 0; i < a.size(); ++i)
-		n += a.data()[i] && b.data()[i];
-	return n;
+	int count = 0;
+	for (size_t i = 0; i < trusted.size(); ++i)
+		count += trusted.data()[i] && !chosen.data()[i] && moving.data()[i];
+	return count;
 }
 
 void DepthSeeder::configure(const SegmentationSettings &segmentation)
@@ -40,25 +40,24 @@ void DepthSeeder::seed(const DepthFrame &depth, DepthSeeds &out)
 		t[i] = inRange && trusted ? 255 : 0;
 	}
 
-	// Of the in-range areas, the one with the most pixels in front of the
-	// static background is the lecturer (a desk in range never is); the
-	// largest when nothing has moved yet.
+	// Which in-range area is the lecturer: algo/lecturer_picker.hpp.
 	background_.update(depth.depthMm, moving_);
-	const bool anyMoving = countSet(trusted_, moving_) > 0;
 	for (int r = settings_.erodePx; r >= 0; --r) {
 		erodeSquare(trusted_, r, subset_, morphology_, path_);
-		out.lecturerPixels = keepPreferredComponent(subset_, moving_, components_);
+		out.lecturerPixels = picker_.pick(subset_, moving_, components_);
+		// The superset grows from the lecturer's whole in-range area (the
+		// component holding the subset, before erosion), so an arm
+		// thinner than the erosion still lies in the band for SIOX.
+		reach_ = trusted_;
+		keepComponentsTouching(reach_, subset_, components_);
 		// A lecturer only partly in view (an arm reaching in from the
 		// edge) is thinner than the erosion: erode less rather than lose
-		// him, or pick the desk instead.
-		if (!anyMoving || countSet(subset_, moving_) > 0)
+		// him, or keep a still desk while he moves beside it.
+		if (out.lecturerPixels > 0 &&
+		    (picker_.lastMoved() || movingOutside(trusted_, reach_, moving_) < LecturerPicker::kMinMovingPixels))
 			break;
 	}
-	// The superset grows from the lecturer's whole in-range area (the
-	// component holding the subset, before erosion), so an arm thinner than
-	// the erosion still lies in the band for SIOX to decide.
-	reach_ = trusted_;
-	keepComponentsTouching(reach_, subset_, components_);
+	picker_.remember(subset_);
 	dilateSquare(reach_, settings_.dilatePx, superset_, morphology_, path_);
 
 	uint64_t depthSum = 0;

@@ -2,15 +2,17 @@
 // cheap (160x124 on the SR-2):
 //   trusted   = near <= depth <= far, min_amplitude <= amplitude < max_amplitude
 //               (a weak echo says nothing, a saturated one lies);
-//   subset    = the 4-connected component of erode(trusted, erode_px) with
-//               the most pixels in front of the static background
-//               (algo/static_background.hpp: a desk in range is furniture,
-//               not the lecturer), the largest when none: surely lecturer;
-//   superset  = dilate(subset, dilate_px); everything outside is surely board;
+//   subset    = the 4-connected component of erode(trusted, erode_px) that
+//               is the lecturer (algo/lecturer_picker.hpp: he moves or is
+//               where he was; a desk in range is furniture), eroded less
+//               when the erosion leaves nothing of him: surely lecturer;
+//   superset  = dilate(the in-range component holding the subset,
+//               dilate_px); everything outside is surely board;
 //   undecided = superset minus subset, where SIOX decides.
 #pragma once
 
 #include "algo/frames.hpp"
+#include "algo/lecturer_picker.hpp"
 #include "algo/morphology.hpp"
 #include "algo/static_background.hpp"
 #include "config/settings.hpp"
@@ -37,6 +39,7 @@ private:
 	KernelPath path_ = bestKernelPath();
 	Gray8Image trusted_, subset_, reach_, superset_, moving_;
 	StaticBackground background_;
+	LecturerPicker picker_;
 	MorphologyScratch morphology_;
 	ComponentScratch components_;
 };

@@ -54,42 +54,39 @@ void dilateSquare(const Gray8Image &in, int radius, Gray8Image &out, MorphologyS
 	morph(in, radius, out, scratch, false, path);
 }
 
-// Labels live in a grid one pixel larger on every side whose border is
-// never set, so the flood visits the 4 neighbours without bounds checks.
-static int keepBestComponent(Gray8Image &mask, const uint8_t *preferred, ComponentScratch &scratch)
+int labelComponents(const Gray8Image &mask, ComponentScratch &scratch)
 {
-	constexpr int32_t kUnset = -2, kUnvisited = -1;
 	const int w = mask.width(), h = mask.height(), stride = w + 2;
+	scratch.sizes.clear();
 	if (w == 0 || h == 0)
 		return 0;
-	scratch.labels.assign(size_t(stride) * (h + 2), kUnset);
+	// Labels live in a grid one pixel larger on every side whose border is
+	// never set, so the flood visits the 4 neighbours without bounds checks.
+	scratch.labels.assign(size_t(stride) * (h + 2), kNoComponent);
 	scratch.stack.resize(size_t(w) * h);
-	uint8_t *m = mask.data();
+	constexpr int32_t kUnvisited = -1;
+	const uint8_t *m = mask.data();
 	int32_t *labels = scratch.labels.data();
 	int32_t *stack = scratch.stack.data();
 	for (int y = 0; y < h; ++y) {
 		const uint8_t *row = m + size_t(y) * w;
 		int32_t *l = labels + size_t(y + 1) * stride + 1;
 		for (int x = 0; x < w; ++x)
-			l[x] = row[x] ? kUnvisited : kUnset;
+			l[x] = row[x] ? kUnvisited : kNoComponent;
 	}
-	int bestLabel = -1, bestSize = 0, bestPreferred = 0, label = 0;
+	int label = 0;
 	for (int y = 0; y < h; ++y) {
 		const int rowStart = (y + 1) * stride + 1;
 		for (int start = rowStart; start < rowStart + w; ++start) {
 			if (labels[start] != kUnvisited)
 				continue;
 			// Each pixel is pushed once (labelled when pushed): w * h entries suffice.
-			int top = 0, size = 0, preferredSize = 0;
+			int top = 0, size = 0;
 			labels[start] = label;
 			stack[top++] = start;
 			while (top) {
 				const int p = stack[--top];
 				++size;
-				if (preferred) {
-					const int py = p / stride - 1, px = p % stride - 1;
-					preferredSize += preferred[size_t(py) * w + px] != 0;
-				}
 				for (int q : { p - 1, p + 1, p - stride, p + stride }) {
 					if (labels[q] == kUnvisited) {
 						labels[q] = label;
@@ -97,21 +94,43 @@ static int keepBestComponent(Gray8Image &mask, const uint8_t *preferred, Compone
 					}
 				}
 			}
-			if (preferredSize > bestPreferred || (preferredSize == bestPreferred && size > bestSize)) {
-				bestSize = size;
-				bestPreferred = preferredSize;
-				bestLabel = label;
-			}
+			scratch.sizes.push_back(size);
 			++label;
 		}
 	}
+	return label;
+}
+
+void keepComponent(Gray8Image &mask, const ComponentScratch &scratch, int label)
+{
+	const int w = mask.width(), h = mask.height(), stride = w + 2;
 	for (int y = 0; y < h; ++y) {
-		uint8_t *row = m + size_t(y) * w;
-		const int32_t *l = labels + size_t(y + 1) * stride + 1;
+		uint8_t *row = mask.row(y);
+		const int32_t *l = scratch.labels.data() + size_t(y + 1) * stride + 1;
 		for (int x = 0; x < w; ++x)
-			row[x] = l[x] == bestLabel && bestLabel >= 0 ? 255 : 0;
+			row[x] = l[x] == label && label >= 0 ? 255 : 0;
 	}
-	return bestSize;
+}
+
+static int keepBestComponent(Gray8Image &mask, const uint8_t *preferred, ComponentScratch &scratch)
+{
+	const int count = labelComponents(mask, scratch);
+	const int w = mask.width(), stride = w + 2;
+	scratch.counts.assign(size_t(count), 0);
+	if (preferred)
+		for (int y = 0; y < mask.height(); ++y) {
+			const int32_t *l = scratch.labels.data() + size_t(y + 1) * stride + 1;
+			for (int x = 0; x < w; ++x)
+				if (l[x] >= 0 && preferred[size_t(y) * w + x])
+					scratch.counts[size_t(l[x])]++;
+		}
+	int best = -1;
+	for (int i = 0; i < count; ++i)
+		if (best < 0 || scratch.counts[i] > scratch.counts[best] ||
+		    (scratch.counts[i] == scratch.counts[best] && scratch.sizes[i] > scratch.sizes[best]))
+			best = i;
+	keepComponent(mask, scratch, best);
+	return best >= 0 ? scratch.sizes[size_t(best)] : 0;
 }
 
 int keepLargestComponent(Gray8Image &mask, ComponentScratch &scratch)

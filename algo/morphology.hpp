@@ -27,9 +27,22 @@ void dilateSquare(const Gray8Image &in, int radius, Gray8Image &out, MorphologyS
 		  KernelPath path = bestKernelPath());
 
 struct ComponentScratch {
-	std::vector<int32_t> labels;
+	std::vector<int32_t> labels;   // (w+2) x (h+2), see labelComponents
 	std::vector<int32_t> stack;
+	std::vector<int32_t> sizes;    // pixels per component
+	std::vector<int32_t> counts;   // per component, for the caller's statistics
 };
+
+constexpr int32_t kNoComponent = -2;
+
+// Labels the 4-connected components of mask 0, 1, ... in raster order of
+// their first pixel: scratch.labels holds pixel (x, y)'s label at
+// (y + 1) * (w + 2) + x + 1 (kNoComponent outside the mask and on the
+// one-pixel frame), scratch.sizes each component's size. Returns how many.
+int labelComponents(const Gray8Image &mask, ComponentScratch &scratch);
+// Keeps only the component `label` of the last labelComponents (255), the
+// rest 0; label < 0 clears the mask.
+void keepComponent(Gray8Image &mask, const ComponentScratch &scratch, int label);
 
 // Keeps only the largest 4-connected component of mask (in place, 0 / 255)
 // and returns its size in pixels (0 when the mask is empty). Ties go to the

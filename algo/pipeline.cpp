@@ -101,6 +101,7 @@ void Pipeline::process(const ColourFrame &colour, const DepthFrame &depth, Pipel
 	// Until the first signatures exist the classifier calls every colour
 	// lecturer: the output is the depth superset, which never cuts the
 	// lecturer off.
+	refiner_.setLecturerBeyondBorder(seedMapper_.lecturerBeyondBorder());
 	refiner_.refine(colour.rgb, trimap_, roi_, classifier_, out.alpha);
 	compose(colour.rgb, out);
 

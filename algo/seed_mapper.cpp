@@ -54,6 +54,7 @@ void SeedMapper::map(const DepthSeeds &seeds, const Gray16Image &depthMm, Gray8I
 		std::memset(trimap.row(y) + previous_.x0, kTrimapBoard, size_t(previous_.x1 - previous_.x0));
 
 	roi = { cw, ch, 0, 0 };
+	lecturerBeyondBorder_ = false;
 	bool sizesMatch = seeds.labels.width() == tw && seeds.labels.height() == th &&
 			  depthMm.width() == tw && depthMm.height() == th;
 	if (!sizesMatch || seeds.lecturerPixels == 0) {
@@ -77,6 +78,8 @@ void SeedMapper::map(const DepthSeeds &seeds, const Gray16Image &depthMm, Gray8I
 		const int left = (xQ8 - fw * 128 + 128) >> 8, top = (yQ8 - fh * 128 + 128) >> 8; // centred
 		int x0 = std::max(0, left), y0 = std::max(0, top);
 		int x1 = std::min(cw, left + fw), y1 = std::min(ch, top + fh);
+		if (label == kTrimapLecturer && (left < 0 || top < 0 || left + fw > cw || top + fh > ch))
+			lecturerBeyondBorder_ = true;
 		if (x0 >= x1 || y0 >= y1)
 			continue;
 		// Lecturer is the highest label: max() with it is a plain store,

@@ -31,9 +31,15 @@ public:
 	// lecturer stands (1.5 m), rounded up: converts radii given in ToF pixels.
 	int colourPixelsPerTofPixel() const;
 
+	// Whether the last map() found surely-lecturer depth pixels outside the
+	// colour image (the depth camera sees wider): the lecturer reaches in
+	// over the image border, though no lecturer seed may lie inside.
+	bool lecturerBeyondBorder() const { return lecturerBeyondBorder_; }
+
 private:
 	const DepthMapper *mapper_ = nullptr;
 	Roi previous_;
+	bool lecturerBeyondBorder_ = false;
 };
 
 } // namespace depthkey

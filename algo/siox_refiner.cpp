@@ -160,8 +160,9 @@ void SioxRefiner::keepComponentsTouchingLecturer()
 	size_t top = 0;
 	stack_.resize(bandPixels_);
 	forEachBandPixel([&](int p, int) {
+		auto anchor = [&](uint8_t n) { return n == 255 || (n == kOutside && lecturerBeyondBorder_); };
 		if (m[p] == kUnreachedLecturer &&
-		    (m[p - 1] == 255 || m[p + 1] == 255 || m[p - stride] == 255 || m[p + stride] == 255)) {
+		    (anchor(m[p - 1]) || anchor(m[p + 1]) || anchor(m[p - stride]) || anchor(m[p + stride]))) {
 			m[p] = 255;
 			stack_[top++] = p;
 		}

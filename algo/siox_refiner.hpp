@@ -8,7 +8,8 @@
 //      (as SIOX's smoothcm with weights 1/3), then a threshold at one half;
 //   3. components: keep every 4-connected lecturer region of the band that
 //      touches a surely-lecturer pixel (not only the largest: a hand behind a
-//      thin undecided wrist stays), drop the rest;
+//      thin undecided wrist stays), or the image border when the lecturer
+//      goes on beyond it, drop the rest;
 //   4. holes: a board region of the band that reaches no surely-board pixel
 //      and not the image border is enclosed by the lecturer: fill it;
 //   5. soft alpha: band pixels on the final boundary take their colour's
@@ -35,6 +36,10 @@ class SioxRefiner
 {
 public:
 	void configure(const SioxSettings &settings) { settings_ = settings; }
+	// For the next refine(): the lecturer goes on beyond the image border
+	// (SeedMapper::lecturerBeyondBorder), so band regions SIOX calls
+	// lecturer that touch the border are his too, seed or no seed.
+	void setLecturerBeyondBorder(bool beyond) { lecturerBeyondBorder_ = beyond; }
 
 	// roi must contain every non-board trimap pixel with one pixel to spare
 	// (or the image border). alpha is resized to the image and written
@@ -70,6 +75,7 @@ private:
 	}
 
 	SioxSettings settings_;
+	bool lecturerBeyondBorder_ = false;
 	int width_ = 0, height_ = 0, stride_ = 0;
 	Gray8Image work_;             // (w+2) x (h+2): seeds, band pixels 0 / 255, kOutside around
 	std::vector<Span> spans_;

@@ -18,7 +18,8 @@ void StaticBackground::update(const Gray16Image &depthMm, Gray8Image &moving)
 	constexpr int kOne = 1 << kFractionBits;
 	const uint16_t *d = depthMm.data();
 	uint16_t *mean = mean_.data(), *dev = deviation_.data();
-	uint8_t *m = moving.data();
+	inFront_.resize(w, h);
+	uint8_t *m = inFront_.data();
 	for (size_t i = 0; i < n; ++i) {
 		// Depths beyond 8191 mm (past the SR-2's range) are clamped so that
 		// Q3 fits 16 bits; they are never in the lecturer's interval.
@@ -42,6 +43,15 @@ void StaticBackground::update(const Gray16Image &depthMm, Gray8Image &moving)
 		// minus infinity, a bias of under 1/8 mm.
 		mean[i] = uint16_t(mu + ((z - mu) >> kRateShift));
 		dev[i] = uint16_t(dv + ((std::abs(z - mu) - dv) >> kRateShift));
+	}
+	for (int y = 0; y < h; ++y) {
+		const uint8_t *up = y > 0 ? inFront_.row(y - 1) : nullptr, *row = inFront_.row(y);
+		const uint8_t *down = y + 1 < h ? inFront_.row(y + 1) : nullptr;
+		uint8_t *out = moving.row(y);
+		for (int x = 0; x < w; ++x) {
+			int neighbours = (x > 0 && row[x - 1]) + (x + 1 < w && row[x + 1]) + (up && up[x]) + (down && down[x]);
+			out[x] = row[x] && neighbours >= 2 ? 255 : 0;
+		}
 	}
 }
 

@@ -35,13 +35,16 @@ public:
 	static constexpr int kFractionBits = 3; // Q3 mm: 7500 mm * 8 fits in uint16
 
 	// Updates the model with a frame (0 = no measurement: unchanged) and
-	// writes moving (255 where the depth is in front of the background,
-	// else 0). The first frame, or one of a new size, starts the model
+	// writes moving (255 where the depth is in front of the background and
+	// so are at least two of the 4 neighbours, else 0: the noise of a weak
+	// echo, a glossy monitor, makes scattered single pixels look moving;
+	// a moving arm two pixels thick still counts). The first frame, or one of a new size, starts the model
 	// with its depths and a deviation of kToleranceMm.
 	void update(const Gray16Image &depthMm, Gray8Image &moving);
 
 private:
 	Gray16Image mean_, deviation_; // Q3 mm; mean 0 = not seen yet
+	Gray8Image inFront_;
 };
 
 } // namespace depthkey

@@ -78,15 +78,19 @@ TEST(StaticBackground, SomeoneStandingStillFadesIntoTheBackgroundSlowly)
 {
 	StaticBackground background;
 	Gray8Image moving;
-	Gray16Image depth(4, 4, 2000);
+	Gray16Image depth(6, 6, 2000);
 	background.update(depth, moving);
-	depth.at(1, 1) = 1400;
+	depth.at(4, 4) = 1400; // alone: noise, never moving
+	for (int y = 1; y < 3; ++y)
+		for (int x = 1; x < 3; ++x)
+			depth.at(x, y) = 1400; // someone, 2 x 2 pixels
 	// 600 mm in front, tolerance 150 + 2 * 150 (the initial deviation): it
 	// takes (600 - 450) / kFadeMmPerFrame frames to fade in, not fewer.
 	int framesMoving = 0;
 	for (int i = 0; i < 400; ++i) {
 		background.update(depth, moving);
 		framesMoving += moving.at(1, 1) != 0;
+		ASSERT_EQ(moving.at(4, 4), 0);
 	}
 	EXPECT_GE(framesMoving, (600 - 3 * StaticBackground::kToleranceMm) / StaticBackground::kFadeMmPerFrame - 1);
 	EXPECT_LT(framesMoving, 400);
