@@ -69,6 +69,52 @@ void DepthSeeder::seed(const DepthFrame &depth, DepthSeeds &out)
 			depthSum += d[i];
 	}
 	out.lecturerDepthMm = out.lecturerPixels ? int(depthSum / unsigned(out.lecturerPixels)) : 0;
+	smoothSurface(depth.depthMm, out);
+}
+
+void DepthSeeder::smoothSurface(const Gray16Image &depthMm, DepthSeeds &out)
+{
+	const int w = depthMm.width(), h = depthMm.height(), stride = w + 1;
+	out.surfaceMm.resize(w, h);
+	depthSums_.resize(size_t(stride) * (h + 1));
+	counts_.resize(depthSums_.size());
+	// Integral images of the lecturer's in-range depths and their count
+	// (at most 8191 mm x 65536 pixels: fits 32 bits for any ToF camera).
+	std::fill(depthSums_.begin(), depthSums_.begin() + stride, 0u);
+	std::fill(counts_.begin(), counts_.begin() + stride, 0u);
+	for (int y = 0; y < h; ++y) {
+		const uint16_t *d = depthMm.row(y);
+		const uint8_t *r = reach_.row(y);
+		uint32_t rowSum = 0, rowCount = 0;
+		uint32_t *sums = depthSums_.data() + size_t(y + 1) * stride, *counts = counts_.data() + size_t(y + 1) * stride;
+		sums[0] = counts[0] = 0;
+		for (int x = 0; x < w; ++x) {
+			rowSum += r[x] ? d[x] : 0;
+			rowCount += r[x] ? 1 : 0;
+			sums[x + 1] = sums[x + 1 - stride] + rowSum;
+			counts[x + 1] = counts[x + 1 - stride] + rowCount;
+		}
+	}
+	const uint16_t fallback = uint16_t(out.lecturerDepthMm);
+	const int radius = settings_.dilatePx + 1;
+	for (int y = 0; y < h; ++y) {
+		const uint8_t *labels = out.labels.row(y);
+		uint16_t *surface = out.surfaceMm.row(y);
+		const int y0 = std::max(0, y - radius), y1 = std::min(h, y + radius + 1);
+		for (int x = 0; x < w; ++x) {
+			if (labels[x] == kTrimapBoard) {
+				surface[x] = 0;
+				continue;
+			}
+			const int x0 = std::max(0, x - radius), x1 = std::min(w, x + radius + 1);
+			auto box = [&](const std::vector<uint32_t> &s) {
+				return s[size_t(y1) * stride + x1] - s[size_t(y0) * stride + x1] - s[size_t(y1) * stride + x0] +
+				       s[size_t(y0) * stride + x0];
+			};
+			const uint32_t count = box(counts_);
+			surface[x] = count ? uint16_t((box(depthSums_) + count / 2) / count) : fallback;
+		}
+	}
 }
 
 } // namespace depthkey

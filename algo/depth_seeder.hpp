@@ -17,10 +17,19 @@
 #include "algo/static_background.hpp"
 #include "config/settings.hpp"
 
+#include <vector>
+
 namespace depthkey {
 
 struct DepthSeeds {
 	Gray8Image labels;          // trimap labels (algo/trimap.hpp), ToF resolution
+	// The depth each lecturer or undecided pixel is mapped into the colour
+	// image with: the mean depth of the lecturer's in-range pixels within
+	// dilate_px + 1 (his surface there, without the ToF noise, which would
+	// scatter neighbouring pixels by different parallaxes and leave gaps;
+	// the radius reaches him from every band pixel, so the whole band moves
+	// with him), else his mean depth. 0 on board pixels.
+	Gray16Image surfaceMm;
 	int lecturerDepthMm = 0;    // mean depth of the surely-lecturer pixels; 0 = none
 	int lecturerPixels = 0;
 };
@@ -28,6 +37,7 @@ struct DepthSeeds {
 class DepthSeeder
 {
 public:
+
 	void configure(const SegmentationSettings &segmentation);
 	void setKernelPath(KernelPath path) { path_ = path; }
 
@@ -37,7 +47,10 @@ public:
 private:
 	SegmentationSettings settings_;
 	KernelPath path_ = bestKernelPath();
+	void smoothSurface(const Gray16Image &depthMm, DepthSeeds &out);
+
 	Gray8Image trusted_, subset_, reach_, superset_, moving_;
+	std::vector<uint32_t> depthSums_, counts_; // integral images, (w+1) x (h+1)
 	StaticBackground background_;
 	LecturerPicker picker_;
 	MorphologyScratch morphology_;

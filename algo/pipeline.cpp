@@ -95,7 +95,7 @@ void Pipeline::process(const ColourFrame &colour, const DepthFrame &depth, Pipel
 {
 	ensureSizes(colour.rgb.width(), colour.rgb.height(), depth.depthMm.width(), depth.depthMm.height());
 	seeder_.seed(depth, seeds_);
-	seedMapper_.map(seeds_, depth.depthMm, trimap_, roi_);
+	seedMapper_.map(seeds_, trimap_, roi_);
 	learner_.learn(colour.rgb, trimap_, settings_.learning.marginPx * seedMapper_.colourPixelsPerTofPixel(),
 		       classifier_);
 	// Until the first signatures exist the classifier calls every colour

@@ -41,7 +41,7 @@ int SeedMapper::colourPixelsPerTofPixel() const
 	return std::max(1, std::max(w, h) - 1); // without the one pixel of overlap
 }
 
-void SeedMapper::map(const DepthSeeds &seeds, const Gray16Image &depthMm, Gray8Image &trimap, Roi &roi)
+void SeedMapper::map(const DepthSeeds &seeds, Gray8Image &trimap, Roi &roi)
 {
 	const int cw = mapper_->colourWidth(), ch = mapper_->colourHeight();
 	const int tw = mapper_->tofWidth(), th = mapper_->tofHeight();
@@ -56,21 +56,20 @@ void SeedMapper::map(const DepthSeeds &seeds, const Gray16Image &depthMm, Gray8I
 	roi = { cw, ch, 0, 0 };
 	lecturerBeyondBorder_ = false;
 	bool sizesMatch = seeds.labels.width() == tw && seeds.labels.height() == th &&
-			  depthMm.width() == tw && depthMm.height() == th;
+			  seeds.surfaceMm.width() == tw && seeds.surfaceMm.height() == th;
 	if (!sizesMatch || seeds.lecturerPixels == 0) {
 		roi = {};
 		previous_ = roi;
 		return;
 	}
 	const uint8_t *labels = seeds.labels.data();
-	const uint16_t *depth = depthMm.data();
+	const uint16_t *surface = seeds.surfaceMm.data();
 	for (int i = 0; i < tw * th; ++i) {
 		uint8_t label = labels[i];
 		if (label == kTrimapBoard)
 			continue;
-		// No measurement (0): assume the lecturer's depth, the likeliest
-		// surface next to the lecturer's seeds.
-		int z = depth[i] ? depth[i] : seeds.lecturerDepthMm;
+		// The lecturer's smoothed surface (DepthSeeds::surfaceMm).
+		int z = surface[i] ? surface[i] : seeds.lecturerDepthMm;
 		int32_t xQ8, yQ8;
 		mapper_->map(i, z, xQ8, yQ8);
 		int fw, fh;

@@ -1,8 +1,9 @@
 // Carries the depth seeds from ToF resolution into the colour image: each
-// surely-lecturer or undecided ToF pixel is mapped (DepthMapper, with its own
-// depth) and painted as a block of its footprint (the colour-pixel step to
-// its neighbouring ToF pixels at that depth, plus one pixel of overlap, so
-// neighbouring blocks always touch, whatever the lenses' scales). Where
+// surely-lecturer or undecided ToF pixel is mapped (DepthMapper, at the
+// lecturer's smoothed surface depth, DepthSeeds::surfaceMm) and painted as
+// a block of its footprint (the colour-pixel step to its neighbouring ToF
+// pixels at that depth, plus one pixel of overlap, so neighbouring blocks
+// always touch, whatever the lenses' scales). Where
 // blocks overlap the higher label wins (lecturer over undecided over board):
 // the lecturer is the nearest surface in the scene, so this is the z-buffer's
 // "nearest wins" without storing depths. Everything not painted is board.
@@ -25,7 +26,7 @@ public:
 
 	// trimap is resized to the mapper's colour size; roi receives the
 	// painted region (empty when there is no lecturer).
-	void map(const DepthSeeds &seeds, const Gray16Image &depthMm, Gray8Image &trimap, Roi &roi);
+	void map(const DepthSeeds &seeds, Gray8Image &trimap, Roi &roi);
 
 	// Colour pixels one ToF pixel spans at the image centre, at the depth a
 	// lecturer stands (1.5 m), rounded up: converts radii given in ToF pixels.

@@ -3,6 +3,8 @@
 // (a ToF lens wider than the colour camera's, as in the simulated rig).
 
 #include "algo/depth_mapper.hpp"
+#include "algo/depth_seeder.hpp"
+#include "algo/trimap.hpp"
 #include "algo/seed_mapper.hpp"
 
 #include <gtest/gtest.h>
@@ -12,16 +14,16 @@ using namespace depthkey;
 namespace {
 
 // A solid block of surely-lecturer ToF pixels [u0, u1) x [v0, v1) at zMm.
-void solidSeeds(int tw, int th, int u0, int v0, int u1, int v1, int zMm, DepthSeeds &seeds, Gray16Image &depth)
+void solidSeeds(int tw, int th, int u0, int v0, int u1, int v1, int zMm, DepthSeeds &seeds)
 {
 	seeds.labels.resize(tw, th);
-	depth.resize(tw, th);
+	seeds.surfaceMm.resize(tw, th);
 	seeds.lecturerPixels = 0;
 	for (int v = 0; v < th; ++v)
 		for (int u = 0; u < tw; ++u) {
 			bool in = u >= u0 && u < u1 && v >= v0 && v < v1;
 			seeds.labels.at(u, v) = in ? kTrimapLecturer : kTrimapBoard;
-			depth.at(u, v) = uint16_t(in ? zMm : 2000);
+			seeds.surfaceMm.at(u, v) = uint16_t(in ? zMm : 0);
 			seeds.lecturerPixels += in;
 		}
 	seeds.lecturerDepthMm = zMm;
@@ -43,11 +45,10 @@ TEST(SeedMapper, WideToFLensLeavesNoGapsInsideTheMappedSeeds)
 	seedMapper.configure(mapper);
 
 	DepthSeeds seeds;
-	Gray16Image depth;
-	solidSeeds(model.tofWidth, model.tofHeight, 60, 50, 100, 80, 1500, seeds, depth);
+	solidSeeds(model.tofWidth, model.tofHeight, 60, 50, 100, 80, 1500, seeds);
 	Gray8Image trimap;
 	Roi roi;
-	seedMapper.map(seeds, depth, trimap, roi);
+	seedMapper.map(seeds, trimap, roi);
 
 	// The mapped centres of the block's corner pixels bound what must be solid.
 	int32_t x0, y0, x1, y1;
@@ -65,4 +66,30 @@ TEST(SeedMapper, WideToFLensLeavesNoGapsInsideTheMappedSeeds)
 	EXPECT_EQ(trimap.at((x0 >> 8) - 10, (y0 >> 8) - 10), kTrimapBoard);
 	EXPECT_EQ(trimap.at((x1 >> 8) + 10, (y1 >> 8) + 10), kTrimapBoard);
 	EXPECT_FALSE(roi.empty());
+}
+
+TEST(DepthSeeder, SurfaceDepthIsTheLecturersSmoothedDepth)
+{
+	// A lecturer whose depth alternates 1300 / 1700 mm (noise) in front of
+	// the board at 2000 mm.
+	DepthFrame depth;
+	depth.depthMm = Gray16Image(40, 30, 2000);
+	depth.amplitude = Gray16Image(40, 30, 3000);
+	for (int y = 5; y < 25; ++y)
+		for (int x = 10; x < 30; ++x)
+			depth.depthMm.at(x, y) = uint16_t((x + y) % 2 ? 1300 : 1700);
+	Settings settings;
+	settings.segmentation.erodePx = 1;
+	settings.segmentation.dilatePx = 2;
+	DepthSeeder seeder;
+	seeder.configure(settings.segmentation);
+	DepthSeeds seeds;
+	seeder.seed(depth, seeds);
+	ASSERT_EQ(seeds.labels.at(20, 15), kTrimapLecturer);
+	EXPECT_NEAR(seeds.surfaceMm.at(20, 15), 1500, 10); // 7 x 7 mean (radius dilate + 1)
+	EXPECT_NEAR(seeds.surfaceMm.at(11, 6), 1500, 25);  // near the corner: fewer
+	ASSERT_EQ(seeds.labels.at(8, 15), kTrimapUndecided);
+	EXPECT_NEAR(seeds.surfaceMm.at(8, 15), 1500, 25);  // band on the board: his depth
+	EXPECT_EQ(seeds.labels.at(2, 2), kTrimapBoard);
+	EXPECT_EQ(seeds.surfaceMm.at(2, 2), 0);
 }

@@ -113,7 +113,7 @@ struct Stages {
 	void seed(const Inputs &in, int i)
 	{
 		seeder.seed(in.depth[i % kFrames], seeds);
-		seedMapper.map(seeds, in.depth[i % kFrames].depthMm, trimap, roi);
+		seedMapper.map(seeds, trimap, roi);
 	}
 	void run(const Inputs &in, int i)
 	{
