@@ -63,14 +63,20 @@ int LecturerPicker::pick(Gray8Image &mask, const Gray8Image &moving, ComponentSc
 
 void LecturerPicker::remember(const Gray8Image &subset)
 {
-	previous_.resize(subset.width(), subset.height());
-	std::memcpy(previous_.data(), subset.data(), subset.size());
 	bool chosen = false;
 	for (size_t i = 0; i < subset.size() && !chosen; ++i)
 		chosen = subset.data()[i] != 0;
-	// Confirmed once the one followed moves; lost with him.
-	confirmed_ = chosen && (confirmed_ || lastMoved_);
+	// Confirmed once the one followed moves.
+	confirmed_ = chosen ? confirmed_ || lastMoved_ : confirmed_;
 	everChosen_ = everChosen_ || chosen;
+	// A frame without him (too thin after erosion, hidden for a moment)
+	// keeps where he was last seen: a lecturer standing still, whom the
+	// background model has taken in, is found there again. Where he left
+	// the view, nothing in range overlaps it.
+	if (chosen || previous_.width() != subset.width() || previous_.height() != subset.height()) {
+		previous_.resize(subset.width(), subset.height());
+		std::memcpy(previous_.data(), subset.data(), subset.size());
+	}
 }
 
 void LecturerPicker::reset()

@@ -4,9 +4,9 @@
 // mask is scored by
 //   2 x its pixels in front of the static background (he moves, furniture
 //       does not; algo/static_background.hpp), plus
-//   its overlap with the lecturer chosen in the previous frame (he is where
-//       he was a tenth of a second ago, also when standing still so long
-//       that the background model has taken him in).
+//   its overlap with the lecturer last chosen (he is where he was a tenth
+//       of a second ago, also when standing still so long that the
+//       background model has taken him in).
 // A component is a candidate only if it overlaps the previous lecturer or
 // enough of it moves (a few noisy pixels on a glossy monitor do not make it
 // a lecturer); with no candidate there is no lecturer (he has left). Before
@@ -41,7 +41,7 @@ public:
 private:
 	Gray8Image previous_;
 	bool everChosen_ = false;
-	bool confirmed_ = false;   // the one followed has moved since it was first chosen
+	bool confirmed_ = false;   // the one followed has moved at some time
 	bool lastMoved_ = false;   // the last pick's choice moves
 };
 
