@@ -158,8 +158,11 @@ bool ColourLearner::learn(const RgbImage &colour, const Gray8Image &trimap, int 
 
 	double share = samples ? double(misfits) / samples : 0.0;
 	bool due = false;
-	if (derivations_ == 0) {
-		due = frames_ >= settings_.initialFrames;
+	if (frames_ <= settings_.initialFrames) {
+		// Still collecting: provisional signatures from what is in so far,
+		// every frame, so SIOX works from the first frame on (better than
+		// the raw depth superset), the last at initial_frames.
+		due = true;
 	} else if (baseline_ < 0.0) {
 		// The first judged frame after a derivation sets the baseline.
 		if (samples)

@@ -4,10 +4,12 @@
 // pixel is visited over time). Both go into decaying histograms: the board
 // learns fast (its content changes all the time), the lecturer slowly.
 //
-// The signatures are derived once `initial_frames` frames are in, and after
-// that re-derived only when the samples have changed enough: when the share
-// of samples the current signatures put in the wrong class has risen by
-// `relearn_misfit` above what it was right after the last derivation.
+// While the first `initial_frames` frames come in, the signatures are
+// derived from what is there every frame (provisional: few samples yet, but
+// SIOX on them beats the raw depth superset); after that they are re-derived
+// only when the samples have changed enough: when the share of samples the
+// current signatures put in the wrong class has risen by `relearn_misfit`
+// above what it was right after the last derivation.
 #pragma once
 
 #include "algo/decaying_histogram.hpp"
@@ -50,6 +52,8 @@ public:
 	bool learn(const RgbImage &colour, const Gray8Image &trimap, int marginPx, SioxClassifier &classifier);
 
 	int frames() const { return frames_; }
+	// Still within the first initial_frames frames.
+	bool learning() const { return frames_ < settings_.initialFrames; }
 	int derivations() const { return derivations_; }
 	double misfitRate() const { return misfit_; }
 

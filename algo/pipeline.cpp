@@ -98,14 +98,14 @@ void Pipeline::process(const ColourFrame &colour, const DepthFrame &depth, Pipel
 	seedMapper_.map(seeds_, trimap_, roi_);
 	learner_.learn(colour.rgb, trimap_, settings_.learning.marginPx * seedMapper_.colourPixelsPerTofPixel(),
 		       classifier_);
-	// Until the first signatures exist the classifier calls every colour
-	// lecturer: the output is the depth superset, which never cuts the
-	// lecturer off.
+	// Until the first signatures exist (no lecturer or no board seen yet)
+	// the classifier calls every colour lecturer: the output is the depth
+	// superset, which never cuts the lecturer off.
 	refiner_.setLecturerBeyondBorder(seedMapper_.lecturerBeyondBorder());
 	refiner_.refine(colour.rgb, trimap_, roi_, classifier_, out.alpha);
 	compose(colour.rgb, out);
 
-	status_.learning = learner_.derivations() == 0;
+	status_.learning = learner_.learning();
 	status_.derivations = learner_.derivations();
 	status_.bandPixels = refiner_.bandPixels();
 	status_.lecturerCentroids = classifier_.lecturer().size();
