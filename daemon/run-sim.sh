@@ -1,16 +1,57 @@
 #!/bin/sh
 # `make run`: starts depthkeyd in the foreground on the simulated devices,
 # after saying once how to look at what it produces.
+#
+#   sh daemon/run-sim.sh BIN BUILD [CONFIG]
+#
+# The daemon runs with CONFIG (default config/depthkey.toml) except for
+# [mapping] calibration_file, which names BUILD/sim-calibration.toml, the
+# calibration `make` fits to the simulator with depthkey-calibrate --sim. The
+# merged config is written to BUILD/run.toml (rewritten by every run); the
+# shipped default config keeps calibration_file = "".
+# With RUN_SIM_PREPARE_ONLY=1 it only writes BUILD/run.toml and prints its
+# path (for the tests).
+set -eu
 bin=$1
-config=config/depthkey.toml
+build=$2
+source=${3:-config/depthkey.toml}
 snapshots=${TMPDIR:-/tmp}/depthkey-snapshots
+
+fail() {
+	echo "run-sim.sh: $*" >&2
+	exit 1
+}
+
+# The config loader wants an absolute calibration path.
+build=$(cd "$build" && pwd) || fail "build folder $2 not found"
+calibration=$build/sim-calibration.toml
+config=$build/run.toml
+[ -r "$calibration" ] ||
+	fail "$calibration is missing: make run fits it ($bin/depthkey-calibrate --sim --output $calibration)"
+# The path goes into a sed replacement and a TOML string: refuse what either
+# would read as more than characters.
+case $calibration in
+*[\"\\\|\&]*) fail "cannot write the path $calibration into $config (it has \", \\, | or &)" ;;
+esac
+[ "$(grep -c '^calibration_file = ""$' "$source")" = 1 ] ||
+	fail "$source: expected exactly one line 'calibration_file = \"\"' to point at $calibration"
+sed "s|^calibration_file = \"\"\$|calibration_file = \"$calibration\"|" "$source" > "$config.tmp"
+mv "$config.tmp" "$config"
+
+if [ "${RUN_SIM_PREPARE_ONLY:-0}" = 1 ]; then
+	echo "$config"
+	exit 0
+fi
+
 cat <<MSG
-depthkeyd is starting on simulated cameras (config: $config).
+depthkeyd is starting on simulated cameras with config $config:
+$source with [mapping] calibration_file = "$calibration"
+(fitted to the simulator; make run writes $config afresh from $source each time).
 Look at its output from another terminal:
   $bin/depthkey-shmcat --frames 250 | ffmpeg -y -i - composite.mp4     # 10 s of the composite
   $bin/depthkey-shmcat --stream lecturer --frames 1 | ffmpeg -y -i - lecturer.png
   kill -USR1 \$(pidof depthkeyd)    # stage snapshots (PNG) into $snapshots
-  kill -HUP \$(pidof depthkeyd)     # re-read $config
+  kill -HUP \$(pidof depthkeyd)     # re-read $config (edit that file, not $source, for it)
 Status lines below; Ctrl-C stops it.
 MSG
 exec "$bin/depthkeyd" --config "$config" --snapshot-dir "$snapshots"

@@ -1,5 +1,6 @@
 // depthkey-eval as scripts use it: its summary line, the same scores from
 // the simulator and from the sequence it saved, clear errors.
+#include "tests/shell_command.hpp"
 #include "tests/test_paths.hpp"
 
 #include <cstdio>
@@ -7,33 +8,8 @@
 #include <gtest/gtest.h>
 #include <string>
 
-namespace {
-
-// Runs a shell command; returns its stdout and sets the exit status.
-std::string run(const std::string &command, int &status)
-{
-	std::string out;
-	FILE *pipe = popen((command + " 2>&1").c_str(), "r");
-	if (!pipe) {
-		status = -1;
-		return out;
-	}
-	char buf[512];
-	while (std::fgets(buf, sizeof(buf), pipe))
-		out += buf;
-	int raw = pclose(pipe);
-	status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-	return out;
-}
-
-std::string lastLine(const std::string &text)
-{
-	size_t end = text.find_last_not_of('\n');
-	size_t start = text.rfind('\n', end);
-	return text.substr(start == std::string::npos ? 0 : start + 1, end - (start == std::string::npos ? 0 : start + 1) + 1);
-}
-
-} // namespace
+using depthkey::test::lastLine;
+using depthkey::test::run;
 
 TEST(EvalTool, SummaryLineAndSequenceRoundTrip)
 {
