@@ -12,6 +12,7 @@
 #include "algo/siox_refiner.hpp"
 #include "algo/still_siox.hpp"
 #include "hal/kernel_path_env.hpp"
+#include "hal/sim/sim_sequence.hpp"
 #include "hal/sim/simple_scene.hpp"
 #include "tests/synthetic_still.hpp"
 
@@ -55,6 +56,32 @@ const Inputs &inputs(int w, int h)
 	return *slot;
 }
 
+// Frames of the simulated lecture (every artefact on), from 8 s on, when the
+// lecturer stands at the board writing: each colour frame with the depth
+// frame that arrived last before it.
+const Inputs &lectureInputs(int w, int h)
+{
+	static std::map<std::pair<int, int>, std::unique_ptr<Inputs>> cache;
+	auto &slot = cache[{ w, h }];
+	if (!slot) {
+		slot = std::make_unique<Inputs>();
+		Settings s;
+		SimSequence sequence;
+		sequence.configure(s.sim, w, h, s.colour.fps, s.depth.fps);
+		GroundTruth truth;
+		DepthFrame latest;
+		for (uint64_t n = 0; n < 200 + kFrames; ++n) {
+			ColourFrame c;
+			sequence.frame(n, c, truth, [&](const DepthFrame &d) { latest = d; });
+			if (n >= 200 && !latest.depthMm.empty()) {
+				slot->colour.push_back(std::move(c));
+				slot->depth.push_back(latest);
+			}
+		}
+	}
+	return *slot;
+}
+
 MappingModel identity(int w, int h)
 {
 	MappingModel m;
@@ -63,10 +90,9 @@ MappingModel identity(int w, int h)
 	return m;
 }
 
-void BM_PipelineFrame(benchmark::State &state)
+void pipelineFrame(benchmark::State &state, const Inputs &in)
 {
 	const int w = int(state.range(0)), h = int(state.range(1));
-	const Inputs &in = inputs(w, h);
 	auto pipeline = std::make_unique<Pipeline>();
 	pipeline->configure(Settings{}, identity(w, h));
 	pipeline->setKernelPath(kernelPathFromEnvironment());
@@ -80,6 +106,18 @@ void BM_PipelineFrame(benchmark::State &state)
 		benchmark::DoNotOptimize(out.alpha.data());
 	}
 	state.counters["band_px"] = double(pipeline->status().bandPixels);
+}
+
+// The skeleton's simple scene (a figure in front of a plain board).
+void BM_PipelineFrame(benchmark::State &state)
+{
+	pipelineFrame(state, inputs(int(state.range(0)), int(state.range(1))));
+}
+
+// The simulated lecture: a larger lecturer, a desk, board writing, noise.
+void BM_PipelineFrameLecture(benchmark::State &state)
+{
+	pipelineFrame(state, lectureInputs(int(state.range(0)), int(state.range(1))));
 }
 
 // The stages one by one, with the state a running pipeline has.
@@ -171,6 +209,7 @@ void BM_DepthkeySioxStill(benchmark::State &state)
 
 #define SIZES ->Args({ 640, 480 })->Args({ 1920, 1080 })->Unit(benchmark::kMicrosecond)
 BENCHMARK(BM_PipelineFrame) SIZES;
+BENCHMARK(BM_PipelineFrameLecture) SIZES;
 BENCHMARK(BM_SeedAndMap) SIZES;
 BENCHMARK(BM_Learn) SIZES;
 BENCHMARK(BM_SioxBand) SIZES;

@@ -89,5 +89,3 @@ void BM_PngEncodeDepth160x124(benchmark::State &state)
 BENCHMARK(BM_PngEncodeDepth160x124)->Unit(benchmark::kMillisecond);
 
 } // namespace
-
-BENCHMARK_MAIN();
