@@ -146,35 +146,48 @@ int keepPreferredComponent(Gray8Image &mask, const Gray8Image &preferred, Compon
 
 int keepComponentsTouching(Gray8Image &mask, const Gray8Image &seeds, ComponentScratch &scratch)
 {
-	const int w = mask.width(), h = mask.height();
+	const int w = mask.width(), h = mask.height(), stride = w + 2;
 	if (w == 0 || h == 0 || seeds.width() != w || seeds.height() != h)
 		return 0;
-	// Flood from every seed pixel inside the mask; kept pixels are marked
-	// 1 in labels (0 = not in the mask, or not reached yet).
-	scratch.labels.assign(size_t(w) * h, 0);
+	// A grid one pixel larger on every side (never in the mask), so the
+	// flood reads the 4 neighbours without bounds checks: 0 = not in the
+	// mask, 1 = in it, 2 = reached from a seed.
+	constexpr int32_t kIn = 1, kKept = 2;
+	scratch.labels.assign(size_t(stride) * (h + 2), 0);
 	scratch.stack.resize(size_t(w) * h);
-	uint8_t *m = mask.data();
-	const uint8_t *s = seeds.data();
-	int32_t *kept = scratch.labels.data(), *stack = scratch.stack.data();
+	int32_t *grid = scratch.labels.data(), *stack = scratch.stack.data();
+	for (int y = 0; y < h; ++y) {
+		const uint8_t *row = mask.row(y);
+		int32_t *g = grid + size_t(y + 1) * stride + 1;
+		for (int x = 0; x < w; ++x)
+			g[x] = row[x] ? kIn : 0;
+	}
 	int top = 0, size = 0;
-	for (int i = 0; i < w * h; ++i)
-		if (m[i] && s[i] && !kept[i]) {
-			kept[i] = 1;
-			stack[top++] = i;
+	for (int y = 0; y < h; ++y) {
+		const uint8_t *s = seeds.row(y);
+		const int rowStart = (y + 1) * stride + 1;
+		for (int x = 0; x < w; ++x) {
+			if (!s[x] || grid[rowStart + x] != kIn)
+				continue;
+			grid[rowStart + x] = kKept;
+			stack[top++] = rowStart + x;
 			while (top) {
-				const int p = stack[--top], x = p % w;
+				const int p = stack[--top];
 				++size;
-				const int next[4] = { x > 0 ? p - 1 : -1, x + 1 < w ? p + 1 : -1, p >= w ? p - w : -1,
-						      p + w < w * h ? p + w : -1 };
-				for (int q : next)
-					if (q >= 0 && m[q] && !kept[q]) {
-						kept[q] = 1;
+				for (int q : { p - 1, p + 1, p - stride, p + stride })
+					if (grid[q] == kIn) {
+						grid[q] = kKept;
 						stack[top++] = q;
 					}
 			}
 		}
-	for (int i = 0; i < w * h; ++i)
-		m[i] = kept[i] ? 255 : 0;
+	}
+	for (int y = 0; y < h; ++y) {
+		uint8_t *row = mask.row(y);
+		const int32_t *g = grid + size_t(y + 1) * stride + 1;
+		for (int x = 0; x < w; ++x)
+			row[x] = g[x] == kKept ? 255 : 0;
+	}
 	return size;
 }
 

@@ -6,11 +6,6 @@
 
 namespace depthkey {
 
-void SeedMapper::configure(const DepthMapper &mapper)
-{
-	mapper_ = &mapper;
-	previous_ = {};
-}
 
 // The footprint of ToF pixel i at depth z: the colour-pixel step to its right
 // and lower neighbours at the same depth (the left / upper one on the last
@@ -26,6 +21,26 @@ static void footprintAt(const DepthMapper &mapper, int i, int u, int v, int z, i
 	mapper.map(v + 1 < th ? i + tw : v > 0 ? i - tw : i, z, unused, ny);
 	w = (std::abs(nx - xQ8) + 255) / 256 + 1;
 	h = (std::abs(ny - yQ8) + 255) / 256 + 1;
+}
+
+void SeedMapper::configure(const DepthMapper &mapper)
+{
+	mapper_ = &mapper;
+	previous_ = {};
+	// Footprints per ToF pixel and depth bucket, once: two mappings per
+	// seed pixel and frame saved.
+	const int tw = mapper.tofWidth(), th = mapper.tofHeight(), n = tw * th;
+	footprints_.resize(size_t(n) * kFootprintBuckets);
+	for (int b = 0; b < kFootprintBuckets; ++b) {
+		const int z = kFootprintFirstMm + b * kFootprintStepMm;
+		for (int i = 0; i < n; ++i) {
+			int32_t x, y;
+			mapper.map(i, z, x, y);
+			int w, h;
+			footprintAt(mapper, i, i % tw, i / tw, z, x, y, w, h);
+			footprints_[size_t(b) * n + i] = { uint8_t(std::min(w, 255)), uint8_t(std::min(h, 255)) };
+		}
+	}
 }
 
 int SeedMapper::colourPixelsPerTofPixel() const
@@ -72,8 +87,10 @@ void SeedMapper::map(const DepthSeeds &seeds, Gray8Image &trimap, Roi &roi)
 		int z = surface[i] ? surface[i] : seeds.lecturerDepthMm;
 		int32_t xQ8, yQ8;
 		mapper_->map(i, z, xQ8, yQ8);
-		int fw, fh;
-		footprintAt(*mapper_, i, i % tw, i / tw, z, xQ8, yQ8, fw, fh);
+		const int bucket = std::clamp((z - kFootprintFirstMm + kFootprintStepMm / 2) / kFootprintStepMm, 0,
+					      kFootprintBuckets - 1);
+		const Footprint &footprint = footprints_[size_t(bucket) * (tw * th) + i];
+		const int fw = footprint.w, fh = footprint.h;
 		const int left = (xQ8 - fw * 128 + 128) >> 8, top = (yQ8 - fh * 128 + 128) >> 8; // centred
 		int x0 = std::max(0, left), y0 = std::max(0, top);
 		int x1 = std::min(cw, left + fw), y1 = std::min(ch, top + fh);

@@ -17,6 +17,8 @@
 #include "algo/depth_seeder.hpp"
 #include "algo/trimap.hpp"
 
+#include <vector>
+
 namespace depthkey {
 
 class SeedMapper
@@ -38,7 +40,15 @@ public:
 	bool lecturerBeyondBorder() const { return lecturerBeyondBorder_; }
 
 private:
+	// The footprint of each ToF pixel at depths 500, 750, ... 4000 mm (the
+	// nearest is used): precomputed, it changes little with depth.
+	static constexpr int kFootprintFirstMm = 500, kFootprintStepMm = 250, kFootprintBuckets = 15;
+	struct Footprint {
+		uint8_t w, h;
+	};
+
 	const DepthMapper *mapper_ = nullptr;
+	std::vector<Footprint> footprints_;
 	Roi previous_;
 	bool lecturerBeyondBorder_ = false;
 };
