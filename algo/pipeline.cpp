@@ -24,6 +24,7 @@ void Pipeline::configure(const Settings &settings, const MappingModel &mapping)
 	mapping_ = mapping;
 	opacityQ8_ = opacityToQ8(settings.composite.opacity);
 	seeder_.configure(settings.segmentation);
+	seeded_ = false; // new settings: seed the next frame again
 	learner_.configure(settings.learning);
 	refiner_.configure(settings.siox);
 	if (reseed)
@@ -67,6 +68,7 @@ void Pipeline::ensureSizes(int colourWidth, int colourHeight, int depthWidth, in
 		mapper_.configure(model);
 		seedMapper_.configure(mapper_);
 		mappingDirty_ = false;
+		seeded_ = false;
 		boardDirty_ = true;
 		restartLearning();
 	}
@@ -94,8 +96,18 @@ void Pipeline::renderBoard(int width, int height)
 void Pipeline::process(const ColourFrame &colour, const DepthFrame &depth, PipelineOutput &out)
 {
 	ensureSizes(colour.rgb.width(), colour.rgb.height(), depth.depthMm.width(), depth.depthMm.height());
-	seeder_.seed(depth, seeds_);
-	seedMapper_.map(seeds_, trimap_, roi_);
+	// Seeds depend on the depth frame only; the colour camera runs faster,
+	// so several colour frames share one depth frame, seeded once (and the
+	// static background learns once per depth frame, as it should).
+	const bool sameDepth = seeded_ && depth.timestampNs == seededNs_ && depth.sequence == seededSequence_ &&
+			       (depth.timestampNs != 0 || depth.sequence != 0);
+	if (!sameDepth) {
+		seeder_.seed(depth, seeds_);
+		seedMapper_.map(seeds_, trimap_, roi_);
+		seeded_ = true;
+		seededNs_ = depth.timestampNs;
+		seededSequence_ = depth.sequence;
+	}
 	learner_.learn(colour.rgb, trimap_, settings_.learning.marginPx * seedMapper_.colourPixelsPerTofPixel(),
 		       classifier_);
 	// Until the first signatures exist (no lecturer or no board seen yet)

@@ -98,6 +98,8 @@ private:
 	PipelineStatus status_;
 	int colourWidth_ = 0, colourHeight_ = 0, depthWidth_ = 0, depthHeight_ = 0;
 	bool mappingDirty_ = true;
+	bool seeded_ = false;                       // seeds_/trimap_ are of the depth frame below
+	uint64_t seededNs_ = 0, seededSequence_ = 0;
 	bool boardDirty_ = true;
 };
 

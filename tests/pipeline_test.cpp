@@ -15,6 +15,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -273,4 +274,47 @@ TEST(DepthSeeder, RejectsUntrustedDepthAndSeparatesSubsetBandAndBoard)
 	EXPECT_EQ(seeds.labels.at(1, 1), kTrimapBoard);       // smaller blob
 	EXPECT_EQ(seeds.labels.at(37, 15), kTrimapBoard);
 	EXPECT_EQ(seeds.lecturerDepthMm, 1200);
+}
+
+TEST(Pipeline, SeedsOncePerDepthFrameAndAgainAfterNewSettings)
+{
+	SimFrames sim(320, 240);
+	Pipeline pipeline;
+	Settings settings;
+	pipeline.configure(settings, identity(320, 240));
+	PipelineOutput out;
+	sim.render(1.0);
+	sim.depth.timestampNs = 1'000'000'000;
+	sim.depth.sequence = 7;
+	pipeline.process(sim.colour, sim.depth, out);
+	const Gray8Image first = pipeline.trimap();
+	// The next colour frame keyed with the same depth frame: the same
+	// seeds, although the depth image buffer now holds something else (a
+	// caller may reuse it; the frame's identity is its time and sequence).
+	ColourFrame later = sim.colour;
+	sim.render(1.04);
+	later.rgb = sim.colour.rgb;
+	sim.render(2.0);
+	DepthFrame same = sim.depth;
+	same.timestampNs = 1'000'000'000;
+	same.sequence = 7;
+	pipeline.process(later, same, out);
+	EXPECT_TRUE(std::equal(first.data(), first.data() + first.size(), pipeline.trimap().data()));
+	// New settings seed the same frame again.
+	settings.segmentation.dilatePx = 8;
+	pipeline.configure(settings, identity(320, 240));
+	pipeline.process(later, same, out);
+	EXPECT_FALSE(std::equal(first.data(), first.data() + first.size(), pipeline.trimap().data()));
+	// A new depth frame (the figure has moved by t = 2 s) is seeded.
+	settings.segmentation.dilatePx = Settings{}.segmentation.dilatePx;
+	pipeline.configure(settings, identity(320, 240));
+	same.sequence = 8;
+	pipeline.process(later, same, out);
+	const Gray8Image moved = pipeline.trimap();
+	EXPECT_FALSE(std::equal(first.data(), first.data() + first.size(), moved.data()));
+	sim.render(1.0);
+	sim.depth.timestampNs = 1'100'000'000;
+	sim.depth.sequence = 9;
+	pipeline.process(later, sim.depth, out); // no new settings: seeded for being new
+	EXPECT_FALSE(std::equal(moved.data(), moved.data() + moved.size(), pipeline.trimap().data()));
 }
