@@ -19,6 +19,7 @@ constexpr uint8_t kUnreachedBoard = 2;
 // The frame around the image: neither lecturer nor board, and for the hole
 // filling the way out to the border.
 constexpr uint8_t kOutside = 3;
+constexpr uint8_t kCounting = 4;
 
 inline bool isSeed(uint8_t label) { return label == kTrimapBoard || label == kTrimapLecturer; }
 
@@ -168,9 +169,28 @@ void SioxRefiner::keepComponentsTouchingLecturer()
 		}
 	});
 	flood(m, stride, stack_.data(), top, kUnreachedLecturer, 255);
+	// The rest: kept if large (an arm cut from the body by clothes of the
+	// board's colour, which SIOX calls board), else dropped (specks, chalk
+	// writing the colour of a shirt).
+	const size_t minKeep = std::max(kFreeComponentMinPx, size_t(width_) * size_t(height_) / kFreeComponentDivisor);
 	forEachBandPixel([&](int p, int) {
-		if (m[p] == kUnreachedLecturer)
-			m[p] = 0;
+		if (m[p] != kUnreachedLecturer)
+			return;
+		// Collect the component breadth-first in stack_ (as a list).
+		size_t head = 0, tail = 0;
+		m[p] = kCounting;
+		stack_[tail++] = p;
+		while (head < tail) {
+			const int q = stack_[head++];
+			for (int r : { q - 1, q + 1, q - stride, q + stride })
+				if (m[r] == kUnreachedLecturer) {
+					m[r] = kCounting;
+					stack_[tail++] = r;
+				}
+		}
+		const uint8_t keep = tail >= minKeep ? 255 : 0;
+		for (size_t k = 0; k < tail; ++k)
+			m[stack_[k]] = keep;
 	});
 }
 

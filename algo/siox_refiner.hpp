@@ -9,7 +9,10 @@
 //   3. components: keep every 4-connected lecturer region of the band that
 //      touches a surely-lecturer pixel (not only the largest: a hand behind a
 //      thin undecided wrist stays), or the image border when the lecturer
-//      goes on beyond it, drop the rest;
+//      goes on beyond it, or is large: at least 1/kFreeComponentDivisor of
+//      the image and kFreeComponentMinPx (400 pixels at 640x480: an arm cut
+//      from the body by a vest of the board's colour); drop the rest
+//      (specks, chalk writing);
 //   4. holes: a board region of the band that reaches no surely-board pixel
 //      and not the image border is enclosed by the lecturer: fill it;
 //   5. soft alpha: band pixels on the final boundary take their colour's
@@ -35,6 +38,8 @@ namespace depthkey {
 class SioxRefiner
 {
 public:
+	static constexpr size_t kFreeComponentDivisor = 768, kFreeComponentMinPx = 400;
+
 	void configure(const SioxSettings &settings) { settings_ = settings; }
 	// For the next refine(): the lecturer goes on beyond the image border
 	// (SeedMapper::lecturerBeyondBorder), so band regions SIOX calls

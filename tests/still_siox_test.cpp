@@ -230,3 +230,34 @@ TEST(DepthkeySiox, FailsClearlyOnBadInput)
 	EXPECT_EQ(runTool(dir.path + "/image.ppm " + dir.path + "/trimap.png " + dir.path + "/m.png --smoothing 9"), 1);
 	EXPECT_EQ(runTool(dir.path + "/image.ppm " + dir.path + "/trimap.png /nonexistent-dir/m.png"), 1);
 }
+
+TEST(StillSiox, ALargeLecturerRegionCutOffByBoardColouredClothesStays)
+{
+	// A body seed in a dark vest the colour of the board; beside it, in the
+	// band, a white sleeve (30 x 20 = 600 pixels) that touches the body only
+	// through the vest, and a small white blob (6 x 6) touching nothing.
+	const Rgb8 board{ 30, 60, 40 }, sleeve{ 220, 220, 215 };
+	RgbImage image(160, 100, board);
+	Gray8Image trimap(160, 100, kTrimapBoard);
+	for (int y = 10; y < 90; ++y)
+		for (int x = 10; x < 150; ++x)
+			trimap.at(x, y) = kTrimapUndecided;
+	for (int y = 30; y < 70; ++y)
+		for (int x = 20; x < 50; ++x) {
+			trimap.at(x, y) = kTrimapLecturer; // body seed: shirt in the middle, vest around
+			if (x >= 28 && x < 42)
+				image.at(x, y) = sleeve;
+		}
+	for (int y = 40; y < 60; ++y)
+		for (int x = 56; x < 86; ++x)
+			image.at(x, y) = sleeve; // the sleeve, 6 pixels of vest-coloured band from the body
+	for (int y = 70; y < 76; ++y)
+		for (int x = 120; x < 126; ++x)
+			image.at(x, y) = sleeve; // a blob of chalk
+	StillSiox siox;
+	Gray8Image mask, alpha;
+	ASSERT_EQ(siox.segment(image, trimap, mask, alpha), 0);
+	EXPECT_EQ(mask.at(53, 50), 0);   // the vest-coloured gap
+	EXPECT_EQ(mask.at(70, 50), 255); // the sleeve stays
+	EXPECT_EQ(mask.at(122, 72), 0);  // the small blob goes
+}
