@@ -1,4 +1,6 @@
 #include "algo/segmentation_metrics.hpp"
+#include "algo/trimap.hpp"
+#include "algo/trimap_attribution.hpp"
 
 #include <gtest/gtest.h>
 
@@ -92,4 +94,32 @@ TEST(SegmentationMetrics, AverageWeighsFramesEqually)
 	avg.add(b);
 	EXPECT_EQ(avg.frames(), 2);
 	EXPECT_DOUBLE_EQ(avg.mean().iou, 0.75);
+}
+
+TEST(TrimapAttribution, WrongPixelsBySeedAndBandAndTheBoundOfTheSeeds)
+{
+	// Four pixels: surely lecturer, band, band, surely board.
+	Gray8Image trimap(4, 1), truth(4, 1), alpha(4, 1);
+	const uint8_t t[] = { kTrimapLecturer, kTrimapUndecided, kTrimapUndecided, kTrimapBoard };
+	const uint8_t is[] = { 255, 255, 0, 0 };
+	const uint8_t said[] = { 255, 0, 200, 255 }; // band: one lost, one taken; the board seed wrong
+	for (int x = 0; x < 4; ++x) {
+		trimap.at(x, 0) = t[x];
+		truth.at(x, 0) = is[x];
+		alpha.at(x, 0) = said[x];
+	}
+	SegmentationScorer scorer(2);
+	TrimapAttribution a;
+	a.add(alpha, truth, trimap, scorer);
+	using R = TrimapAttribution::Region;
+	EXPECT_EQ(a.pixels(R::SurelyLecturer), 1u);
+	EXPECT_EQ(a.wrong(R::SurelyLecturer), 0u);
+	EXPECT_EQ(a.pixels(R::Band), 2u);
+	EXPECT_EQ(a.wrong(R::Band), 2u);
+	EXPECT_EQ(a.bandTaken(), 1u);
+	EXPECT_EQ(a.wrong(R::SurelyBoard), 1u);
+	// Band decided right: lecturer, lecturer, board, lecturer -> IoU 2 / 3.
+	EXPECT_NEAR(a.bound().iou, 2.0 / 3.0, 1e-9);
+	a.add(alpha, truth, Gray8Image(3, 1), scorer); // a trimap of another size: ignored
+	EXPECT_EQ(a.pixels(R::Band), 2u);
 }

@@ -10,8 +10,8 @@
 // fps counts the segmentation alone (not rendering or reading PNGs).
 #include "algo/pipeline.hpp"
 #include "algo/pipeline_stages.hpp"
-#include "algo/trimap.hpp"
 #include "algo/segmentation_metrics.hpp"
+#include "algo/trimap_attribution.hpp"
 #include "config/config_loader.hpp"
 #include "daemon/pipeline_setup.hpp"
 #include "daemon/snapshot_writer.hpp"
@@ -237,50 +237,30 @@ public:
 		return *alpha;
 	}
 
-	// Where the pipeline's wrong pixels lie in its trimap: a wrong seed is
-	// depth's fault, a wrong band pixel SIOX's.
-	void attribute(const Gray8Image &alpha, const Gray8Image &truth)
+	// Where the pipeline's wrong pixels lie in its trimap (a wrong seed is
+	// depth's fault, a wrong band pixel SIOX's), and the bound of the seeds.
+	void attribute(const Gray8Image &alpha, const Gray8Image &truth, SegmentationScorer &scorer)
 	{
-		const Gray8Image &trimap = pipeline_.trimap();
-		if (depthOnly_ || trimap.size() != truth.size() || alpha.size() != truth.size())
-			return;
-		for (size_t i = 0; i < truth.size(); ++i) {
-			bool said = alpha.data()[i] >= 128, is = truth.data()[i] >= 128;
-			uint8_t t = trimap.data()[i];
-			int k = t == kTrimapLecturer ? 0 : t == kTrimapBoard ? 2 : 1;
-			wrong_[k] += said != is;
-			bandTaken_ += k == 1 && said && !is;
-			pixels_[k]++;
-		}
-	}
-	// What the pipeline would score if SIOX decided every band pixel right
-	// (the seeds as they are): the bound the depth seeds set.
-	void scoreWithPerfectBand(const Gray8Image &alpha, const Gray8Image &truth, SegmentationScorer &scorer)
-	{
-		const Gray8Image &trimap = pipeline_.trimap();
-		if (depthOnly_ || trimap.size() != truth.size() || alpha.size() != truth.size())
-			return;
-		bandOracle_.resize(alpha.width(), alpha.height());
-		for (size_t i = 0; i < truth.size(); ++i) {
-			uint8_t t = trimap.data()[i];
-			bool band = t != kTrimapLecturer && t != kTrimapBoard;
-			bandOracle_.data()[i] = band ? truth.data()[i] : alpha.data()[i];
-		}
-		oracleAverage_.add(scorer.score(bandOracle_, truth));
+		if (!depthOnly_)
+			attribution_.add(alpha, truth, pipeline_.trimap(), scorer);
 	}
 	void printAttribution() const
 	{
-		if (depthOnly_ || !pixels_[1])
+		const TrimapAttribution &a = attribution_;
+		using R = TrimapAttribution::Region;
+		const uint64_t all = a.pixels(R::SurelyLecturer) + a.pixels(R::Band) + a.pixels(R::SurelyBoard);
+		if (depthOnly_ || !all)
 			return;
 		static const char *const names[] = { "surely lecturer", "band (SIOX)", "surely board" };
 		std::printf("  wrong pixels:");
-		for (int k = 0; k < 3; ++k)
-			std::printf(" %s %.4f of the image (%.3f of its pixels)%s", names[k],
-				    double(wrong_[k]) / double(pixels_[0] + pixels_[1] + pixels_[2]),
-				    pixels_[k] ? double(wrong_[k]) / double(pixels_[k]) : 0.0, k < 2 ? "," : "\n");
+		for (int k = 0; k < R::Regions; ++k) {
+			const R r = R(k);
+			std::printf(" %s %.4f of the image (%.3f of its pixels)%s", names[k], double(a.wrong(r)) / double(all),
+				    a.pixels(r) ? double(a.wrong(r)) / double(a.pixels(r)) : 0.0, k + 1 < R::Regions ? "," : "\n");
+		}
 		std::printf("  band: %.3f of its wrong pixels are board taken for lecturer\n",
-			    wrong_[1] ? double(bandTaken_) / double(wrong_[1]) : 0.0);
-		SegmentationScore o = oracleAverage_.mean();
+			    a.wrong(R::Band) ? double(a.bandTaken()) / double(a.wrong(R::Band)) : 0.0);
+		SegmentationScore o = a.bound();
 		std::printf("  bound of the depth seeds (every band pixel right): IoU %.3f  boundary F %.3f\n", o.iou,
 			    o.boundaryF);
 	}
@@ -311,9 +291,7 @@ private:
 	Gray16Image mapped_;
 	Gray8Image alpha_;
 	double seconds_ = 0;
-	uint64_t wrong_[3] = {}, pixels_[3] = {}, bandTaken_ = 0;
-	Gray8Image bandOracle_;
-	ScoreAverage oracleAverage_;
+	TrimapAttribution attribution_;
 };
 
 // Four frames spread over the run (at 1/8, 3/8, 5/8, 7/8 of it), or of an
@@ -395,10 +373,8 @@ int main(int argc, char **argv)
 		const DepthFrame *depth = pairer.match(colour.timestampNs);
 		const Gray8Image &alpha = method.run(colour, depth);
 		SegmentationScore s = scorer.score(alpha, truth);
-		if (depth) {
-			method.attribute(alpha, truth);
-			method.scoreWithPerfectBand(alpha, truth, scorer);
-		}
+		if (depth)
+			method.attribute(alpha, truth, scorer);
 		long frame = average.frames();
 		average.add(s);
 		if (csv)
