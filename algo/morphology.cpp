@@ -64,6 +64,11 @@ int labelComponents(const Gray8Image &mask, ComponentScratch &scratch)
 	// never set, so the flood visits the 4 neighbours without bounds checks.
 	scratch.labels.assign(size_t(stride) * (h + 2), kNoComponent);
 	scratch.stack.resize(size_t(w) * h);
+	// At most one component per two pixels (a checkerboard): room for the
+	// worst case once, so a noisier frame than any before never allocates.
+	const size_t maxComponents = (size_t(w) * h + 1) / 2;
+	scratch.sizes.reserve(maxComponents);
+	scratch.counts.reserve(2 * maxComponents);
 	constexpr int32_t kUnvisited = -1;
 	const uint8_t *m = mask.data();
 	int32_t *labels = scratch.labels.data();

@@ -9,6 +9,7 @@
 #include "algo/mask_rows.hpp"
 #include "algo/morphology.hpp"
 #include "algo/pipeline.hpp"
+#include "hal/sim/sim_sequence.hpp"
 #include "hal/sim/simple_scene.hpp"
 #include "tests/allocation_counter.hpp"
 #include "tests/synthetic_still.hpp"
@@ -116,6 +117,36 @@ TEST(Pipeline, NoHeapAllocationPerFrameInSteadyState)
 		std::printf("%dx%d: 20 frames, %d signature derivations, %zu allocations\n", w, h,
 			    pipeline.status().derivations - derivationsBefore, allocations);
 	}
+}
+
+TEST(Pipeline, NoHeapAllocationPerFrameOnTheSimulatedLecture)
+{
+	// The lecture scene with every artefact: noise scatters the depth image
+	// into many more components than the simple scene has, and the
+	// lecturer walks, writes, leaves and comes back.
+	if (!allocationCounting())
+		GTEST_SKIP() << "allocations are not counted under AddressSanitizer (the plain build counts them)";
+	Settings settings;
+	SimSequence sequence;
+	sequence.configure(settings.sim, 640, 480, settings.colour.fps, settings.depth.fps);
+	Pipeline pipeline;
+	pipeline.configure(settings, identity(640, 480));
+	PipelineOutput out;
+	GroundTruth truth;
+	DepthFrame latest;
+	ColourFrame colour;
+	size_t allocations = 0;
+	for (uint64_t n = 0; n < 300; ++n) {
+		sequence.frame(n, colour, truth, [&](const DepthFrame &d) { latest = d; });
+		if (latest.depthMm.empty())
+			continue;
+		CountAllocations counter;
+		pipeline.process(colour, latest, out);
+		if (n >= 30) // warm-up: buffers reach their sizes
+			allocations += counter.count();
+	}
+	EXPECT_EQ(allocations, 0u);
+	std::printf("simulated lecture: 270 frames, %zu allocations\n", allocations);
 }
 
 TEST(DepthMapper, FixedPointWithinHalfAPixelOfTheModel)
