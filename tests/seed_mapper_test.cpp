@@ -3,8 +3,6 @@
 // (a ToF lens wider than the colour camera's, as in the simulated rig).
 
 #include "algo/depth_mapper.hpp"
-#include "algo/depth_seeder.hpp"
-#include "algo/trimap.hpp"
 #include "algo/seed_mapper.hpp"
 
 #include <gtest/gtest.h>
@@ -66,30 +64,4 @@ TEST(SeedMapper, WideToFLensLeavesNoGapsInsideTheMappedSeeds)
 	EXPECT_EQ(trimap.at((x0 >> 8) - 10, (y0 >> 8) - 10), kTrimapBoard);
 	EXPECT_EQ(trimap.at((x1 >> 8) + 10, (y1 >> 8) + 10), kTrimapBoard);
 	EXPECT_FALSE(roi.empty());
-}
-
-TEST(DepthSeeder, SurfaceDepthIsTheLecturersSmoothedDepth)
-{
-	// A lecturer whose depth alternates 1300 / 1700 mm (noise) in front of
-	// the board at 2000 mm.
-	DepthFrame depth;
-	depth.depthMm = Gray16Image(40, 30, 2000);
-	depth.amplitude = Gray16Image(40, 30, 3000);
-	for (int y = 5; y < 25; ++y)
-		for (int x = 10; x < 30; ++x)
-			depth.depthMm.at(x, y) = uint16_t((x + y) % 2 ? 1300 : 1700);
-	Settings settings;
-	settings.segmentation.erodePx = 1;
-	settings.segmentation.dilatePx = 2;
-	DepthSeeder seeder;
-	seeder.configure(settings.segmentation);
-	DepthSeeds seeds;
-	seeder.seed(depth, seeds);
-	ASSERT_EQ(seeds.labels.at(20, 15), kTrimapLecturer);
-	EXPECT_NEAR(seeds.surfaceMm.at(20, 15), 1500, 10); // 7 x 7 mean (radius dilate + 1)
-	EXPECT_NEAR(seeds.surfaceMm.at(11, 6), 1500, 25);  // near the corner: fewer
-	ASSERT_EQ(seeds.labels.at(8, 15), kTrimapUndecided);
-	EXPECT_NEAR(seeds.surfaceMm.at(8, 15), 1500, 25);  // band on the board: his depth
-	EXPECT_EQ(seeds.labels.at(2, 2), kTrimapBoard);
-	EXPECT_EQ(seeds.surfaceMm.at(2, 2), 0);
 }
