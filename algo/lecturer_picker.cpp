@@ -56,18 +56,16 @@ int LecturerPicker::pick(Gray8Image &mask, const Gray8Image &moving, ComponentSc
 			best = k;
 		}
 	}
-	lastMoved_ = best >= 0 && moves(best);
+	lastChosen_ = best >= 0;
+	lastMoved_ = lastChosen_ && moves(best);
 	keepComponent(mask, scratch, best);
 	return best >= 0 ? scratch.sizes[size_t(best)] : 0;
 }
 
 void LecturerPicker::remember(const Gray8Image &subset)
 {
-	bool chosen = false;
-	for (size_t i = 0; i < subset.size() && !chosen; ++i)
-		chosen = subset.data()[i] != 0;
-	// Confirmed once the one followed moves.
-	confirmed_ = chosen ? confirmed_ || lastMoved_ : confirmed_;
+	const bool chosen = lastChosen_;
+	confirmed_ = confirmed_ || lastMoved_; // once the one followed moves
 	everChosen_ = everChosen_ || chosen;
 	// A frame without him (too thin after erosion, hidden for a moment)
 	// keeps where he was last seen: a lecturer standing still, whom the
@@ -81,7 +79,7 @@ void LecturerPicker::remember(const Gray8Image &subset)
 
 void LecturerPicker::reset()
 {
-	everChosen_ = confirmed_ = lastMoved_ = false;
+	everChosen_ = confirmed_ = lastChosen_ = lastMoved_ = false;
 }
 
 } // namespace depthkey

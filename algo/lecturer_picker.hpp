@@ -27,7 +27,8 @@ public:
 	// Keeps the chosen component of mask (in place, 255; all 0 when none)
 	// and returns its size. moving is the same size as mask.
 	int pick(Gray8Image &mask, const Gray8Image &moving, ComponentScratch &scratch);
-	// The lecturer of this frame (the last pick), for the next frame.
+	// The lecturer of this frame (the mask the last pick kept), for the
+	// next frame.
 	void remember(const Gray8Image &subset);
 	// Whether the last pick's choice moves.
 	bool lastMoved() const { return lastMoved_; }
@@ -42,6 +43,7 @@ private:
 	Gray8Image previous_;
 	bool everChosen_ = false;
 	bool confirmed_ = false;   // the one followed has moved at some time
+	bool lastChosen_ = false;  // the last pick kept a component
 	bool lastMoved_ = false;   // the last pick's choice moves
 };
 

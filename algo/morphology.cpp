@@ -117,38 +117,6 @@ void keepComponent(Gray8Image &mask, const ComponentScratch &scratch, int label)
 	}
 }
 
-static int keepBestComponent(Gray8Image &mask, const uint8_t *preferred, ComponentScratch &scratch)
-{
-	const int count = labelComponents(mask, scratch);
-	const int w = mask.width(), stride = w + 2;
-	scratch.counts.assign(size_t(count), 0);
-	if (preferred)
-		for (int y = 0; y < mask.height(); ++y) {
-			const int32_t *l = scratch.labels.data() + size_t(y + 1) * stride + 1;
-			for (int x = 0; x < w; ++x)
-				if (l[x] >= 0 && preferred[size_t(y) * w + x])
-					scratch.counts[size_t(l[x])]++;
-		}
-	int best = -1;
-	for (int i = 0; i < count; ++i)
-		if (best < 0 || scratch.counts[i] > scratch.counts[best] ||
-		    (scratch.counts[i] == scratch.counts[best] && scratch.sizes[i] > scratch.sizes[best]))
-			best = i;
-	keepComponent(mask, scratch, best);
-	return best >= 0 ? scratch.sizes[size_t(best)] : 0;
-}
-
-int keepLargestComponent(Gray8Image &mask, ComponentScratch &scratch)
-{
-	return keepBestComponent(mask, nullptr, scratch);
-}
-
-int keepPreferredComponent(Gray8Image &mask, const Gray8Image &preferred, ComponentScratch &scratch)
-{
-	bool sizesMatch = preferred.width() == mask.width() && preferred.height() == mask.height();
-	return keepBestComponent(mask, sizesMatch ? preferred.data() : nullptr, scratch);
-}
-
 int keepComponentsTouching(Gray8Image &mask, const Gray8Image &seeds, ComponentScratch &scratch)
 {
 	const int w = mask.width(), h = mask.height(), stride = w + 2;

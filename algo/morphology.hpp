@@ -44,16 +44,6 @@ int labelComponents(const Gray8Image &mask, ComponentScratch &scratch);
 // rest 0; label < 0 clears the mask.
 void keepComponent(Gray8Image &mask, const ComponentScratch &scratch, int label);
 
-// Keeps only the largest 4-connected component of mask (in place, 0 / 255)
-// and returns its size in pixels (0 when the mask is empty). Ties go to the
-// component met first in raster order.
-int keepLargestComponent(Gray8Image &mask, ComponentScratch &scratch);
-
-// Keeps only the 4-connected component of mask holding the most pixels where
-// preferred is non-zero (same size as mask), the larger one on a tie (so with
-// no preferred pixels at all, the largest); returns its size in pixels.
-int keepPreferredComponent(Gray8Image &mask, const Gray8Image &preferred, ComponentScratch &scratch);
-
 // Keeps the 4-connected components of mask that hold a non-zero pixel of
 // seeds (same size; morphological reconstruction), in place, and returns
 // their size in pixels.

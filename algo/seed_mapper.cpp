@@ -43,17 +43,20 @@ void SeedMapper::configure(const DepthMapper &mapper)
 	}
 }
 
+const SeedMapper::Footprint &SeedMapper::footprint(int i, int zMm) const
+{
+	const int bucket = std::clamp((zMm - kFootprintFirstMm + kFootprintStepMm / 2) / kFootprintStepMm, 0,
+				      kFootprintBuckets - 1);
+	return footprints_[size_t(bucket) * size_t(mapper_->tofWidth() * mapper_->tofHeight()) + size_t(i)];
+}
+
 int SeedMapper::colourPixelsPerTofPixel() const
 {
 	const int tw = mapper_->tofWidth(), th = mapper_->tofHeight();
 	if (tw < 2 || th < 2)
 		return 1;
-	const int u = tw / 2, v = th / 2, i = v * tw + u;
-	int32_t x, y;
-	mapper_->map(i, 1500, x, y);
-	int w, h;
-	footprintAt(*mapper_, i, u, v, 1500, x, y, w, h);
-	return std::max(1, std::max(w, h) - 1); // without the one pixel of overlap
+	const Footprint &centre = footprint((th / 2) * tw + tw / 2, 1500);
+	return std::max(1, std::max<int>(centre.w, centre.h) - 1); // without the one pixel of overlap
 }
 
 void SeedMapper::map(const DepthSeeds &seeds, Gray8Image &trimap, Roi &roi)
@@ -87,10 +90,8 @@ void SeedMapper::map(const DepthSeeds &seeds, Gray8Image &trimap, Roi &roi)
 		int z = surface[i] ? surface[i] : seeds.lecturerDepthMm;
 		int32_t xQ8, yQ8;
 		mapper_->map(i, z, xQ8, yQ8);
-		const int bucket = std::clamp((z - kFootprintFirstMm + kFootprintStepMm / 2) / kFootprintStepMm, 0,
-					      kFootprintBuckets - 1);
-		const Footprint &footprint = footprints_[size_t(bucket) * (tw * th) + i];
-		const int fw = footprint.w, fh = footprint.h;
+		const Footprint &f = footprint(i, z);
+		const int fw = f.w, fh = f.h;
 		const int left = (xQ8 - fw * 128 + 128) >> 8, top = (yQ8 - fh * 128 + 128) >> 8; // centred
 		int x0 = std::max(0, left), y0 = std::max(0, top);
 		int x1 = std::min(cw, left + fw), y1 = std::min(ch, top + fh);

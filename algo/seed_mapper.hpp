@@ -47,6 +47,9 @@ private:
 		uint8_t w, h;
 	};
 
+	// The precomputed footprint of ToF pixel i at the bucket nearest zMm.
+	const Footprint &footprint(int i, int zMm) const;
+
 	const DepthMapper *mapper_ = nullptr;
 	std::vector<Footprint> footprints_;
 	Roi previous_;

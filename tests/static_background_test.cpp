@@ -96,9 +96,9 @@ TEST(StaticBackground, SomeoneStandingStillFadesIntoTheBackgroundSlowly)
 	EXPECT_LT(framesMoving, 400);
 }
 
-TEST(Morphology, PreferredComponentHasTheMostPreferredPixelsElseTheLargest)
+TEST(Morphology, LabelledComponentsHaveTheirSizesAndOneCanBeKept)
 {
-	Gray8Image mask(20, 10, 0), preferred(20, 10, 0);
+	Gray8Image mask(20, 10, 0);
 	for (int y = 0; y < 10; ++y)
 		for (int x = 0; x < 8; ++x)
 			mask.at(x, y) = 255; // 80 pixels
@@ -107,13 +107,14 @@ TEST(Morphology, PreferredComponentHasTheMostPreferredPixelsElseTheLargest)
 			mask.at(x, y) = 255; // 16 pixels
 	Gray8Image copy = mask;
 	ComponentScratch scratch;
-	EXPECT_EQ(keepPreferredComponent(copy, preferred, scratch), 80); // none preferred: largest
-	preferred.at(13, 1) = 255;
-	preferred.at(19, 9) = 255; // outside the mask: does not count
-	copy = mask;
-	EXPECT_EQ(keepPreferredComponent(copy, preferred, scratch), 16);
+	ASSERT_EQ(labelComponents(copy, scratch), 2); // raster order of first pixels
+	EXPECT_EQ(scratch.sizes[0], 80);
+	EXPECT_EQ(scratch.sizes[1], 16);
+	keepComponent(copy, scratch, 1);
 	EXPECT_EQ(copy.at(13, 2), 255);
 	EXPECT_EQ(copy.at(3, 3), 0);
+	keepComponent(copy, scratch, -1); // none
+	EXPECT_EQ(copy.at(13, 2), 0);
 }
 
 TEST(DepthSeeder, ADeskLargerThanTheLecturerIsNotTheLecturer)
