@@ -59,6 +59,34 @@ const DepthFrame *FramePairer::match(uint64_t colourNs)
 	return &best->frame;
 }
 
+FramePairer::Bracket FramePairer::bracket(uint64_t colourNs)
+{
+	Bracket b;
+	Slot *before = nullptr, *after = nullptr;
+	const int64_t c = static_cast<int64_t>(colourNs), skew = static_cast<int64_t>(maxSkewNs_);
+	for (size_t i = 0; i < count_; i++) {
+		const int64_t t = corrected(slots_[i].frame);
+		if (t <= c && c - t <= skew && (!before || t > b.beforeNs)) {
+			before = &slots_[i];
+			b.beforeNs = t;
+		} else if (t > c && t - c <= skew && (!after || t < b.afterNs)) {
+			after = &slots_[i];
+			b.afterNs = t;
+		}
+	}
+	for (Slot *s : { before, after })
+		if (s) {
+			s->used = true;
+		}
+	b.before = before ? &before->frame : nullptr;
+	b.after = after ? &after->frame : nullptr;
+	if (b.any())
+		stats_.paired++;
+	else
+		stats_.unpaired++;
+	return b;
+}
+
 const DepthFrame *FramePairer::newest() const
 {
 	if (count_ == 0)

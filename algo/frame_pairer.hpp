@@ -2,7 +2,10 @@
 // ToF camera and the webcam are not triggered together, their frames are
 // paired by time). Depth frames are kept in a short history; each colour
 // frame is paired with the depth frame whose corrected time (timestamp +
-// offset, the depth camera's latency) is nearest, if it is within maxSkew.
+// offset, the depth camera's latency) is nearest, if it is within maxSkew
+// (match), or with the depth frames just before and just after it in time
+// (bracket: what a colour frame held back by pairing.delay_ms is keyed with,
+// algo/pairing_queue.hpp).
 //
 // Drop policy:
 //  - a colour frame with no depth frame within maxSkew is not keyed (the
@@ -32,7 +35,9 @@ struct PairingStats {
 class FramePairer
 {
 public:
-	static constexpr size_t kHistory = 4;
+	// 6 frames: 600 ms at 10 fps, 100 ms at 60 fps; enough for a frame
+	// before and one after a colour frame held back up to pairing.delay_ms.
+	static constexpr size_t kHistory = 6;
 
 	void configure(int64_t offsetNs, uint64_t maxSkewNs);
 	void clear();
@@ -41,6 +46,17 @@ public:
 	// The depth frame to key colourNs with, or nullptr. Valid until the next
 	// addDepth/clear.
 	const DepthFrame *match(uint64_t colourNs);
+
+	// The depth frames whose corrected times are the latest at or before
+	// colourNs and the earliest after it, each only within maxSkew (nullptr
+	// otherwise); counted paired when either exists. Valid until the next
+	// addDepth/clear. beforeNs/afterNs receive their corrected times.
+	struct Bracket {
+		const DepthFrame *before = nullptr, *after = nullptr;
+		int64_t beforeNs = 0, afterNs = 0;
+		bool any() const { return before || after; }
+	};
+	Bracket bracket(uint64_t colourNs);
 
 	// The newest depth frame, paired or not (snapshots); nullptr if none.
 	const DepthFrame *newest() const;

@@ -1,6 +1,7 @@
 #include "algo/pipeline.hpp"
 
 #include "algo/composite.hpp"
+#include "algo/trimap_union.hpp"
 
 #include <algorithm>
 
@@ -24,7 +25,8 @@ void Pipeline::configure(const Settings &settings, const MappingModel &mapping)
 	mapping_ = mapping;
 	opacityQ8_ = opacityToQ8(settings.composite.opacity);
 	seeder_.configure(settings.segmentation);
-	seeded_ = false; // new settings: seed the next frame again
+	for (SeededDepth &s : seeded_)
+		s.valid = false; // new settings: seed the next frames again
 	learner_.configure(settings.learning);
 	refiner_.configure(settings.siox);
 	if (reseed)
@@ -68,7 +70,8 @@ void Pipeline::ensureSizes(int colourWidth, int colourHeight, int depthWidth, in
 		mapper_.configure(model);
 		seedMapper_.configure(mapper_);
 		mappingDirty_ = false;
-		seeded_ = false;
+		for (SeededDepth &s : seeded_)
+			s.valid = false;
 		boardDirty_ = true;
 		restartLearning();
 	}
@@ -93,28 +96,54 @@ void Pipeline::renderBoard(int width, int height)
 			board_.at(x, y) = boardSource_.at((2 * x + 1) * sw / (2 * width), (2 * y + 1) * sh / (2 * height));
 }
 
-void Pipeline::process(const ColourFrame &colour, const DepthFrame &depth, PipelineOutput &out)
+const Pipeline::SeededDepth &Pipeline::seededFor(const DepthFrame &depth, const SeededDepth *keep)
 {
-	ensureSizes(colour.rgb.width(), colour.rgb.height(), depth.depthMm.width(), depth.depthMm.height());
+	for (const SeededDepth &s : seeded_)
+		if (s.holds(depth))
+			return s;
 	// Seeds depend on the depth frame only; the colour camera runs faster,
 	// so several colour frames share one depth frame, seeded once (and the
 	// static background learns once per depth frame, as it should).
-	const bool sameDepth = seeded_ && depth.timestampNs == seededNs_ && depth.sequence == seededSequence_ &&
-			       (depth.timestampNs != 0 || depth.sequence != 0);
-	if (!sameDepth) {
-		seeder_.seed(depth, seeds_);
-		seedMapper_.map(seeds_, trimap_, roi_);
-		seeded_ = true;
-		seededNs_ = depth.timestampNs;
-		seededSequence_ = depth.sequence;
-	}
-	learner_.learn(colour.rgb, trimap_, settings_.learning.marginPx * seedMapper_.colourPixelsPerTofPixel(),
+	// The slot to reuse: not the other frame of this pair, else the older.
+	const size_t slot = keep ? (keep == &seeded_[0] ? 1 : 0) : 1 - newest_;
+	SeededDepth &s = seeded_[slot];
+	seeder_.seed(depth, s.seeds);
+	seedMapper_.map(s.seeds, s.mapped);
+	s.ns = depth.timestampNs;
+	s.sequence = depth.sequence;
+	s.valid = true;
+	newest_ = slot;
+	return s;
+}
+
+void Pipeline::process(const ColourFrame &colour, const DepthFrame &depth, PipelineOutput &out)
+{
+	FramePairer::Bracket bracket;
+	bracket.before = &depth;
+	process(colour, bracket, out);
+}
+
+void Pipeline::process(const ColourFrame &colour, const FramePairer::Bracket &depth, PipelineOutput &out)
+{
+	const DepthFrame *first = depth.before ? depth.before : depth.after;
+	const DepthFrame *second = depth.before && depth.after ? depth.after : nullptr;
+	if (second && (second->depthMm.width() != first->depthMm.width() ||
+		       second->depthMm.height() != first->depthMm.height()))
+		second = nullptr; // the depth camera changed size in between
+	ensureSizes(colour.rgb.width(), colour.rgb.height(), first->depthMm.width(), first->depthMm.height());
+	const SeededDepth &a = seededFor(*first, nullptr);
+	if (second)
+		uniteTrimaps(a.mapped, seededFor(*second, &a).mapped, keyed_);
+	else
+		uniteTrimaps(a.mapped, a.mapped, keyed_);
+	const Gray8Image &trimap = keyed_.trimap;
+	learner_.learn(colour.rgb, trimap, settings_.learning.marginPx * seedMapper_.colourPixelsPerTofPixel(),
 		       classifier_);
 	// Until the first signatures exist (no lecturer or no board seen yet)
 	// the classifier calls every colour lecturer: the output is the depth
 	// superset, which never cuts the lecturer off.
-	refiner_.setLecturerBeyondBorder(seedMapper_.lecturerBeyondBorder());
-	refiner_.refine(colour.rgb, trimap_, roi_, classifier_, out.alpha);
+	refiner_.setLecturerBeyondBorder(keyed_.lecturerBeyondBorder);
+	refiner_.refine(colour.rgb, trimap, keyed_.roi, classifier_, out.alpha);
 	compose(colour.rgb, out);
 
 	status_.learning = learner_.learning();
@@ -127,7 +156,7 @@ void Pipeline::process(const ColourFrame &colour, const DepthFrame &depth, Pipel
 // Outside the ROI the alpha is 0: only the ROI is blended.
 void Pipeline::compose(const RgbImage &colour, PipelineOutput &out) const
 {
-	compositeRoi(colour, out.alpha, board_, roi_, opacityQ8_, out.composite, kernelPath_);
+	compositeRoi(colour, out.alpha, board_, keyed_.roi, opacityQ8_, out.composite, kernelPath_);
 	lecturerLayer(colour, out.alpha, out.lecturer, kernelPath_);
 }
 

@@ -14,6 +14,7 @@
 #include "algo/colour_learner.hpp"
 #include "algo/depth_mapper.hpp"
 #include "algo/depth_seeder.hpp"
+#include "algo/frame_pairer.hpp"
 #include "algo/frames.hpp"
 #include "algo/kernel_path.hpp"
 #include "algo/mapping_model.hpp"
@@ -21,6 +22,8 @@
 #include "algo/siox_classifier.hpp"
 #include "algo/siox_refiner.hpp"
 #include "config/settings.hpp"
+
+#include <array>
 
 namespace depthkey {
 
@@ -57,6 +60,10 @@ public:
 		seeder_.setKernelPath(path);
 	}
 
+	// Keys a colour frame with the depth frames captured just before and
+	// just after it (either may be missing, not both: FramePairer::bracket).
+	void process(const ColourFrame &colour, const FramePairer::Bracket &depth, PipelineOutput &out);
+	// With one depth frame (pairing.delay_ms = 0, tests).
 	void process(const ColourFrame &colour, const DepthFrame &depth, PipelineOutput &out);
 
 	// What is published when the depth camera is missing: the colour frame as
@@ -65,8 +72,9 @@ public:
 
 	const PipelineStatus &status() const { return status_; }
 	// Stage images of the last frame, for snapshots and previews.
-	const Gray8Image &trimap() const { return trimap_; }
-	const DepthSeeds &seeds() const { return seeds_; }
+	const Gray8Image &trimap() const { return keyed_.trimap; }
+	// The seeds of the newest depth frame the last colour frame was keyed with.
+	const DepthSeeds &seeds() const { return seeded_[newest_].seeds; }
 	// SIOX's confidence (algo/siox_classifier.hpp) for every pixel of an
 	// image, not only the band: shows which colours the signatures confuse.
 	// For previews; allocates.
@@ -76,6 +84,20 @@ private:
 	void ensureSizes(int colourWidth, int colourHeight, int depthWidth, int depthHeight);
 	void renderBoard(int width, int height);
 	void restartLearning();
+	// One depth frame seeded and mapped, once (colour frames sharing it,
+	// and the next colour frame keyed with it from the other side, reuse it).
+	struct SeededDepth {
+		DepthSeeds seeds;
+		MappedSeeds mapped;
+		uint64_t ns = 0, sequence = 0;
+		bool valid = false;
+		bool holds(const DepthFrame &d) const
+		{
+			return valid && d.timestampNs == ns && d.sequence == sequence && (ns != 0 || sequence != 0);
+		}
+	};
+	// The seeds of depth, seeding it unless held; never evicts `keep`.
+	const SeededDepth &seededFor(const DepthFrame &depth, const SeededDepth *keep);
 	void compose(const RgbImage &colour, PipelineOutput &out) const;
 
 	Settings settings_;
@@ -91,15 +113,13 @@ private:
 	SeedMapper seedMapper_;
 	SioxRefiner refiner_;
 
-	DepthSeeds seeds_;
-	Gray8Image trimap_;
-	Roi roi_;
+	std::array<SeededDepth, 2> seeded_;
+	size_t newest_ = 0;              // seeded_ slot seeded last
+	MappedSeeds keyed_;              // the trimap the colour frame is keyed with
 	RgbImage boardSource_, board_;
 	PipelineStatus status_;
 	int colourWidth_ = 0, colourHeight_ = 0, depthWidth_ = 0, depthHeight_ = 0;
 	bool mappingDirty_ = true;
-	bool seeded_ = false;                       // seeds_/trimap_ are of the depth frame below
-	uint64_t seededNs_ = 0, seededSequence_ = 0;
 	bool boardDirty_ = true;
 };
 

@@ -26,7 +26,6 @@ static void footprintAt(const DepthMapper &mapper, int i, int u, int v, int z, i
 void SeedMapper::configure(const DepthMapper &mapper)
 {
 	mapper_ = &mapper;
-	previous_ = {};
 	// Footprints per ToF pixel and depth bucket, once: two mappings per
 	// seed pixel and frame saved.
 	const int tw = mapper.tofWidth(), th = mapper.tofHeight(), n = tw * th;
@@ -59,25 +58,26 @@ int SeedMapper::colourPixelsPerTofPixel() const
 	return std::max(1, std::max<int>(centre.w, centre.h) - 1); // without the one pixel of overlap
 }
 
-void SeedMapper::map(const DepthSeeds &seeds, Gray8Image &trimap, Roi &roi)
+void SeedMapper::map(const DepthSeeds &seeds, MappedSeeds &out) const
 {
 	const int cw = mapper_->colourWidth(), ch = mapper_->colourHeight();
 	const int tw = mapper_->tofWidth(), th = mapper_->tofHeight();
+	Gray8Image &trimap = out.trimap;
+	Roi &roi = out.roi;
 	if (trimap.width() != cw || trimap.height() != ch) {
 		trimap.resize(cw, ch);
 		std::memset(trimap.data(), kTrimapBoard, trimap.size());
-		previous_ = {};
+		roi = {};
 	}
-	for (int y = previous_.y0; y < previous_.y1; ++y)
-		std::memset(trimap.row(y) + previous_.x0, kTrimapBoard, size_t(previous_.x1 - previous_.x0));
+	for (int y = roi.y0; y < roi.y1; ++y)
+		std::memset(trimap.row(y) + roi.x0, kTrimapBoard, size_t(roi.x1 - roi.x0));
 
 	roi = { cw, ch, 0, 0 };
-	lecturerBeyondBorder_ = false;
+	out.lecturerBeyondBorder = false;
 	bool sizesMatch = seeds.labels.width() == tw && seeds.labels.height() == th &&
 			  seeds.surfaceMm.width() == tw && seeds.surfaceMm.height() == th;
 	if (!sizesMatch || seeds.lecturerPixels == 0) {
 		roi = {};
-		previous_ = roi;
 		return;
 	}
 	const uint8_t *labels = seeds.labels.data();
@@ -96,7 +96,7 @@ void SeedMapper::map(const DepthSeeds &seeds, Gray8Image &trimap, Roi &roi)
 		int x0 = std::max(0, left), y0 = std::max(0, top);
 		int x1 = std::min(cw, left + fw), y1 = std::min(ch, top + fh);
 		if (label == kTrimapLecturer && (left < 0 || top < 0 || left + fw > cw || top + fh > ch))
-			lecturerBeyondBorder_ = true;
+			out.lecturerBeyondBorder = true;
 		if (x0 >= x1 || y0 >= y1)
 			continue;
 		// Lecturer is the highest label: max() with it is a plain store,
@@ -123,7 +123,6 @@ void SeedMapper::map(const DepthSeeds &seeds, Gray8Image &trimap, Roi &roi)
 		roi = { std::max(0, roi.x0 - 1), std::max(0, roi.y0 - 1), std::min(cw, roi.x1 + 1),
 			std::min(ch, roi.y1 + 1) };
 	}
-	previous_ = roi;
 }
 
 } // namespace depthkey

@@ -10,7 +10,10 @@
 //
 // Only the region painted (the ROI, plus a one pixel border) is touched; the
 // previous frame's ROI is cleared first, so the trimap is board everywhere
-// else without clearing the whole image.
+// else without clearing the whole image. lecturerBeyondBorder says whether
+// surely-lecturer depth pixels fell outside the colour image (the depth
+// camera sees wider): the lecturer reaches in over the image border, though
+// no lecturer seed may lie inside.
 #pragma once
 
 #include "algo/depth_mapper.hpp"
@@ -21,23 +24,26 @@
 
 namespace depthkey {
 
+// One depth frame's seeds in the colour image.
+struct MappedSeeds {
+	Gray8Image trimap;       // colour size; board outside roi
+	Roi roi;                 // the painted region (empty: no lecturer)
+	bool lecturerBeyondBorder = false;
+};
+
 class SeedMapper
 {
 public:
 	void configure(const DepthMapper &mapper);
 
-	// trimap is resized to the mapper's colour size; roi receives the
-	// painted region (empty when there is no lecturer).
-	void map(const DepthSeeds &seeds, Gray8Image &trimap, Roi &roi);
+	// out.trimap is resized to the mapper's colour size; out.roi receives
+	// the painted region (empty when there is no lecturer). Only out's
+	// previous ROI is cleared: out must be kept from call to call.
+	void map(const DepthSeeds &seeds, MappedSeeds &out) const;
 
 	// Colour pixels one ToF pixel spans at the image centre, at the depth a
 	// lecturer stands (1.5 m), rounded up: converts radii given in ToF pixels.
 	int colourPixelsPerTofPixel() const;
-
-	// Whether the last map() found surely-lecturer depth pixels outside the
-	// colour image (the depth camera sees wider): the lecturer reaches in
-	// over the image border, though no lecturer seed may lie inside.
-	bool lecturerBeyondBorder() const { return lecturerBeyondBorder_; }
 
 private:
 	// The footprint of each ToF pixel at depths 500, 750, ... 4000 mm (the
@@ -52,8 +58,6 @@ private:
 
 	const DepthMapper *mapper_ = nullptr;
 	std::vector<Footprint> footprints_;
-	Roi previous_;
-	bool lecturerBeyondBorder_ = false;
 };
 
 } // namespace depthkey

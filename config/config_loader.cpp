@@ -159,8 +159,9 @@ void bindDepth(TomlSection &sec, DepthCameraSettings &s)
 
 void bindPairing(TomlSection &sec, PairingSettings &s)
 {
-	sec.integer("offset_ms", s.offsetMs, -1000, 1000);
+	sec.integerOrWord("offset_ms", s.offsetMs, -1000, 1000, "auto", s.offsetAuto);
 	sec.integer("max_skew_ms", s.maxSkewMs, 1, 1000);
+	sec.integer("delay_ms", s.delayMs, 0, 1000);
 }
 
 void bindSegmentation(TomlSection &sec, SegmentationSettings &s)

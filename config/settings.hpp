@@ -61,7 +61,9 @@ struct DepthCameraSettings {
 // depth frames are matched to colour frames by capture time.
 struct PairingSettings {
 	int offsetMs = 0;                   // added to depth timestamps (depth latency)
+	bool offsetAuto = true;             // offset_ms = "auto": the measured latency (algo/latency_estimator.hpp)
 	int maxSkewMs = 150;                // farther apart: colour goes out unkeyed
+	int delayMs = 150;                  // 0..1000: colour waits this long for depth captured after it
 	bool operator==(const PairingSettings &) const = default;
 };
 

@@ -280,6 +280,27 @@ bool TomlSection::string(std::string_view key, std::string &out, const StringChe
 	return true;
 }
 
+bool TomlSection::integerOrWord(std::string_view key, int &out, int min, int max, std::string_view word,
+				bool &isWord)
+{
+	const toml::node *node = find(key);
+	if (node && node->is_string()) {
+		const std::string &s = node->as_string()->get();
+		if (s != word) {
+			error(node->source(), key, quote(s) + " is not allowed: expected an integer or " + quote(word));
+			return false;
+		}
+		isWord = true;
+		return true;
+	}
+	if (node && !node->is_integer())
+		return wrongType(key, *node, "an integer or " + quote(word));
+	bool ok = integer(key, out, min, max);
+	if (ok && node)
+		isWord = false;
+	return ok;
+}
+
 bool TomlSection::colour(std::string_view key, uint32_t &out)
 {
 	const toml::node *node = find(key);

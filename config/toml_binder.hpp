@@ -80,6 +80,10 @@ public:
 		    std::initializer_list<std::string_view> allowed);
 	bool string(std::string_view key, std::string &out, const StringCheck &check);
 
+	// An integer in [min, max], or the string `word` (isWord is set then):
+	// a setting with an automatic choice, e.g. offset_ms = "auto".
+	bool integerOrWord(std::string_view key, int &out, int min, int max, std::string_view word, bool &isWord);
+
 	// 0xRRGGBB as an integer, or "#rrggbb" as a string.
 	bool colour(std::string_view key, uint32_t &out);
 

@@ -155,12 +155,14 @@ void Daemon::stopCameras()
 	if (depth_)
 		depth_->stop();
 	haveColour_ = false;
-	pairer_.clear();
+	queue_.clear();
+	keyTimer_.reset();
 }
 
 void Daemon::configurePairing()
 {
-	configurePairer(pairer_, settings_);
+	configurePairingQueue(queue_, settings_,
+			      settings_.pairing.offsetAuto ? 0 : int64_t{ settings_.pairing.offsetMs } * 1'000'000);
 }
 
 void Daemon::onDeviceStatus(const std::string &device, const DeviceStatus &status)
@@ -176,9 +178,10 @@ void Daemon::onDeviceStatus(const std::string &device, const DeviceStatus &statu
 
 void Daemon::onDepthFrame(const DepthFrame &frame)
 {
-	pairer_.addDepth(frame); // same-size copy: no allocation after the first
+	queue_.addDepth(frame); // same-size copy: no allocation after the first
 	recorder_.recordDepth(frame);
 	depthFrames_++;
+	keyDueFrames();
 }
 
 void Daemon::onColourFrame(const ColourFrame &frame)
@@ -187,10 +190,34 @@ void Daemon::onColourFrame(const ColourFrame &frame)
 	haveColour_ = true;
 	recorder_.recordColour(frame);
 	lastColourNs_ = frame.timestampNs;
+	queue_.addColour(frame, loop_.nowUs() * 1000u);
+	keyDueFrames();
+}
+
+void Daemon::keyDueFrames()
+{
+	const uint64_t nowNs = loop_.nowUs() * 1000u;
+	PairingQueue::Keying keying;
+	while (queue_.next(nowNs, keying)) {
+		keyFrame(keying);
+		queue_.pop();
+	}
+	if (!queue_.held()) {
+		keyTimer_.reset();
+		return;
+	}
+	const uint64_t deadlineNs = queue_.nextDeadlineNs();
+	const uint64_t waitUs = deadlineNs > nowNs ? (deadlineNs - nowNs + 999) / 1000 : 0;
+	loop_.addTimer(waitUs, [this] { keyDueFrames(); }, keyTimer_);
+}
+
+void Daemon::keyFrame(const PairingQueue::Keying &keying)
+{
+	const ColourFrame &frame = *keying.colour;
 	uint32_t flags = DK_SHM_FLAG_COLOUR_OK;
-	const DepthFrame *depth = pairer_.match(frame.timestampNs);
+	const DepthFrame *depth = keying.depth.before ? keying.depth.before : keying.depth.after;
 	if (depth) {
-		pipeline_.process(frame, *depth, output_);
+		pipeline_.process(frame, keying.depth, output_);
 		flags |= DK_SHM_FLAG_DEPTH_OK | DK_SHM_FLAG_ONLINE;
 	} else {
 		pipeline_.passThrough(frame, output_);
@@ -205,7 +232,7 @@ void Daemon::onColourFrame(const ColourFrame &frame)
 bool Daemon::depthFresh(uint64_t nowNs) const
 {
 	int64_t ts;
-	if (!pairer_.newestNs(ts))
+	if (!queue_.pairer().newestNs(ts))
 		return false;
 	int64_t d = ts - static_cast<int64_t>(nowNs);
 	return d <= kDepthStaleNs && d >= -kDepthStaleNs;
@@ -284,7 +311,7 @@ void Daemon::onStatusTick()
 	};
 	DeviceStatus cs = colour_ ? colour_->status() : DeviceStatus{};
 	DeviceStatus ds = depth_ ? depth_->status() : DeviceStatus{};
-	const PairingStats &ps = pairer_.stats();
+	const PairingStats &ps = queue_.pairer().stats();
 	char text[512];
 	std::snprintf(text, sizeof(text),
 		      "colour %s %s %.1f fps %llu dropped; depth %s %s %.1f fps %llu dropped; "
@@ -406,7 +433,7 @@ void Daemon::writeSnapshot()
 		logger().warning("snapshot requested but daemon.snapshot_dir is not set");
 		return;
 	}
-	if (writeStages(dir, "", pairer_.newest()) >= 0)
+	if (writeStages(dir, "", queue_.pairer().newest()) >= 0)
 		logger().info("snapshot written to " + dir, { { "SNAPSHOT_DIR", dir } });
 }
 

@@ -3,7 +3,7 @@
 // no algorithm; it decides what to run when, and degrades instead of dying.
 #pragma once
 
-#include "algo/frame_pairer.hpp"
+#include "algo/pairing_queue.hpp"
 #include "algo/pipeline.hpp"
 #include "config/settings.hpp"
 #include "daemon/device_factory.hpp"
@@ -48,6 +48,10 @@ public:
 private:
 	void onColourFrame(const ColourFrame &frame);
 	void onDepthFrame(const DepthFrame &frame);
+	// Keys and publishes every held colour frame that is due, then arms a
+	// timer for the next one (pairing.delay_ms).
+	void keyDueFrames();
+	void keyFrame(const PairingQueue::Keying &keying);
 	void onDeviceStatus(const std::string &device, const DeviceStatus &status);
 	void onFrameTick();
 	void onStatusTick();
@@ -86,7 +90,7 @@ private:
 	bool sinkOpen_ = false;
 
 	EventSource sigterm_, sigint_, sighup_, sigusr1_, sigusr2_;
-	EventSource frameTick_, statusTick_, watchdogTick_;
+	EventSource frameTick_, statusTick_, watchdogTick_, keyTimer_;
 
 	FrameRecorder recorder_;
 	uint64_t recorderDropsLogged_ = 0;
@@ -97,7 +101,7 @@ private:
 	MappingModel mapping_;     // the last good calibration, or identity
 	bool calibrated_ = false;
 	PipelineOutput output_;
-	FramePairer pairer_;
+	PairingQueue queue_;       // colour frames waiting for depth from both sides
 	ColourFrame colourLatest_;
 	bool haveColour_ = false;
 	uint64_t lastColourNs_ = 0;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "algo/frame_pairer.hpp"
+#include "algo/pairing_queue.hpp"
 #include "algo/mapping_model.hpp"
 #include "algo/pipeline.hpp"
 #include "config/settings.hpp"
@@ -29,10 +30,13 @@ PipelineFiles loadPipelineFiles(const Settings &settings);
 void configurePipeline(Pipeline &pipeline, const Settings &settings, const MappingModel &mapping,
 		       const RgbImage &board);
 
-inline void configurePairer(FramePairer &pairer, const Settings &settings)
+// offsetNs: the depth offset in force (pairing.offset_ms, or the measured
+// latency when it is "auto").
+inline void configurePairingQueue(PairingQueue &queue, const Settings &settings, int64_t offsetNs)
 {
-	pairer.configure(int64_t{ settings.pairing.offsetMs } * 1'000'000,
-			 uint64_t(settings.pairing.maxSkewMs) * 1'000'000);
+	const uint64_t delayNs = uint64_t(settings.pairing.delayMs) * 1'000'000;
+	queue.configure(offsetNs, uint64_t(settings.pairing.maxSkewMs) * 1'000'000, delayNs,
+			PairingQueue::slotsFor(delayNs, settings.colour.fps));
 }
 
 } // namespace depthkey

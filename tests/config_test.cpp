@@ -113,6 +113,7 @@ value = 255
 [pairing]
 offset_ms = -40
 max_skew_ms = 80
+delay_ms = 0
 [segmentation]
 near_mm = 800
 far_mm = 2500
@@ -173,7 +174,7 @@ loop = false
 	expected.depth = { "sr2", 15, 500, 400, 5000, "1-2.3", 90, true, 12000, 20000,
 			   { { 0x0A, 7 }, { 0x0B, 255 } }, "usb-Intel_RealSense-video-index0",
 			   848, 480, "y16", 0.125 };
-	expected.pairing = { -40, 80 };
+	expected.pairing = { -40, false, 80, 0 };
 	expected.segmentation = { 800, 2500 };
 	expected.composite = { 1.0, 0xff8000 };
 	expected.output = { "/room12.composite", "/room12.lecturer", 5, "video" };
@@ -438,6 +439,26 @@ vaule = 1
 		  }));
 	EXPECT_EQ(bound.absent, (std::vector<std::string>{ "camera.calibration.enabled",
 							     "camera.register[1].value" }));
+}
+
+TEST(ConfigLoader, DepthOffsetIsAnIntegerOrAuto)
+{
+	ConfigResult automatic = parseConfig("[pairing]\noffset_ms = \"auto\"\n", kFile);
+	ASSERT_TRUE(automatic.ok());
+	EXPECT_TRUE(automatic.settings.pairing.offsetAuto);
+	ConfigResult fixed = parseConfig("[pairing]\noffset_ms = -60\ndelay_ms = 0\n", kFile);
+	ASSERT_TRUE(fixed.ok());
+	EXPECT_FALSE(fixed.settings.pairing.offsetAuto);
+	EXPECT_EQ(fixed.settings.pairing.offsetMs, -60);
+	EXPECT_EQ(fixed.settings.pairing.delayMs, 0);
+	EXPECT_EQ(onlyError("[pairing]\noffset_ms = \"soon\"\n"),
+		  (ConfigError{ kFile, 2, 13, "pairing.offset_ms",
+				"\"soon\" is not allowed: expected an integer or \"auto\"" }));
+	EXPECT_EQ(onlyError("[pairing]\noffset_ms = 1.5\n"),
+		  (ConfigError{ kFile, 2, 13, "pairing.offset_ms",
+				"expected an integer or \"auto\", got a floating-point number" }));
+	EXPECT_EQ(onlyError("[pairing]\ndelay_ms = 1001\n"),
+		  (ConfigError{ kFile, 2, 12, "pairing.delay_ms", "1001 is out of range: 0..1000" }));
 }
 
 } // namespace

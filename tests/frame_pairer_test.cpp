@@ -58,16 +58,43 @@ TEST(FramePairer, UnusedAndOutOfOrderDepthFramesAreCounted)
 {
 	FramePairer p;
 	p.configure(0, 20 * kMs);
-	for (uint64_t t = 0; t < 8; t++)
-		p.addDepth(depthAt(1000 + 100 * t)); // 8 frames through a history of 4
+	constexpr uint64_t h = FramePairer::kHistory;
+	for (uint64_t t = 0; t < h + 4; t++)
+		p.addDepth(depthAt(1000 + 100 * t)); // 4 more frames than the history holds
 	EXPECT_EQ(p.stats().depthUnused, 4u);
-	EXPECT_EQ(matchedMs(p, 1700), 1700);
+	const int newestMs = int(1000 + 100 * (h + 3));
+	EXPECT_EQ(matchedMs(p, newestMs), newestMs);
 	p.addDepth(depthAt(1500)); // older than the newest: refused
 	EXPECT_EQ(p.stats().depthOutOfOrder, 1u);
-	EXPECT_EQ(p.newest()->depthMm.at(0, 0), 1700);
-	for (uint64_t t = 8; t < 12; t++)
+	EXPECT_EQ(p.newest()->depthMm.at(0, 0), newestMs);
+	for (uint64_t t = h + 4; t < 2 * h + 4; t++)
 		p.addDepth(depthAt(1000 + 100 * t));
-	EXPECT_EQ(p.stats().depthUnused, 4u + 3u); // 1700 was used
+	EXPECT_EQ(p.stats().depthUnused, 4u + h - 1); // the newest was used
+}
+
+TEST(FramePairer, BracketsAColourFrameWithDepthFromBothSides)
+{
+	FramePairer p;
+	p.configure(-40 * kMs, 150 * kMs); // depth stamped 40 ms after capture
+	p.addDepth(depthAt(1040));          // captured 1000
+	p.addDepth(depthAt(1140));          // captured 1100
+	p.addDepth(depthAt(1240));          // captured 1200
+	FramePairer::Bracket b = p.bracket(1130 * kMs);
+	ASSERT_TRUE(b.before && b.after);
+	EXPECT_EQ(b.before->depthMm.at(0, 0), 1140);
+	EXPECT_EQ(b.after->depthMm.at(0, 0), 1240);
+	EXPECT_EQ(b.beforeNs, int64_t(1100 * kMs));
+	EXPECT_EQ(b.afterNs, int64_t(1200 * kMs));
+	b = p.bracket(1200 * kMs); // at a depth capture: that one is before
+	EXPECT_EQ(b.before->depthMm.at(0, 0), 1240);
+	EXPECT_EQ(b.after, nullptr);
+	b = p.bracket(900 * kMs);  // only later depth
+	EXPECT_EQ(b.before, nullptr);
+	EXPECT_EQ(b.after->depthMm.at(0, 0), 1040);
+	b = p.bracket(1400 * kMs); // 200 ms after the newest: beyond the skew
+	EXPECT_FALSE(b.any());
+	EXPECT_EQ(p.stats().paired, 3u);
+	EXPECT_EQ(p.stats().unpaired, 1u);
 }
 
 TEST(FramePairer, ClearForgetsHistory)

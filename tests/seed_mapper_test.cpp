@@ -44,9 +44,10 @@ TEST(SeedMapper, WideToFLensLeavesNoGapsInsideTheMappedSeeds)
 
 	DepthSeeds seeds;
 	solidSeeds(model.tofWidth, model.tofHeight, 60, 50, 100, 80, 1500, seeds);
-	Gray8Image trimap;
-	Roi roi;
-	seedMapper.map(seeds, trimap, roi);
+	MappedSeeds mapped;
+	seedMapper.map(seeds, mapped);
+	const Gray8Image &trimap = mapped.trimap;
+	const Roi &roi = mapped.roi;
 
 	// The mapped centres of the block's corner pixels bound what must be solid.
 	int32_t x0, y0, x1, y1;

@@ -23,6 +23,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <deque>
 #include <functional>
 #include <memory>
 #include <string>
@@ -210,8 +211,9 @@ public:
 
 	// depth == nullptr: nothing paired, the daemon publishes the colour
 	// picture unkeyed (everything lecturer) and so is it scored.
-	const Gray8Image &run(const ColourFrame &colour, const DepthFrame *depth)
+	const Gray8Image &run(const ColourFrame &colour, const FramePairer::Bracket &bracket)
 	{
+		const DepthFrame *depth = bracket.before ? bracket.before : bracket.after;
 		auto start = std::chrono::steady_clock::now();
 		const Gray8Image *alpha;
 		if (!depth) {
@@ -230,7 +232,7 @@ public:
 				alpha_.data()[i] = (mapped_.data()[i] - nearMm <= span) ? 255 : 0;
 			alpha = &alpha_;
 		} else {
-			pipeline_.process(colour, *depth, output_);
+			pipeline_.process(colour, bracket, output_);
 			alpha = &output_.alpha;
 		}
 		seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -354,57 +356,81 @@ int main(int argc, char **argv)
 	Method method(settings, o.method == "depth-only");
 	SegmentationScorer scorer(2);
 	ScoreAverage average;
-	FramePairer pairer;
-	configurePairer(pairer, settings);
+	// Paired as the daemon pairs: colour frames wait for depth from both
+	// sides in time (pairing.delay_ms), "now" being the newest frame's time.
+	PairingQueue queue;
+	configurePairingQueue(queue, settings, settings.pairing.offsetAuto ? 0 : int64_t{ settings.pairing.offsetMs } * 1'000'000);
+	std::deque<Gray8Image> heldTruths; // beside the queue's held colour frames, in order
 	ColourFrame colour;
 	Gray8Image truth;
 	bool depthSeen = false;
 	int saveError = 0;
 	auto onDepth = [&](const DepthFrame &depth) {
-		pairer.addDepth(depth);
+		queue.addDepth(depth);
 		depthSeen = true;
 		if (!o.saveSequence.empty() && saveError >= 0)
 			saveError = saver.writeDepth(depth);
+	};
+	// Scores every held frame due at nowNs; false on a write error.
+	auto scoreDue = [&](uint64_t nowNs) {
+		PairingQueue::Keying k;
+		while ((o.frames == 0 || average.frames() < o.frames) && queue.next(nowNs, k)) {
+			const ColourFrame &keyed = *k.colour;
+			const Gray8Image &truthOf = heldTruths.front();
+			const DepthFrame *depth = k.depth.before ? k.depth.before : k.depth.after;
+			const Gray8Image &alpha = method.run(keyed, k.depth);
+			SegmentationScore s = scorer.score(alpha, truthOf);
+			if (depth)
+				method.attribute(alpha, truthOf, scorer);
+			long frame = average.frames();
+			average.add(s);
+			if (csv)
+				std::fprintf(csv, "%ld,%llu,%llu,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f\n", frame,
+					     static_cast<unsigned long long>(keyed.timestampNs),
+					     static_cast<unsigned long long>(depth ? depth->timestampNs : 0), s.iou, s.boundaryF,
+					     s.boundaryPrecision, s.boundaryRecall, s.fnr, s.fpr);
+			if (!o.saveSequence.empty()) {
+				int w = saveError;
+				if (w >= 0)
+					w = saver.writeColour(keyed);
+				if (w >= 0)
+					w = saver.writeMask(truthOf, keyed.timestampNs, keyed.sequence);
+				if (w < 0) {
+					std::fprintf(stderr, "depthkey-eval: %s\n", saver.describeError().c_str());
+					return false;
+				}
+			}
+			if (!o.preview.empty() && depth &&
+			    (o.previewEvery ? frame % o.previewEvery == 0 : isPreviewFrame(frame, o.frames))) {
+				StageImages stages;
+				method.stages(keyed, *depth, truthOf, stages);
+				char prefix[32];
+				std::snprintf(prefix, sizeof(prefix), "frame%06ld-", frame);
+				std::string error;
+				if (writeStageImages(o.preview, prefix, stages, error) < 0) {
+					std::fprintf(stderr, "depthkey-eval: %s\n", error.c_str());
+					return false;
+				}
+			}
+			queue.pop();
+			heldTruths.pop_front();
+		}
+		return true;
 	};
 	int ret = 0;
 	while ((o.frames == 0 || average.frames() < o.frames) && (ret = source->next(colour, truth, onDepth)) > 0) {
 		if (!depthSeen)
 			continue; // starting up: no depth camera has delivered yet
-		const DepthFrame *depth = pairer.match(colour.timestampNs);
-		const Gray8Image &alpha = method.run(colour, depth);
-		SegmentationScore s = scorer.score(alpha, truth);
-		if (depth)
-			method.attribute(alpha, truth, scorer);
-		long frame = average.frames();
-		average.add(s);
-		if (csv)
-			std::fprintf(csv, "%ld,%llu,%llu,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f\n", frame,
-				     static_cast<unsigned long long>(colour.timestampNs),
-				     static_cast<unsigned long long>(depth ? depth->timestampNs : 0), s.iou, s.boundaryF,
-				     s.boundaryPrecision, s.boundaryRecall, s.fnr, s.fpr);
-		if (!o.saveSequence.empty()) {
-			int w = saveError;
-			if (w >= 0)
-				w = saver.writeColour(colour);
-			if (w >= 0)
-				w = saver.writeMask(truth, colour.timestampNs, colour.sequence);
-			if (w < 0) {
-				std::fprintf(stderr, "depthkey-eval: %s\n", saver.describeError().c_str());
-				return 1;
-			}
-		}
-		if (!o.preview.empty() && depth && (o.previewEvery ? frame % o.previewEvery == 0 : isPreviewFrame(frame, o.frames))) {
-			StageImages stages;
-			method.stages(colour, *depth, truth, stages);
-			char prefix[32];
-			std::snprintf(prefix, sizeof(prefix), "frame%06ld-", frame);
-			std::string error;
-			if (writeStageImages(o.preview, prefix, stages, error) < 0) {
-				std::fprintf(stderr, "depthkey-eval: %s\n", error.c_str());
-				return 1;
-			}
-		}
+		if (!scoreDue(colour.timestampNs))
+			return 1;
+		queue.addColour(colour, colour.timestampNs);
+		heldTruths.push_back(truth);
+		if (!scoreDue(colour.timestampNs))
+			return 1;
 	}
+	// A finished sequence: what is still held is keyed with what came.
+	if (ret == 0 && !scoreDue(UINT64_MAX))
+		return 1;
 	if (csv)
 		std::fclose(csv);
 	if (ret < 0)
@@ -420,7 +446,7 @@ int main(int argc, char **argv)
 	std::printf("  lecturer pixels lost (FNR) %.3f  board pixels taken (FPR) %.3f  %.0f frames/s\n", m.fnr,
 		    m.fpr, fps);
 	method.printAttribution();
-	const PairingStats &ps = pairer.stats();
+	const PairingStats &ps = queue.pairer().stats();
 	std::printf("  pairing: %llu paired, %llu colour frames without depth (scored unkeyed)\n",
 		    static_cast<unsigned long long>(ps.paired), static_cast<unsigned long long>(ps.unpaired));
 	std::printf("summary method=%s frames=%ld iou=%.3f bf=%.3f fnr=%.3f fpr=%.3f fps=%.0f\n", o.method.c_str(),

@@ -130,8 +130,10 @@ struct Stages {
 	SeedMapper seedMapper;
 	SioxRefiner refiner;
 	DepthSeeds seeds;
-	Gray8Image trimap, alpha;
-	Roi roi;
+	MappedSeeds mapped;
+	Gray8Image &trimap = mapped.trimap;
+	Roi &roi = mapped.roi;
+	Gray8Image alpha;
 	RgbImage board, composite;
 	RgbaImage layer;
 
@@ -151,7 +153,7 @@ struct Stages {
 	void seed(const Inputs &in, int i)
 	{
 		seeder.seed(in.depth[i % kFrames], seeds);
-		seedMapper.map(seeds, trimap, roi);
+		seedMapper.map(seeds, mapped);
 	}
 	void run(const Inputs &in, int i)
 	{

@@ -1,0 +1,74 @@
+#include "algo/pairing_queue.hpp"
+
+#include <algorithm>
+
+namespace depthkey {
+
+void PairingQueue::configure(int64_t offsetNs, uint64_t maxSkewNs, uint64_t delayNs, size_t slots)
+{
+	maxSkewNs_ = maxSkewNs;
+	pairer_.configure(offsetNs, maxSkewNs);
+	delayNs_ = delayNs;
+	slots = std::clamp<size_t>(slots, 1, kMaxSlots);
+	if (slots != slotCount_) {
+		// Held frames keep their order only in a ring of the same size.
+		count_ = first_ = 0;
+		slotCount_ = slots;
+	}
+}
+
+size_t PairingQueue::slotsFor(uint64_t delayNs, int colourFps)
+{
+	// Frames arriving within the delay, one being keyed, one spare for
+	// jitter.
+	const uint64_t perFrameNs = 1'000'000'000ull / uint64_t(std::max(1, colourFps));
+	return std::clamp<size_t>(size_t(delayNs / perFrameNs) + 2, 1, kMaxSlots);
+}
+
+void PairingQueue::clear()
+{
+	pairer_.clear();
+	count_ = first_ = 0;
+}
+
+void PairingQueue::addColour(const ColourFrame &frame, uint64_t nowNs)
+{
+	if (count_ == slotCount_)
+		pop(); // full: the caller did not key the oldest in time; it is lost
+	Slot &slot = slots_[(first_ + count_) % slotCount_];
+	slot.frame = frame; // same size: the vector reuses its storage
+	slot.deadlineNs = nowNs + delayNs_;
+	count_++;
+}
+
+bool PairingQueue::due(const Slot &slot, uint64_t nowNs) const
+{
+	if (count_ == slotCount_ || nowNs >= slot.deadlineNs)
+		return true;
+	int64_t newestNs;
+	return pairer_.newestNs(newestNs) && newestNs > static_cast<int64_t>(slot.frame.timestampNs);
+}
+
+bool PairingQueue::next(uint64_t nowNs, Keying &out)
+{
+	if (!count_ || !due(slots_[first_], nowNs))
+		return false;
+	out.colour = &slots_[first_].frame;
+	out.depth = pairer_.bracket(out.colour->timestampNs);
+	return true;
+}
+
+void PairingQueue::pop()
+{
+	if (!count_)
+		return;
+	first_ = (first_ + 1) % slotCount_;
+	count_--;
+}
+
+uint64_t PairingQueue::nextDeadlineNs() const
+{
+	return count_ ? slots_[first_].deadlineNs : 0;
+}
+
+} // namespace depthkey

@@ -1,0 +1,72 @@
+// Colour frames held back until depth from both sides of them in time is in
+// (pairing.delay_ms). The depth camera runs slower than the colour camera and
+// its frames arrive late (latency), so keying a colour frame at once means
+// keying it with depth captured 40-150 ms before it: a walking lecturer has
+// moved 10-50 px since. Waiting up to about one depth period plus the depth
+// latency lets each colour frame be keyed with the depth frame captured just
+// before it and the one just after it (FramePairer::bracket).
+//
+// A held frame is due when a depth frame with a corrected time after its
+// capture has arrived, when it has waited delay_ms since it arrived, or
+// when the ring is full (a colour camera faster than configured). Frames
+// leave in arrival order with their own capture timestamps. The queue waits
+// on nothing but time: without a depth camera every frame leaves after the
+// delay, unpaired. delay 0 keys every frame as it arrives (lowest latency).
+//
+// The ring's frames are allocated once at their size; pushing a frame of the
+// same size copies into storage that is already there. Pure: times are
+// handed in.
+#pragma once
+
+#include "algo/frame_pairer.hpp"
+#include "algo/frames.hpp"
+
+#include <array>
+#include <cstdint>
+
+namespace depthkey {
+
+class PairingQueue
+{
+public:
+	static constexpr size_t kMaxSlots = 16;
+
+	// slots: frames held at most (1..kMaxSlots); slotsFor() gives what a
+	// delay needs at a frame rate.
+	void configure(int64_t offsetNs, uint64_t maxSkewNs, uint64_t delayNs, size_t slots);
+	static size_t slotsFor(uint64_t delayNs, int colourFps);
+	void setOffset(int64_t offsetNs) { pairer_.configure(offsetNs, maxSkewNs_); }
+	// Forgets held colour and depth frames (a camera restarted).
+	void clear();
+
+	void addDepth(const DepthFrame &frame) { pairer_.addDepth(frame); }
+	void addColour(const ColourFrame &frame, uint64_t nowNs);
+
+	// The oldest held frame when it is due at nowNs, bracketed with depth;
+	// nullptr when none is due. Valid until pop(), addColour() or addDepth().
+	struct Keying {
+		const ColourFrame *colour = nullptr;
+		FramePairer::Bracket depth;
+	};
+	bool next(uint64_t nowNs, Keying &out);
+	void pop();
+
+	size_t held() const { return count_; }
+	// When the oldest held frame falls due by time alone; 0 when none is held.
+	uint64_t nextDeadlineNs() const;
+	const FramePairer &pairer() const { return pairer_; }
+
+private:
+	struct Slot {
+		ColourFrame frame;
+		uint64_t deadlineNs = 0;
+	};
+	bool due(const Slot &slot, uint64_t nowNs) const;
+
+	FramePairer pairer_;
+	std::array<Slot, kMaxSlots> slots_;
+	size_t slotCount_ = 1, first_ = 0, count_ = 0;
+	uint64_t delayNs_ = 0, maxSkewNs_ = 150'000'000;
+};
+
+} // namespace depthkey
