@@ -141,7 +141,8 @@ bool ColourLearner::learn(const RgbImage &colour, const Gray8Image &trimap, int 
 		const Rgb8 *c = colour.row(y);
 		const uint8_t *t = trimap.row(y);
 		for (int x = offset; x < w; x += step) {
-			bool isLecturer = t[x] == kTrimapLecturer;
+			// The depth subset, graded or plain (algo/trimap.hpp).
+			bool isLecturer = t[x] >= kTrimapSubset;
 			if (!isLecturer && (t[x] != kTrimapBoard || !farFromLecturer(trimap, x, y, marginPx)))
 				continue;
 			uint32_t q = quantiseColour(c[x]);

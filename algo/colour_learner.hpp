@@ -1,5 +1,5 @@
-// Colour learning (paper 6.1-6.2): lecturer colours from the surely-lecturer
-// seeds, board colours from well outside the superset, on a sparse grid of
+// Colour learning (paper 6.1-6.2): lecturer colours from the depth subset
+// (trimap labels >= kTrimapSubset), board colours from well outside the superset, on a sparse grid of
 // about `samples` points per frame (jittered from frame to frame, so every
 // pixel is visited over time). Both go into decaying histograms: the board
 // learns fast (its content changes all the time), the lecturer slowly.

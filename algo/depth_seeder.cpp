@@ -59,12 +59,19 @@ void DepthSeeder::seed(const DepthFrame &depth, DepthSeeds &out)
 	}
 	picker_.remember(subset_);
 	dilateSquare(reach_, settings_.dilatePx, superset_, morphology_, path_);
+	// The core: deeper inside his in-range area than the subset (an arm
+	// thinner than that has none, and is decided by the evidence).
+	erodeSquare(reach_, settings_.erodePx + settings_.corePx, core_, morphology_, path_);
 
 	uint64_t depthSum = 0;
-	const uint8_t *sub = subset_.data(), *sup = superset_.data();
+	const uint8_t *sub = subset_.data(), *sup = superset_.data(), *core = core_.data(), *in = reach_.data();
 	uint8_t *labels = out.labels.data();
 	for (size_t i = 0; i < n; ++i) {
-		labels[i] = sub[i] ? kTrimapLecturer : sup[i] ? kTrimapUndecided : kTrimapBoard;
+		labels[i] = core[i] && sub[i] ? kTrimapLecturer
+			    : sub[i]          ? kTrimapSubset
+			    : in[i]           ? kTrimapInRange
+			    : sup[i]          ? kTrimapUndecided
+					      : kTrimapBoard;
 		if (sub[i])
 			depthSum += d[i];
 	}

@@ -8,7 +8,10 @@
 //               when the erosion leaves nothing of him: surely lecturer;
 //   superset  = dilate(the in-range component holding the subset,
 //               dilate_px); everything outside is surely board;
-//   undecided = superset minus subset, where SIOX decides.
+//   core      = erode(that in-range component, erode_px + core_px): fixed
+//               as lecturer whatever colour says;
+//   undecided = superset minus core, where the evidence decides, graded
+//               by depth (algo/trimap.hpp): subset, in range, out of range.
 #pragma once
 
 #include "algo/frames.hpp"
@@ -49,7 +52,7 @@ private:
 	KernelPath path_ = bestKernelPath();
 	void smoothSurface(const Gray16Image &depthMm, DepthSeeds &out);
 
-	Gray8Image trusted_, subset_, reach_, superset_, moving_;
+	Gray8Image trusted_, subset_, reach_, superset_, core_, moving_;
 	std::vector<uint32_t> depthSums_, counts_; // integral images, (w+1) x (h+1)
 	StaticBackground background_;
 	LecturerPicker picker_;

@@ -29,6 +29,7 @@ void Pipeline::configure(const Settings &settings, const MappingModel &mapping)
 		s.valid = false; // new settings: seed the next frames again
 	learner_.configure(settings.learning);
 	refiner_.configure(settings.siox);
+	evidence_.configure(settings.decision);
 	if (reseed)
 		restartLearning();
 }
@@ -45,6 +46,8 @@ void Pipeline::restartLearning()
 	classifier_.lecturer().clear();
 	classifier_.board().clear();
 	classifier_.signaturesChanged();
+	boardModel_.reset();
+	havePrevious_ = false;
 }
 
 void Pipeline::ensureSizes(int colourWidth, int colourHeight, int depthWidth, int depthHeight)
@@ -132,18 +135,26 @@ void Pipeline::process(const ColourFrame &colour, const FramePairer::Bracket &de
 		second = nullptr; // the depth camera changed size in between
 	ensureSizes(colour.rgb.width(), colour.rgb.height(), first->depthMm.width(), first->depthMm.height());
 	const SeededDepth &a = seededFor(*first, nullptr);
-	if (second)
-		uniteTrimaps(a.mapped, seededFor(*second, &a).mapped, keyed_);
-	else
-		uniteTrimaps(a.mapped, a.mapped, keyed_);
+	if (second) {
+		// Where the colour frame lies between the two depth captures.
+		const int64_t span = std::max<int64_t>(1, depth.afterNs - depth.beforeNs);
+		const int64_t into = std::clamp<int64_t>(int64_t(colour.timestampNs) - depth.beforeNs, 0, span);
+		uniteTrimaps(a.mapped, seededFor(*second, &a).mapped, int((into * 256 + span / 2) / span), keyed_);
+	} else {
+		uniteTrimaps(a.mapped, a.mapped, 0, keyed_);
+	}
 	const Gray8Image &trimap = keyed_.trimap;
-	learner_.learn(colour.rgb, trimap, settings_.learning.marginPx * seedMapper_.colourPixelsPerTofPixel(),
-		       classifier_);
+	const int marginPx = settings_.learning.marginPx * seedMapper_.colourPixelsPerTofPixel();
+	learner_.learn(colour.rgb, trimap, marginPx, classifier_);
+	boardModel_.learn(colour.rgb, trimap);
 	// Until the first signatures exist (no lecturer or no board seen yet)
 	// the classifier calls every colour lecturer: the output is the depth
 	// superset, which never cuts the lecturer off.
+	evidence_.bind(colour.rgb, trimap, classifier_, boardModel_, havePrevious_ ? &previousAlpha_ : nullptr,
+		       &previousColour_, previousRoi_);
 	refiner_.setLecturerBeyondBorder(keyed_.lecturerBeyondBorder);
-	refiner_.refine(colour.rgb, trimap, keyed_.roi, classifier_, out.alpha);
+	refiner_.refine(colour.rgb, trimap, keyed_.roi, evidence_, out.alpha);
+	rememberFrame(colour.rgb, out.alpha);
 	compose(colour.rgb, out);
 
 	status_.learning = learner_.learning();
@@ -151,6 +162,19 @@ void Pipeline::process(const ColourFrame &colour, const FramePairer::Bracket &de
 	status_.bandPixels = refiner_.bandPixels();
 	status_.lecturerCentroids = classifier_.lecturer().size();
 	status_.boardCentroids = classifier_.board().size();
+}
+
+void Pipeline::rememberFrame(const RgbImage &colour, const Gray8Image &alpha)
+{
+	previousAlpha_.resize(alpha.width(), alpha.height());
+	previousColour_.resize(colour.width(), colour.height());
+	const Roi &roi = keyed_.roi;
+	for (int y = roi.y0; y < roi.y1; ++y) {
+		std::copy(alpha.row(y) + roi.x0, alpha.row(y) + roi.x1, previousAlpha_.row(y) + roi.x0);
+		std::copy(colour.row(y) + roi.x0, colour.row(y) + roi.x1, previousColour_.row(y) + roi.x0);
+	}
+	previousRoi_ = roi;
+	havePrevious_ = true;
 }
 
 // Outside the ROI the alpha is 0: only the ROI is blended.

@@ -11,11 +11,13 @@
 // frame in steady state (tests/pipeline_allocation_test.cpp counts).
 #pragma once
 
+#include "algo/board_model.hpp"
 #include "algo/colour_learner.hpp"
 #include "algo/depth_mapper.hpp"
 #include "algo/depth_seeder.hpp"
 #include "algo/frame_pairer.hpp"
 #include "algo/frames.hpp"
+#include "algo/fused_evidence.hpp"
 #include "algo/kernel_path.hpp"
 #include "algo/mapping_model.hpp"
 #include "algo/seed_mapper.hpp"
@@ -99,6 +101,9 @@ private:
 	// The seeds of depth, seeding it unless held; never evicts `keep`.
 	const SeededDepth &seededFor(const DepthFrame &depth, const SeededDepth *keep);
 	void compose(const RgbImage &colour, PipelineOutput &out) const;
+	// Keeps this frame's alpha and colour inside its ROI for the next
+	// frame's temporal evidence.
+	void rememberFrame(const RgbImage &colour, const Gray8Image &alpha);
 
 	Settings settings_;
 	MappingModel mapping_;
@@ -112,6 +117,12 @@ private:
 	DepthSeeder seeder_;
 	SeedMapper seedMapper_;
 	SioxRefiner refiner_;
+	BoardModel boardModel_;
+	FusedEvidence evidence_;
+	Gray8Image previousAlpha_;
+	RgbImage previousColour_;
+	Roi previousRoi_;
+	bool havePrevious_ = false;
 
 	std::array<SeededDepth, 2> seeded_;
 	size_t newest_ = 0;              // seeded_ slot seeded last

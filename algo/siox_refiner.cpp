@@ -62,8 +62,8 @@ void flood(uint8_t *m, int stride, int32_t *stack, size_t top, uint8_t from, uin
 
 } // namespace
 
-void SioxRefiner::refine(const RgbImage &colour, const Gray8Image &trimap, const Roi &roi,
-			 SioxClassifier &classifier, Gray8Image &alpha)
+void SioxRefiner::refine(const RgbImage &colour, const Gray8Image &trimap, const Roi &roi, BandEvidence &evidence,
+			 Gray8Image &alpha)
 {
 	if (colour.width() != width_ || colour.height() != height_ || work_.empty()) {
 		width_ = colour.width();
@@ -84,7 +84,7 @@ void SioxRefiner::refine(const RgbImage &colour, const Gray8Image &trimap, const
 	bandPixels_ = 0;
 	if (roi.empty() || trimap.width() != width_ || trimap.height() != height_)
 		return;
-	collectAndClassify(colour, trimap, roi, classifier);
+	collectAndClassify(trimap, roi, evidence);
 	if (settings_.smoothing > 0)
 		smooth();
 	keepComponentsTouchingLecturer();
@@ -92,23 +92,24 @@ void SioxRefiner::refine(const RgbImage &colour, const Gray8Image &trimap, const
 	writeAlpha(roi, alpha);
 }
 
-void SioxRefiner::collectAndClassify(const RgbImage &colour, const Gray8Image &trimap, const Roi &roi,
-				     SioxClassifier &classifier)
+void SioxRefiner::collectAndClassify(const Gray8Image &trimap, const Roi &roi, BandEvidence &evidence)
 {
 	colourConfidence_.clear();
 	for (int y = roi.y0; y < roi.y1; ++y) {
 		const uint8_t *t = trimap.row(y);
-		const Rgb8 *c = colour.row(y);
 		uint8_t *w = work_.data() + at(0, y);
 		std::memcpy(w + roi.x0, t + roi.x0, size_t(roi.x1 - roi.x0));
 		for (int x = nextUndecided(t, roi.x0, roi.x1); x < roi.x1; x = nextUndecided(t, x, roi.x1)) {
 			Span span{ y, x, x, int(colourConfidence_.size()) };
-			for (; x < roi.x1 && !isSeed(t[x]); ++x) {
-				uint8_t conf = classifier.confidence(quantiseColour(c[x]));
-				colourConfidence_.push_back(conf);
-				w[x] = conf >= kConfidenceLecturer ? 255 : 0;
-			}
+			while (x < roi.x1 && !isSeed(t[x]))
+				++x;
 			span.x1 = x;
+			// Within the capacity reserved for the whole image: no allocation.
+			colourConfidence_.resize(colourConfidence_.size() + size_t(span.x1 - span.x0));
+			uint8_t *conf = colourConfidence_.data() + span.first;
+			evidence.confidences(y, span.x0, span.x1, conf);
+			for (int k = 0; k < span.x1 - span.x0; ++k)
+				w[span.x0 + k] = conf[k] >= kConfidenceLecturer ? 255 : 0;
 			spans_.push_back(span);
 		}
 	}
@@ -213,9 +214,9 @@ void SioxRefiner::fillHoles()
 		}
 	});
 	flood(m, stride, stack_.data(), top, kUnreachedBoard, 0);
-	forEachBandPixel([&](int p, int) {
+	forEachBandPixel([&](int p, int k) {
 		if (m[p] == kUnreachedBoard)
-			m[p] = 255;
+			m[p] = colourConfidence_[k] < kClearlyBoard ? 0 : 255;
 	});
 }
 

@@ -2,8 +2,9 @@
 // soft alpha. Only band pixels are ever computed or changed, so the seeds are
 // never contradicted (surely lecturer stays 255, surely board stays 0) and
 // the cost follows the band's size, not the image's:
-//   1. classify: each band pixel gets its colour's cached decision (one
-//      lookup, SioxClassifier);
+//   1. classify: each band pixel gets its confidence from the evidence
+//      (algo/band_evidence.hpp: SIOX's cached colour decision, or that fused
+//      with the board model, depth and the previous frame);
 //   2. smoothing: `smoothing` passes of a 3x3 box average of the confidence
 //      (as SIOX's smoothcm with weights 1/3), then a threshold at one half;
 //   3. components: keep every 4-connected lecturer region of the band that
@@ -14,7 +15,9 @@
 //      from the body by a vest of the board's colour); drop the rest
 //      (specks, chalk writing);
 //   4. holes: a board region of the band that reaches no surely-board pixel
-//      and not the image border is enclosed by the lecturer: fill it;
+//      and not the image border is enclosed by the lecturer: fill it, except
+//      where the evidence says board clearly (confidence below
+//      kClearlyBoard: the board seen between an arm and the body);
 //   5. soft alpha: band pixels on the final boundary take their colour's
 //      confidence (the distance ratio), kept on the side of the decision so
 //      that thresholding the alpha at 128 gives back the mask.
@@ -25,6 +28,7 @@
 // without bounds checks and no pixel index is ever divided back into x, y.
 #pragma once
 
+#include "algo/band_evidence.hpp"
 #include "algo/image.hpp"
 #include "algo/siox_classifier.hpp"
 #include "algo/trimap.hpp"
@@ -39,6 +43,9 @@ class SioxRefiner
 {
 public:
 	static constexpr size_t kFreeComponentDivisor = 768, kFreeComponentMinPx = 400;
+	// A hole pixel whose confidence is below this stays board: a quarter of
+	// the way from board's end of the scale to the decision threshold.
+	static constexpr uint8_t kClearlyBoard = 32;
 
 	void configure(const SioxSettings &settings) { settings_ = settings; }
 	// For the next refine(): the lecturer goes on beyond the image border
@@ -49,8 +56,15 @@ public:
 	// roi must contain every non-board trimap pixel with one pixel to spare
 	// (or the image border). alpha is resized to the image and written
 	// everywhere: 0 outside the ROI.
-	void refine(const RgbImage &colour, const Gray8Image &trimap, const Roi &roi,
-		    SioxClassifier &classifier, Gray8Image &alpha);
+	void refine(const RgbImage &colour, const Gray8Image &trimap, const Roi &roi, BandEvidence &evidence,
+		    Gray8Image &alpha);
+	// SIOX's colour decision alone (ColourEvidence).
+	void refine(const RgbImage &colour, const Gray8Image &trimap, const Roi &roi, SioxClassifier &classifier,
+		    Gray8Image &alpha)
+	{
+		ColourEvidence evidence(classifier, colour);
+		refine(colour, trimap, roi, evidence, alpha);
+	}
 
 	// The band pixels of the last refine(), for previews and tests.
 	size_t bandPixels() const { return bandPixels_; }
@@ -61,8 +75,7 @@ private:
 		int first;       // index of its first pixel in the band arrays
 	};
 
-	void collectAndClassify(const RgbImage &colour, const Gray8Image &trimap, const Roi &roi,
-				SioxClassifier &classifier);
+	void collectAndClassify(const Gray8Image &trimap, const Roi &roi, BandEvidence &evidence);
 	void smooth();
 	void keepComponentsTouchingLecturer();
 	void fillHoles();

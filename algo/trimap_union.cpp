@@ -7,7 +7,7 @@
 
 namespace depthkey {
 
-void uniteTrimaps(const MappedSeeds &a, const MappedSeeds &b, MappedSeeds &out)
+void uniteTrimaps(const MappedSeeds &a, const MappedSeeds &b, int laterQ8, MappedSeeds &out)
 {
 	const int w = a.trimap.width(), h = a.trimap.height();
 	Roi &roi = out.roi;
@@ -20,15 +20,17 @@ void uniteTrimaps(const MappedSeeds &a, const MappedSeeds &b, MappedSeeds &out)
 		std::memset(out.trimap.row(y) + roi.x0, kTrimapBoard, size_t(roi.x1 - roi.x0));
 	out.lecturerBeyondBorder = a.lecturerBeyondBorder || b.lecturerBeyondBorder;
 	if (a.roi.empty() || b.roi.empty()) {
-		// One side saw no lecturer: he may be where the other saw him, and
-		// is surely nowhere.
+		// One side saw no lecturer: he may be where the other saw him (as
+		// far as it is in time), and is surely nowhere.
 		const MappedSeeds &seen = a.roi.empty() ? b : a;
+		const int weight = a.roi.empty() ? laterQ8 : 256 - laterQ8;
 		roi = seen.roi;
 		for (int y = roi.y0; y < roi.y1; ++y) {
 			const uint8_t *s = seen.trimap.row(y);
 			uint8_t *o = out.trimap.row(y);
 			for (int x = roi.x0; x < roi.x1; ++x)
-				o[x] = s[x] == kTrimapBoard ? kTrimapBoard : kTrimapUndecided;
+				o[x] = s[x] == kTrimapBoard ? kTrimapBoard
+							    : uint8_t(std::clamp((s[x] * weight + 128) >> 8, 1, 254));
 		}
 		return;
 	}
@@ -38,9 +40,10 @@ void uniteTrimaps(const MappedSeeds &a, const MappedSeeds &b, MappedSeeds &out)
 		const uint8_t *p = a.trimap.row(y), *q = b.trimap.row(y);
 		uint8_t *o = out.trimap.row(y);
 		for (int x = roi.x0; x < roi.x1; ++x) {
-			// Labels are 0, 128, 255: equal labels stay, any other pair is
-			// undecided.
-			o[x] = p[x] == q[x] ? p[x] : kTrimapUndecided;
+			// Equal labels stay; any other pair is undecided (1..254),
+			// blended by time. Exact in 16 bits: 255 * 256 + 128 < 2^16.
+			const int blend = (p[x] * (256 - laterQ8) + q[x] * laterQ8 + 128) >> 8;
+			o[x] = p[x] == q[x] ? p[x] : uint8_t(std::clamp(blend, 1, 254));
 		}
 	}
 }

@@ -3,7 +3,9 @@
 // saw him, and is surely there only where both did. So, per pixel:
 //   surely lecturer  where both trimaps say surely lecturer (the core);
 //   surely board     where both say surely board;
-//   undecided        everywhere else (the superset is the union).
+//   undecided        everywhere else (the superset is the union), graded
+//                    (algo/trimap.hpp) by the two labels blended by time:
+//                    a colour frame near the later depth frame leans on it.
 // Only the two ROIs are touched; out's previous ROI is cleared first.
 #pragma once
 
@@ -11,7 +13,8 @@
 
 namespace depthkey {
 
-// a and b must have the same size; out is resized to it.
-void uniteTrimaps(const MappedSeeds &a, const MappedSeeds &b, MappedSeeds &out);
+// a and b must have the same size; out is resized to it. laterQ8 (0..256)
+// is how far the colour frame lies from a's capture towards b's.
+void uniteTrimaps(const MappedSeeds &a, const MappedSeeds &b, int laterQ8, MappedSeeds &out);
 
 } // namespace depthkey

@@ -186,6 +186,7 @@ void bindSegmentation(TomlSection &sec, SegmentationSettings &s)
 				    std::to_string(s.maxAmplitude) + ")");
 	sec.integer("erode_px", s.erodePx, 0, 20);
 	sec.integer("dilate_px", s.dilatePx, 1, 40);
+	sec.integer("core_px", s.corePx, 0, 20);
 }
 
 void bindMapping(TomlSection &sec, MappingSettings &s)
@@ -207,6 +208,16 @@ void bindSiox(TomlSection &sec, SioxSettings &s)
 {
 	sec.integer("smoothing", s.smoothing, 0, 8);
 	sec.boolean("soft_alpha", s.softAlpha);
+}
+
+void bindDecision(TomlSection &sec, DecisionSettings &s)
+{
+	sec.integer("depth_weight", s.depthWeight, 0, 255);
+	sec.integer("depth_pivot", s.depthPivot, 1, 254);
+	sec.integer("board_weight", s.boardWeight, 0, 255);
+	sec.integer("board_match", s.boardMatch, 1, 255);
+	sec.integer("temporal_weight", s.temporalWeight, 0, 255);
+	sec.integer("still_colour", s.stillColour, 1, 255);
 }
 
 void bindComposite(TomlSection &sec, CompositeSettings &s)
@@ -303,6 +314,7 @@ void bindSettings(TomlSection &root, Settings &s)
 	root.table("mapping", [&](TomlSection &sec) { bindMapping(sec, s.mapping); });
 	root.table("learning", [&](TomlSection &sec) { bindLearning(sec, s.learning); });
 	root.table("siox", [&](TomlSection &sec) { bindSiox(sec, s.siox); });
+	root.table("decision", [&](TomlSection &sec) { bindDecision(sec, s.decision); });
 	root.table("composite", [&](TomlSection &sec) { bindComposite(sec, s.composite); });
 	root.table("output", [&](TomlSection &sec) { bindOutput(sec, s.output); });
 	root.table("leds", [&](TomlSection &sec) { bindLeds(sec, s.leds); });

@@ -75,6 +75,7 @@ struct SegmentationSettings {
 	int maxAmplitude = 65535;           // 1..65535: at or above = saturated, not trusted
 	int erodePx = 2;                    // 0..20 ToF px: in-range mask -> surely lecturer
 	int dilatePx = 4;                   // 1..40 ToF px: surely lecturer -> superset
+	int corePx = 2;                     // 0..20 ToF px eroded beyond erode_px: the fixed core
 	bool operator==(const SegmentationSettings &) const = default;
 };
 
@@ -100,6 +101,19 @@ struct SioxSettings {
 	int smoothing = 1;                  // 0..8 passes of 3x3 confidence smoothing
 	bool softAlpha = true;              // fractional alpha on the boundary
 	bool operator==(const SioxSettings &) const = default;
+};
+
+// How the evidence decides the undecided pixels inside the superset
+// (algo/fused_evidence.hpp). Weights are in units of SIOX's colour
+// confidence, which counts 1.
+struct DecisionSettings {
+	int depthWeight = 96;               // 0..255: the graded depth trimap
+	int depthPivot = 150;               // 1..254: the depth trimap value that is neutral
+	int boardWeight = 160;              // 0..255: a match with the board model
+	int boardMatch = 24;                // 1..255: L1 RGB distance below which the board model matches
+	int temporalWeight = 64;            // 0..255: the previous frame's alpha where colour did not change
+	int stillColour = 24;               // 1..255: L1 RGB change below which a pixel did not change
+	bool operator==(const DecisionSettings &) const = default;
 };
 
 struct CompositeSettings {
@@ -181,6 +195,7 @@ struct Settings {
 	MappingSettings mapping;
 	LearningSettings learning;
 	SioxSettings siox;
+	DecisionSettings decision;
 	CompositeSettings composite;
 	OutputSettings output;
 	LedSettings leds;

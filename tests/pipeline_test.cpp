@@ -326,7 +326,8 @@ TEST(DepthSeeder, RejectsUntrustedDepthAndSeparatesSubsetBandAndBoard)
 	const DepthSeeds seeds = seedsOf(depth, 60000);
 	EXPECT_EQ(seeds.labels.at(15, 10), kTrimapLecturer);
 	EXPECT_EQ(seeds.labels.at(20, 15), kTrimapUndecided); // untrusted: eroded around
-	EXPECT_EQ(seeds.labels.at(10, 5), kTrimapUndecided);  // the edge
+	EXPECT_EQ(seeds.labels.at(10, 5), kTrimapInRange);    // the edge: in range, eroded away
+	EXPECT_EQ(seeds.labels.at(12, 7), kTrimapSubset);     // eroded once, not deep enough for the core
 	EXPECT_EQ(seeds.labels.at(9, 15), kTrimapUndecided);  // dilated beyond
 	EXPECT_EQ(seeds.labels.at(8, 15), kTrimapUndecided);  // the in-range area, dilated
 	EXPECT_EQ(seeds.labels.at(7, 15), kTrimapBoard);

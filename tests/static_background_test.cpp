@@ -146,7 +146,7 @@ TEST(DepthSeeder, AnArmThinnerThanTheErosionIsStillSeeded)
 		for (int y = 8; y < 10; ++y)
 			frame.depthMm.at(x, y) = 1400;
 	seeder.seed(frame, seeds);
-	EXPECT_EQ(seeds.labels.at(6, 8), kTrimapLecturer);
+	EXPECT_EQ(seeds.labels.at(6, 8), kTrimapSubset); // lecturer colours, but too thin for a core
 	EXPECT_EQ(seeds.labels.at(6, 11), kTrimapUndecided);
 	EXPECT_EQ(seeds.labels.at(35, 25), kTrimapBoard); // not the desk
 	EXPECT_EQ(seeds.lecturerDepthMm, 1400);
@@ -158,7 +158,7 @@ TEST(DepthSeeder, AnArmThinnerThanTheErosionIsStillSeeded)
 		frame.depthMm.at(x, 12) = 1400;
 	seeder.seed(frame, seeds);
 	EXPECT_EQ(seeds.labels.at(10, 18), kTrimapLecturer);
-	EXPECT_EQ(seeds.labels.at(24, 12), kTrimapUndecided);
+	EXPECT_EQ(seeds.labels.at(24, 12), kTrimapInRange);   // in range, eroded away
 	EXPECT_EQ(seeds.labels.at(26, 12), kTrimapUndecided); // dilated beyond its end
 	EXPECT_EQ(seeds.labels.at(27, 12), kTrimapBoard);
 }

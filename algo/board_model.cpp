@@ -1,0 +1,60 @@
+#include "algo/board_model.hpp"
+
+#include <algorithm>
+#include <cstring>
+
+namespace depthkey {
+
+void BoardModel::reset()
+{
+	if (!model_.empty())
+		std::memset(static_cast<void *>(model_.data()), 0, model_.size() * sizeof(Rgba8));
+	phase_ = 0;
+}
+
+void BoardModel::learn(const RgbImage &colour, const Gray8Image &trimap)
+{
+	const int w = colour.width(), h = colour.height();
+	if (trimap.width() != w || trimap.height() != h)
+		return;
+	if (model_.width() != w || model_.height() != h) {
+		model_.resize(w, h);
+		reset();
+	}
+	// m += (c - m) / 4, rounded to nearest (an arithmetic shift of d + 2
+	// floors; the mean settles within 2 levels of a steady colour, below the
+	// sensor noise).
+	auto step = [](uint8_t mean, uint8_t value) {
+		return uint8_t(mean + ((int(value) - int(mean) + (1 << (kRateShift - 1))) >> kRateShift));
+	};
+	uint64_t colourSum[3] = {}, modelSum[3] = {};
+	for (int y = phase_; y < h; y += kRowStride) {
+		const Rgb8 *c = colour.row(y);
+		const uint8_t *t = trimap.row(y);
+		Rgba8 *m = model_.row(y);
+		for (int x = 0; x < w; ++x) {
+			if (t[x] != kTrimapBoard)
+				continue;
+			if (m[x].a == 0) {
+				m[x] = { c[x].r, c[x].g, c[x].b, 1 };
+				continue;
+			}
+			colourSum[0] += c[x].r;
+			colourSum[1] += c[x].g;
+			colourSum[2] += c[x].b;
+			modelSum[0] += m[x].r;
+			modelSum[1] += m[x].g;
+			modelSum[2] += m[x].b;
+			m[x] = { step(m[x].r, c[x].r), step(m[x].g, c[x].g), step(m[x].b, c[x].b),
+				 uint8_t(std::min(255, m[x].a + 1)) };
+		}
+	}
+	// The gain of the light against the model as it was before this update
+	// (the rows learned here have moved a quarter of the way towards it).
+	for (int k = 0; k < 3; ++k)
+		gainQ8_[k] = modelSum[k] ? int(std::clamp<uint64_t>((colourSum[k] * 256 + modelSum[k] / 2) / modelSum[k], 128, 512))
+					 : 256;
+	phase_ = (phase_ + 1) % kRowStride;
+}
+
+} // namespace depthkey

@@ -1,0 +1,71 @@
+// How the board looks at each colour pixel (issue 11 section 3): one running
+// colour per pixel, learned where the pixel is surely board and kept while
+// the lecturer covers it. A band pixel that matches the board model at its
+// own place is board: that tells white chalk on the board from a white shirt,
+// and a dark vest from the dark board, where the two class signatures (one
+// colour set for the whole board) cannot.
+//
+// Learning: every surely-board pixel of the trimap (outside the superset,
+// the union of both depth frames' dilated areas), on one row in kRowStride
+// per frame, the rows cycling, so the whole board is visited every
+// kRowStride frames (160 ms at 25 fps) at a quarter of the cost. The mean
+// moves by 1/2^rateShift of the difference per visit (ink written or wiped
+// is 80 % followed within a second); a pixel seen for the first time takes the
+// colour as it is.
+//
+// The room light changes (daylight, a lamp): behind a lecturer who stands
+// still for a minute the model is as old as that, and a board 15 % darker
+// than it was would no longer match. So the model is compared with the
+// colour after a gain per channel, measured every frame on the rows learned
+// (sum of the colour over sum of the model, Q8), which follows a global
+// change of light at once.
+// Memory: 4 bytes per pixel (RGB and a visit count). Pure, allocation-free
+// after the first frame of a size.
+#pragma once
+
+#include "algo/image.hpp"
+#include "algo/trimap.hpp"
+
+#include <cstdint>
+#include <cstdlib>
+#include <vector>
+
+namespace depthkey {
+
+class BoardModel
+{
+public:
+	static constexpr int kRowStride = 4;
+	static constexpr int kRateShift = 2;   // 1/4 of the difference per visit
+	static constexpr uint8_t kLearnedVisits = 2; // visits before the model is trusted
+
+	void reset();
+	// trimap: the keyed trimap (colour size); its kTrimapBoard pixels are learned.
+	void learn(const RgbImage &colour, const Gray8Image &trimap);
+
+	// The model of row y: RGB, and in .a the number of visits (saturating at
+	// 255; 0 = never seen as board). Empty before the first learn().
+	const Rgba8 *row(int y) const { return model_.row(y); }
+	bool empty() const { return model_.empty(); }
+
+	// The L1 distance of c to the model at (x, y), or -1 when the pixel has
+	// not been learned well enough yet.
+	int distance(int x, int y, Rgb8 c) const
+	{
+		const Rgba8 m = model_.row(y)[x];
+		if (m.a < kLearnedVisits)
+			return -1;
+		return std::abs(int(c.r) - ((m.r * gainQ8_[0] + 128) >> 8)) +
+		       std::abs(int(c.g) - ((m.g * gainQ8_[1] + 128) >> 8)) +
+		       std::abs(int(c.b) - ((m.b * gainQ8_[2] + 128) >> 8));
+	}
+	// The light's gain per channel since the model was learned, Q8.
+	const int *gainQ8() const { return gainQ8_; }
+
+private:
+	RgbaImage model_;
+	int phase_ = 0;
+	int gainQ8_[3] = { 256, 256, 256 };
+};
+
+} // namespace depthkey
