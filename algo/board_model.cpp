@@ -54,7 +54,51 @@ void BoardModel::learn(const RgbImage &colour, const Gray8Image &trimap)
 	for (int k = 0; k < 3; ++k)
 		gainQ8_[k] = modelSum[k] ? int(std::clamp<uint64_t>((colourSum[k] * 256 + modelSum[k] / 2) / modelSum[k], 128, 512))
 					 : 256;
+	lastPhase_ = phase_;
 	phase_ = (phase_ + 1) % kRowStride;
+}
+
+void BoardModel::update(Rgba8 &m, Rgb8 c)
+{
+	auto step = [](uint8_t mean, uint8_t value) {
+		return uint8_t(mean + ((int(value) - int(mean) + (1 << (kRateShift - 1))) >> kRateShift));
+	};
+	if (m.a == 0)
+		m = { c.r, c.g, c.b, 1 };
+	else
+		m = { step(m.r, c.r), step(m.g, c.g), step(m.b, c.b), uint8_t(std::min(255, m.a + 1)) };
+}
+
+void BoardModel::learnDecided(const RgbImage &colour, const Gray8Image &trimap, const Gray8Image &alpha,
+			      const Roi &roi, int marginPx)
+{
+	const int w = colour.width(), h = colour.height();
+	if (model_.width() != w || model_.height() != h || alpha.width() != w || alpha.height() != h || roi.empty())
+		return;
+	marginPx = std::max(1, marginPx);
+	auto clearOfLecturer = [&](int x, int y) {
+		for (int dy = -marginPx; dy <= marginPx; dy += marginPx) {
+			const int yy = y + dy;
+			if (yy < 0 || yy >= h)
+				continue;
+			const uint8_t *a = alpha.row(yy);
+			for (int dx = -marginPx; dx <= marginPx; dx += marginPx) {
+				const int xx = x + dx;
+				if (xx >= 0 && xx < w && a[xx])
+					return false;
+			}
+		}
+		return true;
+	};
+	const int first = roi.y0 + ((lastPhase_ - roi.y0 % kRowStride + kRowStride) % kRowStride);
+	for (int y = first; y < roi.y1; y += kRowStride) {
+		const Rgb8 *c = colour.row(y);
+		const uint8_t *t = trimap.row(y);
+		Rgba8 *m = model_.row(y);
+		for (int x = roi.x0; x < roi.x1; ++x)
+			if (t[x] != kTrimapBoard && t[x] != kTrimapLecturer && clearOfLecturer(x, y))
+				update(m[x], c[x]);
+	}
 }
 
 } // namespace depthkey

@@ -42,6 +42,13 @@ public:
 	void reset();
 	// trimap: the keyed trimap (colour size); its kTrimapBoard pixels are learned.
 	void learn(const RgbImage &colour, const Gray8Image &trimap);
+	// Inside the superset the board is learned where the frame's decision
+	// was board with no lecturer pixel within marginPx in any of 8
+	// directions (the board between his arm and body, or between his legs,
+	// is never outside the superset while he stands there). The same rows
+	// as the last learn(), within roi.
+	void learnDecided(const RgbImage &colour, const Gray8Image &trimap, const Gray8Image &alpha, const Roi &roi,
+			  int marginPx);
 
 	// The model of row y: RGB, and in .a the number of visits (saturating at
 	// 255; 0 = never seen as board). Empty before the first learn().
@@ -63,8 +70,10 @@ public:
 	const int *gainQ8() const { return gainQ8_; }
 
 private:
+	void update(Rgba8 &m, Rgb8 c);
+
 	RgbaImage model_;
-	int phase_ = 0;
+	int phase_ = 0, lastPhase_ = 0;
 	int gainQ8_[3] = { 256, 256, 256 };
 };
 

@@ -154,6 +154,7 @@ void Pipeline::process(const ColourFrame &colour, const FramePairer::Bracket &de
 		       &previousColour_, previousRoi_);
 	refiner_.setLecturerBeyondBorder(keyed_.lecturerBeyondBorder);
 	refiner_.refine(colour.rgb, trimap, keyed_.roi, evidence_, out.alpha);
+	boardModel_.learnDecided(colour.rgb, trimap, out.alpha, keyed_.roi, marginPx);
 	rememberFrame(colour.rgb, out.alpha);
 	compose(colour.rgb, out);
 

@@ -110,7 +110,7 @@ struct DecisionSettings {
 	int depthWeight = 96;               // 0..255: the graded depth trimap
 	int depthPivot = 150;               // 1..254: the depth trimap value that is neutral
 	int boardWeight = 160;              // 0..255: a match with the board model
-	int boardMatch = 24;                // 1..255: L1 RGB distance below which the board model matches
+	int boardMatch = 16;                // 1..255: L1 RGB distance below which the board model matches
 	int temporalWeight = 64;            // 0..255: the previous frame's alpha where colour did not change
 	int stillColour = 24;               // 1..255: L1 RGB change below which a pixel did not change
 	bool operator==(const DecisionSettings &) const = default;
