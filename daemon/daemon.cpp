@@ -10,6 +10,7 @@
 
 #include <csignal>
 #include <cstdio>
+#include <cmath>
 #include <cstdlib>
 
 namespace depthkey {
@@ -161,8 +162,33 @@ void Daemon::stopCameras()
 
 void Daemon::configurePairing()
 {
-	configurePairingQueue(queue_, settings_,
-			      settings_.pairing.offsetAuto ? 0 : int64_t{ settings_.pairing.offsetMs } * 1'000'000);
+	configurePairingQueue(queue_, settings_, offsetNs());
+	latency_.configure(settings_.segmentation.nearMm, settings_.segmentation.farMm);
+}
+
+int64_t Daemon::offsetNs() const
+{
+	if (!settings_.pairing.offsetAuto)
+		return int64_t{ settings_.pairing.offsetMs } * 1'000'000;
+	return latencyEstimate_.valid ? int64_t(std::llround(latencyEstimate_.offsetMs * 1e6)) : 0;
+}
+
+void Daemon::updateLatency()
+{
+	latencyEstimate_ = latency_.estimate();
+	if (!latencyEstimate_.valid)
+		return;
+	if (settings_.pairing.offsetAuto)
+		queue_.setOffset(offsetNs());
+	if (std::abs(latencyEstimate_.offsetMs - latencyLoggedMs_) >= 5.0) {
+		latencyLoggedMs_ = latencyEstimate_.offsetMs;
+		char text[160];
+		std::snprintf(text, sizeof(text), "depth offset measured: %+.0f ms (correlation %.2f)%s",
+			      latencyEstimate_.offsetMs, latencyEstimate_.correlation,
+			      settings_.pairing.offsetAuto ? ", applied" : "; pairing.offset_ms is set, not applied");
+		logger().info(text, { { "DEVICE", depth_ ? depth_->name() : std::string("depth") },
+				      { "DEPTH_OFFSET_MS", std::to_string(std::lround(latencyEstimate_.offsetMs)) } });
+	}
 }
 
 void Daemon::onDeviceStatus(const std::string &device, const DeviceStatus &status)
@@ -179,6 +205,7 @@ void Daemon::onDeviceStatus(const std::string &device, const DeviceStatus &statu
 void Daemon::onDepthFrame(const DepthFrame &frame)
 {
 	queue_.addDepth(frame); // same-size copy: no allocation after the first
+	latency_.addDepth(frame, frame.timestampNs);
 	recorder_.recordDepth(frame);
 	depthFrames_++;
 	keyDueFrames();
@@ -190,6 +217,7 @@ void Daemon::onColourFrame(const ColourFrame &frame)
 	haveColour_ = true;
 	recorder_.recordColour(frame);
 	lastColourNs_ = frame.timestampNs;
+	latency_.addColour(frame.rgb, frame.timestampNs);
 	queue_.addColour(frame, loop_.nowUs() * 1000u);
 	keyDueFrames();
 }
@@ -311,11 +339,18 @@ void Daemon::onStatusTick()
 	};
 	DeviceStatus cs = colour_ ? colour_->status() : DeviceStatus{};
 	DeviceStatus ds = depth_ ? depth_->status() : DeviceStatus{};
+	updateLatency();
 	const PairingStats &ps = queue_.pairer().stats();
-	char text[512];
+	char offset[64];
+	if (latencyEstimate_.valid)
+		std::snprintf(offset, sizeof(offset), "depth offset %+.0f ms measured%s", latencyEstimate_.offsetMs,
+			      settings_.pairing.offsetAuto ? "" : " (not applied)");
+	else
+		std::snprintf(offset, sizeof(offset), "depth offset %s", settings_.pairing.offsetAuto ? "measuring" : "set");
+	char text[640];
 	std::snprintf(text, sizeof(text),
 		      "colour %s %s %.1f fps %llu dropped; depth %s %s %.1f fps %llu dropped; "
-		      "paired %llu unpaired %llu; output %.1f fps; %s",
+		      "paired %llu unpaired %llu; %s; output %.1f fps; %s",
 		      colour_ ? colour_->name().c_str() : "-", deviceStateName(cs.state),
 		      rate(colourFrames_, colourFramesAtStatus_),
 		      static_cast<unsigned long long>(cs.droppedFrames),
@@ -323,7 +358,7 @@ void Daemon::onStatusTick()
 		      rate(depthFrames_, depthFramesAtStatus_),
 		      static_cast<unsigned long long>(ds.droppedFrames),
 		      static_cast<unsigned long long>(ps.paired),
-		      static_cast<unsigned long long>(ps.unpaired), rate(published_, publishedAtStatus_),
+		      static_cast<unsigned long long>(ps.unpaired), offset, rate(published_, publishedAtStatus_),
 		      summary().calibrated ? "calibrated" : "not calibrated (identity mapping)");
 	statusAtUs_ = now;
 	notifier_.status(text);

@@ -3,6 +3,7 @@
 // no algorithm; it decides what to run when, and degrades instead of dying.
 #pragma once
 
+#include "algo/latency_estimator.hpp"
 #include "algo/pairing_queue.hpp"
 #include "algo/pipeline.hpp"
 #include "config/settings.hpp"
@@ -74,6 +75,10 @@ private:
 	void publishNoSignal(uint64_t nowNs);
 	bool depthFresh(uint64_t nowNs) const;
 	void configurePairing();
+	// Once a second: the measured depth offset, applied when offset_ms is
+	// "auto", logged when it moved by 5 ms or more.
+	void updateLatency();
+	int64_t offsetNs() const;
 	StatusSummary summary() const;
 
 	std::string configPath_;
@@ -102,6 +107,9 @@ private:
 	bool calibrated_ = false;
 	PipelineOutput output_;
 	PairingQueue queue_;       // colour frames waiting for depth from both sides
+	LatencyEstimator latency_; // the depth camera's offset, measured
+	LatencyEstimator::Estimate latencyEstimate_;
+	double latencyLoggedMs_ = 1e9;
 	ColourFrame colourLatest_;
 	bool haveColour_ = false;
 	uint64_t lastColourNs_ = 0;

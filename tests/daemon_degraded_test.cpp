@@ -157,6 +157,7 @@ TEST(DaemonDegraded, StaleDepthPublishesColourUnkeyedAndOffline)
 	Settings settings;
 	settings.colour.width = 32;
 	settings.colour.height = 24;
+	settings.pairing.delayMs = 0; // keyed (here: not keyed) as it arrives
 	Daemon daemon("unused.toml", {}, h.factory());
 	ASSERT_EQ(daemon.start(settings), 0);
 	ColourFrame colour;
@@ -176,4 +177,40 @@ TEST(DaemonDegraded, StaleDepthPublishesColourUnkeyedAndOffline)
 	EXPECT_FALSE(flags & DK_SHM_FLAG_DEPTH_OK);
 	EXPECT_FALSE(flags & DK_SHM_FLAG_ONLINE);
 	EXPECT_EQ(pixel, (Rgb8{ 1, 2, 3 }));
+}
+
+TEST(DaemonDegraded, WithoutDepthAHeldColourFrameLeavesAfterTheDelayWithItsTimestamp)
+{
+	Harness h;
+	Settings settings;
+	settings.colour.width = 32;
+	settings.colour.height = 24;
+	settings.pairing.delayMs = 60;
+	Daemon daemon("unused.toml", {}, h.factory());
+	ASSERT_EQ(daemon.start(settings), 0);
+	ColourFrame colour;
+	colour.rgb = RgbImage(32, 24, Rgb8{ 1, 2, 3 });
+	size_t publishedAtOnce = 0, publishedLater = 0;
+	uint64_t capturedNs = 0, publishedNs = 0;
+	uint32_t flags = 0;
+	Script script(daemon, 20000);
+	script.then([&] {
+		capturedNs = colour.timestampNs = monotonicNs();
+		h.colour->deliver(colour); // no depth camera delivers: held for the delay
+		publishedAtOnce = h.sink->compositeCount();
+	});
+	script.then([] {});
+	script.then([] {});
+	script.then([] {});
+	script.then([&] {
+		publishedLater = h.sink->compositeCount();
+		publishedNs = h.sink->lastCaptureNs();
+		flags = h.sink->lastFlags();
+	});
+	script.run();
+	unblockSignals();
+	EXPECT_EQ(publishedAtOnce, 0u);
+	EXPECT_EQ(publishedLater, 1u) << "published after the 60 ms delay, by the timer alone";
+	EXPECT_EQ(publishedNs, capturedNs) << "the colour camera's capture time, not the time it left";
+	EXPECT_FALSE(flags & DK_SHM_FLAG_ONLINE);
 }

@@ -8,6 +8,7 @@
 // Its last line is, for scripts:
 //   summary method=pipeline frames=300 iou=0.973 bf=0.912 fnr=0.012 fpr=0.004 fps=850
 // fps counts the segmentation alone (not rendering or reading PNGs).
+#include "algo/latency_estimator.hpp"
 #include "algo/pipeline.hpp"
 #include "algo/pipeline_stages.hpp"
 #include "algo/segmentation_metrics.hpp"
@@ -22,6 +23,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cmath>
 #include <cstring>
 #include <deque>
 #include <functional>
@@ -361,12 +363,19 @@ int main(int argc, char **argv)
 	PairingQueue queue;
 	configurePairingQueue(queue, settings, settings.pairing.offsetAuto ? 0 : int64_t{ settings.pairing.offsetMs } * 1'000'000);
 	std::deque<Gray8Image> heldTruths; // beside the queue's held colour frames, in order
+	// The depth latency, measured as the daemon measures it (applied when
+	// pairing.offset_ms is "auto"), re-estimated once a second of frames.
+	LatencyEstimator latency;
+	latency.configure(settings.segmentation.nearMm, settings.segmentation.farMm);
+	LatencyEstimator::Estimate latencyEstimate;
+	long colourSeen = 0;
 	ColourFrame colour;
 	Gray8Image truth;
 	bool depthSeen = false;
 	int saveError = 0;
 	auto onDepth = [&](const DepthFrame &depth) {
 		queue.addDepth(depth);
+		latency.addDepth(depth, depth.timestampNs);
 		depthSeen = true;
 		if (!o.saveSequence.empty() && saveError >= 0)
 			saveError = saver.writeDepth(depth);
@@ -419,6 +428,12 @@ int main(int argc, char **argv)
 	};
 	int ret = 0;
 	while ((o.frames == 0 || average.frames() < o.frames) && (ret = source->next(colour, truth, onDepth)) > 0) {
+		latency.addColour(colour.rgb, colour.timestampNs);
+		if (++colourSeen % std::max(1, settings.colour.fps) == 0) {
+			latencyEstimate = latency.estimate();
+			if (latencyEstimate.valid && settings.pairing.offsetAuto)
+				queue.setOffset(int64_t(std::lround(latencyEstimate.offsetMs * 1e6)));
+		}
 		if (!depthSeen)
 			continue; // starting up: no depth camera has delivered yet
 		if (!scoreDue(colour.timestampNs))
@@ -449,6 +464,16 @@ int main(int argc, char **argv)
 	const PairingStats &ps = queue.pairer().stats();
 	std::printf("  pairing: %llu paired, %llu colour frames without depth (scored unkeyed)\n",
 		    static_cast<unsigned long long>(ps.paired), static_cast<unsigned long long>(ps.unpaired));
+	if (latencyEstimate.valid)
+		std::printf("  depth offset measured: %+.1f ms (correlation %.2f over %zu depth frames)%s%s\n",
+			    latencyEstimate.offsetMs, latencyEstimate.correlation, latencyEstimate.depthFrames,
+			    settings.pairing.offsetAuto ? ", applied" : ", not applied (offset_ms is set)",
+			    o.simSeed >= 0 ? ("; the simulator's truth: " +
+					      std::to_string(-int(std::lround(settings.sim.depthLatencyMs))) + " ms")
+							 .c_str()
+					   : "");
+	else
+		std::printf("  depth offset: not measured (too little motion seen in both cameras)\n");
 	std::printf("summary method=%s frames=%ld iou=%.3f bf=%.3f fnr=%.3f fpr=%.3f fps=%.0f\n", o.method.c_str(),
 		    frames, m.iou, m.boundaryF, m.fnr, m.fpr, fps);
 	return 0;
