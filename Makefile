@@ -135,6 +135,12 @@ $(SR2EMU): $(call obj,$(SR2EMU_SRCS)) $(LIB)
 	@mkdir -p $(dir $@)
 	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -o $@
 
+# depthkey-calibrate --board lives in its own folder (one file per mode).
+CALIBRATE_BOARD_SRCS := $(wildcard tools/calibrate_board/*.cpp)
+$(BIN)/depthkey-calibrate: $(OBJ)/tools/calibrate.o $(call obj,$(CALIBRATE_BOARD_SRCS)) $(LIB)
+	@mkdir -p $(dir $@)
+	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -o $@
+
 # Helpers of the HIL suite (tests/hil/NAME.cpp -> depthkey-hil-NAME, with _
 # as -): a bare libusb SR-2 client, a shared-memory flag watcher.
 HIL_TOOLS := $(BIN)/depthkey-hil-sr2-probe $(BIN)/depthkey-hil-shm-watch
