@@ -14,7 +14,7 @@ void Pipeline::configure(const Settings &settings, const MappingModel &mapping)
 {
 	bool reseed = !(settings.segmentation == settings_.segmentation) ||
 		      !(settings.learning == settings_.learning);
-	if (!(settings.composite == settings_.composite))
+	if (!(settings.composite == settings_.composite) || settings.board.colour != settings_.board.colour)
 		boardDirty_ = true;
 	if (mapping.kind != mapping_.kind || mapping.x != mapping_.x || mapping.y != mapping_.y ||
 	    mapping.colourWidth != mapping_.colourWidth || mapping.colourHeight != mapping_.colourHeight ||
@@ -82,7 +82,7 @@ void Pipeline::renderBoard(int width, int height)
 {
 	board_.resize(width, height);
 	if (boardSource_.empty()) {
-		uint32_t c = settings_.composite.boardColour;
+		uint32_t c = settings_.board.colour;
 		Rgb8 colour{ uint8_t(c >> 16), uint8_t(c >> 8), uint8_t(c) };
 		std::fill(board_.data(), board_.data() + board_.size(), colour);
 		return;

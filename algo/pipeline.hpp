@@ -47,8 +47,8 @@ public:
 	// Takes what may change on reload; cheap when unchanged. A new mapping
 	// or new seeding restarts the colour learning.
 	void configure(const Settings &settings, const MappingModel &mapping);
-	// The board source when composite.board_image is set (scaled to the
-	// colour size, nearest neighbour); an empty image = the solid colour.
+	// The board's picture for the camera-geometry composite (scaled to the
+	// colour size, nearest neighbour); an empty image = board.colour.
 	void setBoardImage(const RgbImage &board);
 	// The row kernels to use (algo/kernel_path.hpp); the best by default.
 	void setKernelPath(KernelPath path)
@@ -67,6 +67,9 @@ public:
 	// Stage images of the last frame, for snapshots and previews.
 	const Gray8Image &trimap() const { return trimap_; }
 	const DepthSeeds &seeds() const { return seeds_; }
+	// Where the last frame's alpha may be non-zero (0 outside): what the
+	// board-geometry composite (algo/board_compositor.hpp) warps.
+	const Roi &roi() const { return roi_; }
 	// SIOX's confidence (algo/siox_classifier.hpp) for every pixel of an
 	// image, not only the band: shows which colours the signatures confuse.
 	// For previews; allocates.
