@@ -5,6 +5,7 @@
 
 #include "algo/frame_pairer.hpp"
 #include "algo/pipeline.hpp"
+#include "daemon/board_output.hpp"
 #include "config/settings.hpp"
 #include "daemon/device_factory.hpp"
 #include "daemon/frame_recorder.hpp"
@@ -94,6 +95,7 @@ private:
 	uint64_t lastPreviewFrame_ = 0;
 
 	Pipeline pipeline_;
+	BoardOutput board_;        // the board's picture, H and board-geometry composite
 	MappingModel mapping_;     // the last good calibration, or identity
 	bool calibrated_ = false;
 	PipelineOutput output_;
