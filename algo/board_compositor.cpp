@@ -1,6 +1,6 @@
 #include "algo/board_compositor.hpp"
 
-#include "algo/composite.hpp"
+#include "algo/board_warp_rows.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -20,44 +20,90 @@ bool BoardCompositor::configure(const Homography &colourToOutput, int colourWidt
 	colourWidth_ = colourWidth;
 	colourHeight_ = colourHeight;
 	const size_t n = size_t(outputWidth) * outputHeight;
-	mapX_.resize(n);
-	mapY_.resize(n);
+	index_.resize(n);
+	frac_.resize(n);
 	// Seen: within the colour image's pixel area [-0.5, w - 0.5]. The
 	// sample point is clamped so that x0 + 1 and y0 + 1 stay inside (at most
 	// 1/256 px off at the last row and column), so the kernel needs no
 	// bounds checks.
-	const double maxX = (colourWidth - 1) * 256.0 - 1, maxY = (colourHeight - 1) * 256.0 - 1;
+	const long maxX = (colourWidth - 1) * 256L - 1, maxY = (colourHeight - 1) * 256L - 1;
 	for (int y = 0; y < outputHeight; ++y)
 		for (int x = 0; x < outputWidth; ++x) {
 			size_t k = size_t(y) * outputWidth + x;
 			double sx, sy;
 			bool seen = outputToColour.apply(x, y, sx, sy) && sx >= -0.5 && sx <= colourWidth - 0.5 &&
 				    sy >= -0.5 && sy <= colourHeight - 0.5;
-			mapX_[k] = seen ? int32_t(std::clamp(std::lround(sx * 256.0), 0L, long(maxX))) : kOutside;
-			mapY_[k] = seen ? int32_t(std::clamp(std::lround(sy * 256.0), 0L, long(maxY))) : kOutside;
+			if (!seen) {
+				index_[k] = kOutsideView;
+				frac_[k] = 0;
+				continue;
+			}
+			long qx = std::clamp(std::lround(sx * 256.0), 0L, maxX), qy = std::clamp(std::lround(sy * 256.0), 0L, maxY);
+			index_[k] = int32_t((qy >> 8) * colourWidth + (qx >> 8));
+			frac_[k] = uint16_t((qx & 255) | (qy & 255) << 8);
 		}
 	outputWidth_ = outputWidth;
 	outputHeight_ = outputHeight;
+	tileSources();
 	return true;
+}
+
+// Which colour tiles each board tile's pixels read (their 2x2 taps).
+void BoardCompositor::tileSources()
+{
+	tilesX_ = (outputWidth_ + kBoardTile - 1) / kBoardTile;
+	tilesY_ = (outputHeight_ + kBoardTile - 1) / kBoardTile;
+	colourTilesX_ = (colourWidth_ + kColourTile - 1) / kColourTile;
+	colourTilesY_ = (colourHeight_ + kColourTile - 1) / kColourTile;
+	tileSources_.assign(size_t(tilesX_) * tilesY_, TileSources{ 0xFFFF, 0xFFFF, 0, 0 });
+	occupied_.assign(size_t(colourTilesX_) * colourTilesY_, 0);
+	for (int y = 0; y < outputHeight_; ++y)
+		for (int x = 0; x < outputWidth_; ++x) {
+			int32_t k = index_[size_t(y) * outputWidth_ + x];
+			if (k == kOutsideView)
+				continue;
+			TileSources &t = tileSources_[size_t(y / kBoardTile) * tilesX_ + x / kBoardTile];
+			int sx = k % colourWidth_, sy = k / colourWidth_;
+			t.x0 = uint16_t(std::min<int>(t.x0, sx / kColourTile));
+			t.y0 = uint16_t(std::min<int>(t.y0, sy / kColourTile));
+			t.x1 = uint16_t(std::max<int>(t.x1, (sx + 1) / kColourTile));
+			t.y1 = uint16_t(std::max<int>(t.y1, (sy + 1) / kColourTile));
+		}
+	for (TileSources &t : tileSources_)
+		if (t.x0 == 0xFFFF)
+			t = TileSources{}; // nothing seen: never warped
+}
+
+// Which colour tiles of the ROI hold some alpha (the source's alpha bytes).
+void BoardCompositor::markOccupied(const RgbaImage &source, const Roi &roi)
+{
+	std::fill(occupied_.begin(), occupied_.end(), uint8_t(0));
+	for (int y = roi.y0; y < roi.y1; ++y) {
+		const Rgba8 *row = source.row(y);
+		uint8_t *tiles = occupied_.data() + size_t(y / kColourTile) * colourTilesX_;
+		for (int x = roi.x0; x < roi.x1; ++x)
+			tiles[x / kColourTile] |= row[x].a;
+	}
+}
+
+bool BoardCompositor::tileOccupied(const TileSources &t) const
+{
+	for (int ty = t.y0; ty <= t.y1 && ty < colourTilesY_; ++ty)
+		for (int tx = t.x0; tx <= t.x1 && tx < colourTilesX_; ++tx)
+			if (occupied_[size_t(ty) * colourTilesX_ + tx])
+				return true;
+	return false;
 }
 
 void BoardCompositor::clear()
 {
 	outputWidth_ = outputHeight_ = colourWidth_ = colourHeight_ = 0;
-	mapX_.clear();
-	mapY_.clear();
+	index_.clear();
+	frac_.clear();
+	tileSources_.clear();
+	occupied_.clear();
 	warped_ = cleared_ = Roi{};
 	layerValid_ = false;
-}
-
-bool BoardCompositor::sourceOf(int x, int y, int32_t &sxQ8, int32_t &syQ8) const
-{
-	if (x < 0 || y < 0 || x >= outputWidth_ || y >= outputHeight_)
-		return false;
-	size_t k = size_t(y) * outputWidth_ + x;
-	sxQ8 = mapX_[k];
-	syQ8 = mapY_[k];
-	return sxQ8 != kOutside;
 }
 
 // The board pixels whose bilinear footprint can touch the colour ROI: the
@@ -87,57 +133,14 @@ Roi BoardCompositor::boardRoiOf(const Roi &colourRoi) const
 	return r.empty() ? Roi{} : r;
 }
 
-// One output row, x in [x0, x1): bilinear colour and alpha at the mapped
-// point (Q8 weights, products Q16), then the camera composite's blend.
-void BoardCompositor::warpRow(const RgbImage &colour, const Gray8Image &alpha, const Rgb8 *board, int y,
-			      int x0, int x1, int opacityQ8, Rgb8 *composite, Rgba8 *lecturer) const
-{
-	const int32_t *mx = mapX_.data() + size_t(y) * outputWidth_;
-	const int32_t *my = mapY_.data() + size_t(y) * outputWidth_;
-	const int stride = colourWidth_;
-	const uint8_t *a = alpha.data();
-	const Rgb8 *c = colour.data();
-	for (int x = x0; x < x1; ++x) {
-		const int32_t sx = mx[x];
-		if (sx == kOutside) {
-			composite[x] = board[x];
-			lecturer[x] = { 0, 0, 0, 0 };
-			continue;
-		}
-		const int32_t sy = my[x];
-		const size_t k = size_t(sy >> 8) * stride + size_t(sx >> 8);
-		const unsigned a00 = a[k], a01 = a[k + 1], a10 = a[k + stride], a11 = a[k + stride + 1];
-		if ((a00 | a01 | a10 | a11) == 0) {
-			composite[x] = board[x];
-			lecturer[x] = { 0, 0, 0, 0 };
-			continue;
-		}
-		const unsigned fx = unsigned(sx) & 255u, fy = unsigned(sy) & 255u;
-		const unsigned w00 = (256u - fx) * (256u - fy), w01 = fx * (256u - fy);
-		const unsigned w10 = (256u - fx) * fy, w11 = fx * fy; // sum 65536
-		auto mix = [&](unsigned v00, unsigned v01, unsigned v10, unsigned v11) {
-			return (v00 * w00 + v01 * w01 + v10 * w10 + v11 * w11 + 32768u) >> 16;
-		};
-		const Rgb8 c00 = c[k], c01 = c[k + 1], c10 = c[k + stride], c11 = c[k + stride + 1];
-		const unsigned al = mix(a00, a01, a10, a11);
-		const unsigned r = mix(c00.r, c01.r, c10.r, c11.r), g = mix(c00.g, c01.g, c10.g, c11.g),
-			       b = mix(c00.b, c01.b, c10.b, c11.b);
-		const unsigned w = compositeWeight(opacityQ8, uint8_t(al)), wb = 256u - w;
-		composite[x] = { uint8_t((board[x].r * wb + r * w + 128u) >> 8), uint8_t((board[x].g * wb + g * w + 128u) >> 8),
-				 uint8_t((board[x].b * wb + b * w + 128u) >> 8) };
-		lecturer[x] = { uint8_t(r), uint8_t(g), uint8_t(b), uint8_t(al) };
-	}
-}
-
-void BoardCompositor::compose(const RgbImage &colour, const Gray8Image &alpha, const Roi &roi,
-			      const RgbImage &board, int opacityQ8, RgbImage &composite, RgbaImage &lecturer)
+void BoardCompositor::compose(const RgbaImage &source, const Roi &roi, const RgbImage &board, int opacityQ8,
+			      RgbImage &composite, RgbaImage &lecturer)
 {
 	const int w = outputWidth_, h = outputHeight_;
 	composite.resize(w, h);
 	lecturer.resize(w, h);
-	if (!configured() || colour.width() != colourWidth_ || colour.height() != colourHeight_ ||
-	    alpha.width() != colourWidth_ || alpha.height() != colourHeight_ || board.width() != w ||
-	    board.height() != h) {
+	if (!configured() || source.width() != colourWidth_ || source.height() != colourHeight_ ||
+	    board.width() != w || board.height() != h) {
 		// Sizes that do not fit the map: the board alone (the caller
 		// reconfigures; this never reads out of bounds).
 		if (board.width() == w && board.height() == h)
@@ -158,18 +161,39 @@ void BoardCompositor::compose(const RgbImage &colour, const Gray8Image &alpha, c
 		for (int y = cleared_.y0; y < cleared_.y1; ++y)
 			std::memset(lecturer.row(y) + cleared_.x0, 0, size_t(cleared_.x1 - cleared_.x0) * sizeof(Rgba8));
 	}
-	cleared_ = warped_;
-	const int y0 = warped_.empty() ? h : warped_.y0, y1 = warped_.empty() ? h : warped_.y1;
-	const int x0 = warped_.x0, x1 = warped_.x1;
-	std::memcpy(composite.row(0), board.row(0), size_t(y0) * w * sizeof(Rgb8));
-	std::memcpy(composite.row(y1), board.row(y1), size_t(h - y1) * w * sizeof(Rgb8));
-	for (int y = y0; y < y1; ++y) {
-		Rgb8 *dst = composite.row(y);
-		const Rgb8 *b = board.row(y);
-		std::memcpy(dst, b, size_t(x0) * sizeof(Rgb8));
-		warpRow(colour, alpha, b, y, x0, x1, opacityQ8, dst, lecturer.row(y));
-		std::memcpy(dst + x1, b + x1, size_t(w - x1) * sizeof(Rgb8));
+	// The composite is the board but where a tile is warped over it.
+	std::memcpy(composite.data(), board.data(), composite.size() * sizeof(Rgb8));
+	markOccupied(source, clampedRoi);
+	Roi written{ w, h, 0, 0 };
+	warpedPixels_ = 0;
+	const int tx0 = warped_.x0 / kBoardTile, tx1 = (warped_.x1 + kBoardTile - 1) / kBoardTile;
+	const int ty0 = warped_.y0 / kBoardTile, ty1 = (warped_.y1 + kBoardTile - 1) / kBoardTile;
+	for (int ty = ty0; ty < ty1; ++ty) {
+		const int y0 = ty * kBoardTile, y1 = std::min(h, y0 + kBoardTile);
+		// Runs of occupied tiles along the tile row: one kernel call per
+		// pixel row and run, not per tile.
+		for (int tx = tx0; tx < tx1;) {
+			if (!tileOccupied(tileSources_[size_t(ty) * tilesX_ + tx])) {
+				++tx;
+				continue;
+			}
+			int end = tx + 1;
+			while (end < tx1 && tileOccupied(tileSources_[size_t(ty) * tilesX_ + end]))
+				++end;
+			const int x0 = tx * kBoardTile, x1 = std::min(w, end * kBoardTile);
+			tx = end;
+			warpedPixels_ += size_t(x1 - x0) * (y1 - y0);
+			written = { std::min(written.x0, x0), std::min(written.y0, y0), std::max(written.x1, x1),
+				    std::max(written.y1, y1) };
+			for (int y = y0; y < y1; ++y) {
+				const size_t k = size_t(y) * w + x0;
+				boardWarpRow(path_, { index_.data() + k, frac_.data() + k, source.data(), colourWidth_,
+						      board.row(y) + x0, composite.row(y) + x0, lecturer.row(y) + x0, x1 - x0 },
+					     opacityQ8);
+			}
+		}
 	}
+	cleared_ = written.empty() ? Roi{} : written;
 }
 
 } // namespace depthkey

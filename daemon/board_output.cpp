@@ -173,10 +173,10 @@ void BoardOutput::scalePicture()
 	}
 }
 
-void BoardOutput::compose(const RgbImage &colour, const Gray8Image &alpha, const Roi &roi, int opacityQ8)
+void BoardOutput::compose(const RgbaImage &cameraLayer, const Roi &roi, int opacityQ8)
 {
 	if (boardGeometry())
-		compositor_.compose(colour, alpha, roi, scaled_, opacityQ8, composite_, lecturer_);
+		compositor_.compose(cameraLayer, roi, scaled_, opacityQ8, composite_, lecturer_);
 }
 
 void BoardOutput::showBoardOnly()

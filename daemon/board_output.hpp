@@ -35,9 +35,9 @@ public:
 	// read again (a refused file keeps the last good H).
 	void apply(const Settings &settings);
 
-	// After the pipeline ran: warps the lecturer into the board picture.
-	// Does nothing in camera geometry.
-	void compose(const RgbImage &colour, const Gray8Image &alpha, const Roi &roi, int opacityQ8);
+	// After the pipeline ran: warps its camera-geometry lecturer layer into
+	// the board picture. Does nothing in camera geometry.
+	void compose(const RgbaImage &cameraLayer, const Roi &roi, int opacityQ8);
 	// The board picture alone, the lecturer layer empty (NO SIGNAL frames).
 	void showBoardOnly();
 

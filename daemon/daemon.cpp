@@ -211,7 +211,7 @@ void Daemon::onColourFrame(const ColourFrame &frame)
 	// Board geometry: the lecturer warped onto the board's picture; without
 	// depth the whole colour picture, opaque, as passThrough publishes it.
 	const Roi whole{ 0, 0, frame.rgb.width(), frame.rgb.height() };
-	board_.compose(frame.rgb, output_.alpha, depth ? pipeline_.roi() : whole,
+	board_.compose(output_.lecturer, depth ? pipeline_.roi() : whole,
 		       depth ? opacityToQ8(settings_.composite.opacity) : 256);
 	if (settings_.daemon.snapshotDir.size() || overrides_.previewDir.size())
 		colourLatest_ = frame; // kept only for snapshots

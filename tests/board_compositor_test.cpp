@@ -88,6 +88,14 @@ Reference reference(const Scene &s, const Homography &h, double opacity, int x, 
 	return { b.r * (1 - w) + c[0] * w, b.g * (1 - w) + c[1] * w, b.b * (1 - w) + c[2] * w, a * 255.0, true };
 }
 
+// The pipeline's camera-geometry lecturer layer: the compositor's input.
+RgbaImage layerOf(const RgbImage &colour, const Gray8Image &alpha)
+{
+	RgbaImage layer;
+	lecturerLayer(colour, alpha, layer, KernelPath::C);
+	return layer;
+}
+
 } // namespace
 
 // Tolerance: Q8 map coordinates (1/512 px rounding) and Q8 weights with one
@@ -101,7 +109,7 @@ TEST(BoardCompositor, MatchesTheFloatingPointReference)
 	RgbImage composite;
 	RgbaImage lecturer;
 	const int opacityQ8 = opacityToQ8(0.6);
-	compositor.compose(s.colour, s.alpha, s.roi, s.board, opacityQ8, composite, lecturer);
+	compositor.compose(layerOf(s.colour, s.alpha), s.roi, s.board, opacityQ8, composite, lecturer);
 
 	double worst = 0, sum = 0;
 	size_t n = 0, seen = 0, lecturerPixels = 0;
@@ -139,7 +147,7 @@ TEST(BoardCompositor, IdentityWarpIsTheCameraComposite)
 	ASSERT_TRUE(compositor.configure(Homography{}, kCw, kCh, kCw, kCh));
 	RgbImage warped, camera;
 	RgbaImage lecturer, cameraLayer;
-	compositor.compose(s.colour, s.alpha, s.roi, board, 128, warped, lecturer);
+	compositor.compose(layerOf(s.colour, s.alpha), s.roi, board, 128, warped, lecturer);
 	compositeRoi(s.colour, s.alpha, board, s.roi, 128, camera, KernelPath::C);
 	lecturerLayer(s.colour, s.alpha, cameraLayer, KernelPath::C);
 	// The last row and column sample 1/256 px in (see the map's edge rule).
@@ -164,7 +172,7 @@ TEST(BoardCompositor, ClearsWhereTheLecturerWasAndKeepsTheBoardElsewhere)
 	ASSERT_TRUE(compositor.configure(tiltedView(), kCw, kCh, kBw, kBh));
 	RgbImage composite;
 	RgbaImage lecturer;
-	compositor.compose(s.colour, s.alpha, s.roi, s.board, 256, composite, lecturer);
+	compositor.compose(layerOf(s.colour, s.alpha), s.roi, s.board, 256, composite, lecturer);
 	Roi first = compositor.warpedRoi();
 	ASSERT_FALSE(first.empty());
 
@@ -174,7 +182,7 @@ TEST(BoardCompositor, ClearsWhereTheLecturerWasAndKeepsTheBoardElsewhere)
 	for (int y = small.y0; y < small.y1; ++y)
 		for (int x = small.x0; x < small.x1; ++x)
 			alpha.at(x, y) = 255;
-	compositor.compose(s.colour, alpha, small, s.board, 256, composite, lecturer);
+	compositor.compose(layerOf(s.colour, alpha), small, s.board, 256, composite, lecturer);
 	Roi second = compositor.warpedRoi();
 	size_t lit = 0;
 	for (int y = 0; y < kBh; ++y)
@@ -204,7 +212,7 @@ TEST(BoardCompositor, RefusesASingularHomographyAndMismatchedSizes)
 	Gray8Image smallAlpha(20, 20, 255);
 	RgbImage composite;
 	RgbaImage lecturer;
-	compositor.compose(small, smallAlpha, Roi{ 0, 0, 20, 20 }, s.board, 256, composite, lecturer);
+	compositor.compose(layerOf(small, smallAlpha), Roi{ 0, 0, 20, 20 }, s.board, 256, composite, lecturer);
 	EXPECT_EQ(composite.at(70, 50).r, s.board.at(70, 50).r);
 	EXPECT_EQ(lecturer.at(70, 50).a, 0);
 }
@@ -217,12 +225,12 @@ TEST(BoardCompositor, AllocatesNothingPerFrame)
 	BoardCompositor compositor;
 	ASSERT_TRUE(compositor.configure(tiltedView(), kCw, kCh, kBw, kBh));
 	RgbImage composite;
-	RgbaImage lecturer;
-	compositor.compose(s.colour, s.alpha, s.roi, s.board, 128, composite, lecturer); // sizes the outputs
+	RgbaImage lecturer, source = layerOf(s.colour, s.alpha);
+	compositor.compose(source, s.roi, s.board, 128, composite, lecturer); // sizes the outputs
 	test::CountAllocations count;
 	for (int i = 0; i < 20; ++i) {
 		Roi roi{ s.roi.x0 + i % 5, s.roi.y0, s.roi.x1 - i % 3, s.roi.y1 };
-		compositor.compose(s.colour, s.alpha, roi, s.board, 128, composite, lecturer);
+		compositor.compose(source, roi, s.board, 128, composite, lecturer);
 	}
 	EXPECT_EQ(count.count(), 0u);
 }

@@ -62,7 +62,7 @@ TEST(BoardFigure1, StrokesShowThroughTheLecturerInMakeRunsComposite)
 	size_t under = 0;
 	double throughSum = 0, inkSum = 0;
 	RgbImage board, blank, composite, blankComposite;
-	RgbaImage layer, blankLayer;
+	RgbaImage layer, blankLayer, cameraLayer;
 	for (double t : { writeEnd - 0.9, writeEnd - 0.5, writeEnd - 0.1 }) {
 		GroundTruth truth;
 		lecture.renderColour(t, colour, &truth);
@@ -74,8 +74,9 @@ TEST(BoardFigure1, StrokesShowThroughTheLecturerInMakeRunsComposite)
 				if (truth.alpha.at(x, y)) {
 					roi = { std::min(roi.x0, x), std::min(roi.y0, y), std::max(roi.x1, x + 1), std::max(roi.y1, y + 1) };
 				}
-		compositor.compose(colour.rgb, truth.alpha, roi, board, opacityQ8, composite, layer);
-		compositor.compose(colour.rgb, truth.alpha, roi, blank, opacityQ8, blankComposite, blankLayer);
+		lecturerLayer(colour.rgb, truth.alpha, cameraLayer);
+		compositor.compose(cameraLayer, roi, board, opacityQ8, composite, layer);
+		compositor.compose(cameraLayer, roi, blank, opacityQ8, blankComposite, blankLayer);
 		for (int y = 0; y < bh; ++y)
 			for (int x = 0; x < bw; ++x) {
 				const Rgb8 ink = board.at(x, y), paper = blank.at(x, y);

@@ -1,0 +1,38 @@
+// The row kernels of the board-geometry composite (algo/board_compositor.hpp),
+// a plain C reference (_C) and an SSE2 variant (_SSE2, board_warp_rows_sse2.cpp)
+// that gives the same bytes (tests/board_warp_rows_test.cpp).
+//
+// Each output pixel has a precomputed source: the index of the top-left of
+// the 2x2 colour pixels it samples (kOutsideView = the camera does not see
+// it) and the Q8 fractions fx | fy << 8. The source is the camera-geometry
+// lecturer layer (RGBA, straight alpha), so that one 8-byte load fetches two
+// neighbours with their alpha. Bilinear in two rounded steps, vertical then
+// horizontal, each (a * (256 - f) + b * f + 128) >> 8; then the camera
+// composite's blend with w = compositeWeight(opacity, alpha).
+#pragma once
+
+#include "algo/image.hpp"
+#include "algo/kernel_path.hpp"
+
+#include <cstdint>
+
+namespace depthkey {
+
+constexpr int32_t kOutsideView = -1;
+
+struct BoardWarpRow {
+	const int32_t *index;   // per output pixel, into source
+	const uint16_t *frac;   // fx | fy << 8
+	const Rgba8 *source;    // colour-camera lecturer layer
+	int stride;             // its width
+	const Rgb8 *board;      // the board picture's row
+	Rgb8 *composite;
+	Rgba8 *layer;           // the board-geometry lecturer layer
+	int count;
+};
+
+void boardWarpRow_C(const BoardWarpRow &row, int opacityQ8);
+void boardWarpRow_SSE2(const BoardWarpRow &row, int opacityQ8);
+void boardWarpRow(KernelPath path, const BoardWarpRow &row, int opacityQ8);
+
+} // namespace depthkey
