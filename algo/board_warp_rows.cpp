@@ -8,9 +8,6 @@ namespace depthkey {
 
 namespace {
 
-// Two neighbours' alpha bytes, of the 8 bytes loaded at once.
-constexpr uint64_t kAlphaBytes = 0xFF000000FF000000ull;
-
 inline unsigned lerp8(unsigned a, unsigned b, unsigned f)
 {
 	return (a * (256u - f) + b * f + 128u) >> 8;
@@ -21,18 +18,10 @@ inline unsigned lerp8(unsigned a, unsigned b, unsigned f)
 void boardWarpRow_C(const BoardWarpRow &r, int opacityQ8)
 {
 	for (int x = 0; x < r.count; ++x) {
-		const int32_t k = r.index[x];
-		uint64_t top = 0, bottom = 0;
-		if (k != kOutsideView) {
-			std::memcpy(&top, r.source + k, 8);
-			std::memcpy(&bottom, r.source + k + r.stride, 8);
-		}
-		// Nobody there (or not seen): the board, transparent.
-		if (((top | bottom) & kAlphaBytes) == 0) {
-			r.composite[x] = r.board[x];
-			r.layer[x] = { 0, 0, 0, 0 };
+		uint64_t top, bottom;
+		if (!loadTaps(r, x, top, bottom))
 			continue;
-		}
+		const int32_t k = r.index[x];
 		const unsigned fx = r.frac[x] & 255u, fy = r.frac[x] >> 8;
 		const Rgba8 *s = r.source + k;
 		const Rgba8 p00 = s[0], p01 = s[1], p10 = s[r.stride], p11 = s[r.stride + 1];

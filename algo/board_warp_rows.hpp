@@ -15,6 +15,7 @@
 #include "algo/kernel_path.hpp"
 
 #include <cstdint>
+#include <cstring>
 
 namespace depthkey {
 
@@ -30,6 +31,24 @@ struct BoardWarpRow {
 	Rgba8 *layer;           // the board-geometry lecturer layer
 	int count;
 };
+
+// Output pixel x's source taps, two neighbours with their alpha in each
+// 8-byte row; false when nobody is there (not seen, or alpha 0 in all four):
+// the pixel is then the board, transparent.
+inline bool loadTaps(const BoardWarpRow &r, int x, uint64_t &top, uint64_t &bottom)
+{
+	constexpr uint64_t kAlphaBytes = 0xFF000000FF000000ull;
+	const int32_t k = r.index[x];
+	if (k == kOutsideView)
+		return false;
+	std::memcpy(&top, r.source + k, 8);
+	std::memcpy(&bottom, r.source + k + r.stride, 8);
+	if (((top | bottom) & kAlphaBytes) != 0)
+		return true;
+	r.composite[x] = r.board[x];
+	r.layer[x] = { 0, 0, 0, 0 };
+	return false;
+}
 
 void boardWarpRow_C(const BoardWarpRow &row, int opacityQ8);
 void boardWarpRow_SSE2(const BoardWarpRow &row, int opacityQ8);

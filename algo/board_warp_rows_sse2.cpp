@@ -18,21 +18,12 @@ namespace depthkey {
 
 void boardWarpRow_SSE2(const BoardWarpRow &r, int opacityQ8)
 {
-	constexpr uint64_t kAlphaBytes = 0xFF000000FF000000ull;
 	const __m128i zero = _mm_setzero_si128(), half = _mm_set1_epi16(128), full = _mm_set1_epi16(256);
 	const __m128i opacity = _mm_set1_epi16(short(opacityQ8)), v257 = _mm_set1_epi16(257);
 	for (int x = 0; x < r.count; ++x) {
-		const int32_t k = r.index[x];
-		uint64_t top = 0, bottom = 0;
-		if (k != kOutsideView) {
-			std::memcpy(&top, r.source + k, 8);
-			std::memcpy(&bottom, r.source + k + r.stride, 8);
-		}
-		if (((top | bottom) & kAlphaBytes) == 0) {
-			r.composite[x] = r.board[x];
-			r.layer[x] = { 0, 0, 0, 0 };
+		uint64_t top, bottom;
+		if (!loadTaps(r, x, top, bottom))
 			continue;
-		}
 		const int fx = r.frac[x] & 255, fy = r.frac[x] >> 8;
 		// Lanes: p0 r g b a, p1 r g b a (the left and the right neighbour).
 		__m128i t = _mm_unpacklo_epi8(_mm_cvtsi64_si128(int64_t(top)), zero);
