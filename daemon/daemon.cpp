@@ -208,11 +208,14 @@ void Daemon::onColourFrame(const ColourFrame &frame)
 	} else {
 		pipeline_.passThrough(frame, output_);
 	}
-	// Board geometry: the lecturer warped onto the board's picture; without
-	// depth the whole colour picture, opaque, as passThrough publishes it.
-	const Roi whole{ 0, 0, frame.rgb.width(), frame.rgb.height() };
-	board_.compose(output_.lecturer, depth ? pipeline_.roi() : whole,
-		       depth ? opacityToQ8(settings_.composite.opacity) : 256);
+	// Board geometry: the lecturer warped onto the board's picture. Without
+	// depth the board's picture alone goes out, marked offline: it is the
+	// lecture's content, and warping the whole colour frame would cost the
+	// CPU a slow box needs to get depth back.
+	if (depth)
+		board_.compose(output_.lecturer, pipeline_.roi(), opacityToQ8(settings_.composite.opacity));
+	else
+		board_.showBoardOnly();
 	if (settings_.daemon.snapshotDir.size() || overrides_.previewDir.size())
 		colourLatest_ = frame; // kept only for snapshots
 	if (depth)

@@ -40,8 +40,8 @@ mkdir -p "$results"
 "$bin/depthkey-calibrate" --sim --output "$results/calibration.toml" >"$results/calibrate.log" 2>&1 ||
 	fail_setup "depthkey-calibrate --sim failed: $(tail -n1 "$results/calibrate.log")"
 # And in the board's geometry: a board calibration for the capture stick's
-# 1280x720 (the simulator's board: the geometry is what is tested, not its truth).
-"$bin/depthkey-calibrate" --board --sim --board-size 1280x720 --output "$results/board.toml" \
+# 640x360 (the simulator's board: the geometry is what is tested, not its truth).
+"$bin/depthkey-calibrate" --board --sim --board-size 640x360 --output "$results/board.toml" \
 	>"$results/calibrate-board.log" 2>&1 ||
 	fail_setup "depthkey-calibrate --board --sim failed: $(tail -n1 "$results/calibrate-board.log")"
 "$tree/tests/vm/run.sh" --results "$results" --layer "$udev" --timeout "${HIL_TIMEOUT:-1200}" \

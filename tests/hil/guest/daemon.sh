@@ -47,11 +47,11 @@ calibration_file = "$VM_RESULTS/calibration.toml"
 [board]
 # The second vivid instance as the board computer's capture stick, at a
 # size TCG keeps up with; the board calibration fitted by tests/hil/run.sh
-# (depthkey-calibrate --board --sim --board-size 1280x720).
+# (depthkey-calibrate --board --sim --board-size 640x360).
 backend = "v4l2"
 device = "/dev/video1"
-width = 1280
-height = 720
+width = 640
+height = 360
 fps = 5
 pixel_format = "yuyv"
 timeout_ms = 1000
@@ -179,7 +179,7 @@ check_led led-board-on $LED_BOARD on
 # Board geometry: the board-geometry lecturer layer is published beside the
 # camera's, and the status says so.
 check_flags daemon-board-geometry-layer "$ONLINE=$ONLINE" 3 --name /depthkey.lecturer.board
-hil_check daemon-status-board-geometry hil_wait 15 grep -q 'board v4l2-board streaming, board geometry 1280x720' "$DK_LOG"
+hil_check daemon-status-board-geometry hil_wait 15 grep -q 'board v4l2-board streaming, board geometry 640x360' "$DK_LOG"
 
 # --- SR-2 faults ----------------------------------------------------------------
 sr2() { sr2_cmd "$@"; }
