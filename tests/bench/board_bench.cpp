@@ -5,7 +5,8 @@
 // in the middle, talking, and at the board, writing). Beside it the
 // camera-geometry composite + layer of the same frame (compositeRoi +
 // lecturerLayer at 640x480), what the daemon publishes without H; and the
-// worst case, the whole colour frame warped (depth missing: passThrough).
+// upper bound, alpha everywhere (the whole colour frame warped), and the
+// floor, nobody there (the board picture copied).
 #include "algo/board_compositor.hpp"
 #include "algo/composite.hpp"
 #include "hal/kernel_path_env.hpp"
