@@ -278,7 +278,7 @@ board_vivid() { v4l2-ctl -d /dev/video1 -c "$1=1"; }
 board_status_lost() { grep -q 'board v4l2-board lost (last good picture kept)' "$DK_LOG"; }
 if hil_section board; then
 	lost=$(lost_count v4l2-board) again=$(again_count v4l2-board)
-	exec 8</dev/video1
+	exec 7</dev/video1 # fd 7: 8 is hil_sleep's, 9 the webcam's
 	board_vivid disconnect || hil_fail board-unplug-inject "v4l2-ctl -c disconnect=1 failed"
 	hil_check board-unplug-noticed hil_wait 15 lost_more_than v4l2-board "$lost"
 	check_flags board-unplug-output-stays-online "$ONLINE=$ONLINE" 3
@@ -286,7 +286,7 @@ if hil_section board; then
 	hil_check board-unplug-status-says-lost hil_wait 15 board_status_lost
 	hil_check board-unplug-daemon-runs daemon_alive
 	since=$(hil_uptime)
-	exec 8<&-
+	exec 7<&-
 	if hil_wait 15 again_more_than v4l2-board "$again"; then
 		back=$(grep 'v4l2-board streaming again' "$DK_LOG" | tail -n1 | sed 's/^\[\([0-9.]*\)\].*/\1/')
 		ms=$(awk -v a="$back" -v b="$since" 'BEGIN { printf "%d", (a - b) * 1000 }')
