@@ -79,7 +79,7 @@ deps:
 # run/test/bench first install packages, then build in a fresh make so that
 # pkg-config sees the newly installed libraries.
 run: deps
-	@$(MAKE) --no-print-directory -j$(JOBS) all $(SIM_CALIBRATION)
+	@$(MAKE) --no-print-directory -j$(JOBS) all $(SIM_CALIBRATION) $(SIM_BOARD_CALIBRATION)
 	@sh daemon/run-sim.sh $(BIN) $(BUILD)
 
 # The calibration `make run` uses: fitted to the simulated cameras (about
@@ -89,6 +89,13 @@ run: deps
 SIM_CALIBRATION := $(BUILD)/sim-calibration.toml
 $(SIM_CALIBRATION): $(BIN)/depthkey-calibrate
 	@$< --sim --output $@ > $(@:.toml=.log) 2>&1 || { cat $(@:.toml=.log); exit 1; }
+	@echo "$@: `tail -n 1 $(@:.toml=.log)`"
+
+# The board calibration `make run` uses: the simulated board showing the
+# pattern, fitted with depthkey-calibrate --board --sim (well under a second).
+SIM_BOARD_CALIBRATION := $(BUILD)/sim-board.toml
+$(SIM_BOARD_CALIBRATION): $(BIN)/depthkey-calibrate
+	@$< --board --sim --output $@ > $(@:.toml=.log) 2>&1 || { cat $(@:.toml=.log); exit 1; }
 	@echo "$@: `tail -n 1 $(@:.toml=.log)`"
 
 # The unit tests, then the hardware-in-the-loop suite: the real daemon in a
@@ -132,6 +139,12 @@ $(BIN)/depthkey-%: $(OBJ)/tools/%.o $(LIB)
 
 # The emulated SR-2 (a USB gadget for the HIL tests) is several files.
 $(SR2EMU): $(call obj,$(SR2EMU_SRCS)) $(LIB)
+	@mkdir -p $(dir $@)
+	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -o $@
+
+# depthkey-calibrate --board lives in its own folder (one file per mode).
+CALIBRATE_BOARD_SRCS := $(wildcard tools/calibrate_board/*.cpp)
+$(BIN)/depthkey-calibrate: $(OBJ)/tools/calibrate.o $(call obj,$(CALIBRATE_BOARD_SRCS)) $(LIB)
 	@mkdir -p $(dir $@)
 	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -o $@
 

@@ -15,7 +15,7 @@ void Pipeline::configure(const Settings &settings, const MappingModel &mapping)
 {
 	bool reseed = !(settings.segmentation == settings_.segmentation) ||
 		      !(settings.learning == settings_.learning);
-	if (!(settings.composite == settings_.composite))
+	if (!(settings.composite == settings_.composite) || settings.board.colour != settings_.board.colour)
 		boardDirty_ = true;
 	if (mapping.kind != mapping_.kind || mapping.x != mapping_.x || mapping.y != mapping_.y ||
 	    mapping.colourWidth != mapping_.colourWidth || mapping.colourHeight != mapping_.colourHeight ||
@@ -30,6 +30,7 @@ void Pipeline::configure(const Settings &settings, const MappingModel &mapping)
 	learner_.configure(settings.learning);
 	refiner_.configure(settings.siox);
 	evidence_.configure(settings.decision);
+	guided_.configure(settings.siox.guidedRadius, settings.siox.guidedEps);
 	if (reseed)
 		restartLearning();
 }
@@ -88,7 +89,7 @@ void Pipeline::renderBoard(int width, int height)
 {
 	board_.resize(width, height);
 	if (boardSource_.empty()) {
-		uint32_t c = settings_.composite.boardColour;
+		uint32_t c = settings_.board.colour;
 		Rgb8 colour{ uint8_t(c >> 16), uint8_t(c >> 8), uint8_t(c) };
 		std::fill(board_.data(), board_.data() + board_.size(), colour);
 		return;
@@ -154,6 +155,8 @@ void Pipeline::process(const ColourFrame &colour, const FramePairer::Bracket &de
 		       &previousColour_, previousRoi_);
 	refiner_.setLecturerBeyondBorder(keyed_.lecturerBeyondBorder);
 	refiner_.refine(colour.rgb, trimap, keyed_.roi, evidence_, out.alpha);
+	if (settings_.siox.guidedRadius > 0)
+		guideAlpha(colour.rgb, out.alpha);
 	boardModel_.learnDecided(colour.rgb, trimap, out.alpha, keyed_.roi, marginPx);
 	rememberFrame(colour.rgb, out.alpha);
 	compose(colour.rgb, out);
@@ -163,6 +166,20 @@ void Pipeline::process(const ColourFrame &colour, const FramePairer::Bracket &de
 	status_.bandPixels = refiner_.bandPixels();
 	status_.lecturerCentroids = classifier_.lecturer().size();
 	status_.boardCentroids = classifier_.board().size();
+}
+
+void Pipeline::guideAlpha(const RgbImage &colour, Gray8Image &alpha)
+{
+	// The decision, hard (the soft edge is the filter's to make).
+	const Roi &roi = keyed_.roi;
+	matte_.resize(alpha.width(), alpha.height());
+	for (int y = roi.y0; y < roi.y1; ++y) {
+		const uint8_t *a = alpha.row(y);
+		uint8_t *m = matte_.row(y);
+		for (int x = roi.x0; x < roi.x1; ++x)
+			m[x] = a[x] >= kConfidenceLecturer ? 255 : 0;
+	}
+	guided_.filter(colour, matte_, roi, alpha);
 }
 
 void Pipeline::rememberFrame(const RgbImage &colour, const Gray8Image &alpha)

@@ -18,6 +18,7 @@
 #include "algo/frame_pairer.hpp"
 #include "algo/frames.hpp"
 #include "algo/fused_evidence.hpp"
+#include "algo/guided_filter.hpp"
 #include "algo/kernel_path.hpp"
 #include "algo/mapping_model.hpp"
 #include "algo/seed_mapper.hpp"
@@ -52,8 +53,8 @@ public:
 	// Takes what may change on reload; cheap when unchanged. A new mapping
 	// or new seeding restarts the colour learning.
 	void configure(const Settings &settings, const MappingModel &mapping);
-	// The board source when composite.board_image is set (scaled to the
-	// colour size, nearest neighbour); an empty image = the solid colour.
+	// The board's picture for the camera-geometry composite (scaled to the
+	// colour size, nearest neighbour); an empty image = board.colour.
 	void setBoardImage(const RgbImage &board);
 	// The row kernels to use (algo/kernel_path.hpp); the best by default.
 	void setKernelPath(KernelPath path)
@@ -77,6 +78,9 @@ public:
 	const Gray8Image &trimap() const { return keyed_.trimap; }
 	// The seeds of the newest depth frame the last colour frame was keyed with.
 	const DepthSeeds &seeds() const { return seeded_[newest_].seeds; }
+	// Where the last frame's alpha may be non-zero (0 outside): what the
+	// board-geometry composite (algo/board_compositor.hpp) warps.
+	const Roi &roi() const { return keyed_.roi; }
 	// SIOX's confidence (algo/siox_classifier.hpp) for every pixel of an
 	// image, not only the band: shows which colours the signatures confuse.
 	// For previews; allocates.
@@ -104,6 +108,8 @@ private:
 	// Keeps this frame's alpha and colour inside its ROI for the next
 	// frame's temporal evidence.
 	void rememberFrame(const RgbImage &colour, const Gray8Image &alpha);
+	// The edge-aware alpha: the guided filter of the hard decision.
+	void guideAlpha(const RgbImage &colour, Gray8Image &alpha);
 
 	Settings settings_;
 	MappingModel mapping_;
@@ -119,6 +125,8 @@ private:
 	SioxRefiner refiner_;
 	BoardModel boardModel_;
 	FusedEvidence evidence_;
+	GuidedFilter guided_;
+	Gray8Image matte_;               // the hard decision, the guided filter's input
 	Gray8Image previousAlpha_;
 	RgbImage previousColour_;
 	Roi previousRoi_;

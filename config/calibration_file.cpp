@@ -3,12 +3,12 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <sstream>
 
 #include "config/atomic_file.hpp"
+#include "config/file_format.hpp"
 #include "config/text_file.hpp"
 #include "config/toml_binder.hpp"
 
@@ -36,16 +36,6 @@ int coefficientCount(MappingKind kind)
 	model.kind = kind;
 	std::array<double, kMappingCoefficients> b;
 	return model.basis(0.0, 0.0, 1.0, false, b);
-}
-
-std::string checkDate(std::string_view date)
-{
-	// "2024-05-01T12:00:00Z": digits where digits belong, the separators fixed.
-	constexpr std::string_view kPattern = "dddd-dd-ddTdd:dd:ddZ";
-	bool ok = date.size() == kPattern.size();
-	for (size_t i = 0; ok && i < date.size(); i++)
-		ok = kPattern[i] == 'd' ? (date[i] >= '0' && date[i] <= '9') : date[i] == kPattern[i];
-	return ok ? "" : "is not a UTC date like \"2024-05-01T12:00:00Z\"";
 }
 
 std::string checkIdentity(std::string_view name)
@@ -91,7 +81,7 @@ void bindMapping(TomlSection &sec, Calibration &c)
 	std::string model;
 	bool modelOk = sec.string("model", model, kModels);
 	c.mapping.kind = kindOf(model);
-	sec.string("date", c.date, checkDate);
+	sec.string("date", c.date, checkUtcDate);
 	sec.string("colour_camera", c.colourCamera, checkIdentity);
 	sec.string("tof_camera", c.tofCamera, checkIdentity);
 	sec.integer("colour_width", c.mapping.colourWidth, 16, 1920);
@@ -201,29 +191,11 @@ void checkConsistency(const Calibration &c, Missing &missing)
 	}
 }
 
-// Where a problem with no place in the text is reported: its last line,
-// which is where a file cut short stops.
-int lastLine(std::string_view text)
-{
-	int lines = static_cast<int>(std::count(text.begin(), text.end(), '\n'));
-	if (!text.empty() && text.back() != '\n')
-		lines++;
-	return std::max(lines, 1);
-}
-
-std::string formatNumber(double value)
-{
-	// Shortest text that reads back as the same double.
-	char buf[64];
-	auto result = std::to_chars(buf, buf + sizeof(buf), value);
-	return std::string(buf, result.ptr);
-}
-
 std::string formatNumbers(const double *values, int count)
 {
 	std::string out = "[";
 	for (int i = 0; i < count; i++)
-		out += (i ? ", " : "") + formatNumber(values[i]);
+		out += (i ? ", " : "") + formatExact(values[i]);
 	return out + "]";
 }
 
@@ -279,7 +251,7 @@ CalibrationResult parseCalibration(std::string_view text, const std::string &sou
 			checkConsistency(c, missing);
 	});
 	result.errors = std::move(bound.errors);
-	int end = lastLine(text);
+	int end = lastLineOf(text);
 	for (auto &[key, message] : missing.items)
 		result.errors.push_back({ sourceName, end, 1, key, message });
 	return result;
@@ -288,12 +260,10 @@ CalibrationResult parseCalibration(std::string_view text, const std::string &sou
 CalibrationResult loadCalibration(const std::string &path)
 {
 	std::string text;
-	const char *step;
-	if (int ret = readTextFile(path, text, step); ret < 0) {
-		CalibrationResult result;
-		result.errors.push_back({ path, 0, 0, "",
-					  std::string("cannot ") + step + " calibration file: " +
-						  std::strerror(-ret) });
+	CalibrationResult result;
+	ConfigError error;
+	if (!readToolFile(path, "calibration", text, error)) {
+		result.errors.push_back(error);
 		return result;
 	}
 	return parseCalibration(text, path);
@@ -330,7 +300,7 @@ std::string formatCalibration(const Calibration &c)
 	for (const CalibrationResidual &r : c.residuals) {
 		out += std::string("\n[[residuals]]\nmodel = \"") + mappingKindName(r.model) + "\"\n";
 		out += std::string("set = \"") + (r.heldOut ? "heldout" : "fit") + "\"\n";
-		out += "depth_m = " + formatNumber(r.depthM) + "\n" + formatStats(r.stats, "");
+		out += "depth_m = " + formatExact(r.depthM) + "\n" + formatStats(r.stats, "");
 	}
 	return out + "\n# Written last, so that a file cut short is refused.\n[end]\ncomplete = true\n";
 }

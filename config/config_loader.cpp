@@ -21,6 +21,7 @@ constexpr std::string_view kDepthBackends[] = { "sim", "sr2", "v4l2", "replay" }
 constexpr std::string_view kLedBackends[] = { "none", "gpiod" };
 constexpr std::string_view kColourFormats[] = { "auto", "yuyv", "nv12", "mjpeg" };
 constexpr std::string_view kDepthFormats[] = { "z16", "y16" };
+constexpr std::string_view kBoardBackends[] = { "colour", "image", "v4l2", "sim" };
 
 constexpr int kMinRangeMm = 300;        // nearest the depth camera measures
 constexpr int kMaxRangeMm = 7500;       // furthest it measures
@@ -208,6 +209,8 @@ void bindSiox(TomlSection &sec, SioxSettings &s)
 {
 	sec.integer("smoothing", s.smoothing, 0, 8);
 	sec.boolean("soft_alpha", s.softAlpha);
+	sec.integer("guided_radius", s.guidedRadius, 0, 7);
+	sec.integer("guided_eps", s.guidedEps, 1, 65025);
 }
 
 void bindDecision(TomlSection &sec, DecisionSettings &s)
@@ -223,22 +226,61 @@ void bindDecision(TomlSection &sec, DecisionSettings &s)
 void bindComposite(TomlSection &sec, CompositeSettings &s)
 {
 	sec.number("opacity", s.opacity, 0.0, 1.0);
-	sec.colour("board_colour", s.boardColour);
-	sec.string("board_image", s.boardImage, checkOptionalAbsolutePath);
+	// The board's keys moved to [board]: say where, rather than "unknown"
+	// (bound only when present, so that they are not listed as defaults).
+	uint32_t oldColour = 0;
+	std::string oldImage;
+	if (sec.has("board_colour") && sec.colour("board_colour", oldColour))
+		sec.require(false, "board_colour", "has moved: [board] colour (with backend = \"colour\")");
+	if (sec.has("board_image") && sec.string("board_image", oldImage))
+		sec.require(false, "board_image", "has moved: [board] image (with backend = \"image\")");
+}
+
+void bindBoard(TomlSection &sec, BoardSettings &s)
+{
+	sec.string("backend", s.backend, kBoardBackends);
+	sec.colour("colour", s.colour);
+	bool imageOk = sec.string("image", s.image, checkOptionalAbsolutePath);
+	if (imageOk)
+		sec.require(s.backend != "image" || !s.image.empty(), "image",
+			    "must name the board's picture file when backend is \"image\"");
+	sec.string("device", s.device, checkVideoDevice);
+	sec.integer("width", s.width, 16, 3840);
+	sec.integer("height", s.height, 16, 2160);
+	sec.integer("fps", s.fps, 1, 60);
+	sec.string("pixel_format", s.pixelFormat, kColourFormats);
+	sec.integer("timeout_ms", s.timeoutMs, 100, 10000);
+	bool ok = sec.integer("output_width", s.outputWidth, 0, 3840);
+	ok = sec.integer("output_height", s.outputHeight, 0, 2160) && ok;
+	// A size is scaled as a whole or not at all.
+	if (ok)
+		sec.require((s.outputWidth == 0) == (s.outputHeight == 0),
+			    sec.has("output_height") ? "output_height" : "output_width",
+			    "output_width and output_height must both be 0 (the picture's size) or both be set");
+	if (ok && s.outputWidth)
+		sec.require(s.outputWidth >= 16 && s.outputHeight >= 16,
+			    sec.has("output_height") ? "output_height" : "output_width",
+			    "an output size must be at least 16x16");
+	sec.string("homography_file", s.homographyFile, checkOptionalAbsolutePath);
 }
 
 void bindOutput(TomlSection &sec, OutputSettings &s)
 {
 	bool ok = sec.string("composite_name", s.compositeName, checkShmName);
 	ok = sec.string("lecturer_name", s.lecturerName, checkShmName) && ok;
+	ok = sec.string("board_lecturer_name", s.boardLecturerName, checkShmName) && ok;
 	sec.integer("slots", s.slots, 2, 8);
 	sec.string("group", s.group, checkGroupName);
 
 	// Both streams in one shared memory object would corrupt each other.
 	if (ok)
+	{
 		sec.require(s.compositeName != s.lecturerName,
 			    sec.has("lecturer_name") ? "lecturer_name" : "composite_name",
 			    "composite_name and lecturer_name must differ");
+		sec.require(s.boardLecturerName != s.compositeName && s.boardLecturerName != s.lecturerName,
+			    "board_lecturer_name", "board_lecturer_name must differ from composite_name and lecturer_name");
+	}
 }
 
 void bindLeds(TomlSection &sec, LedSettings &s)
@@ -249,7 +291,8 @@ void bindLeds(TomlSection &sec, LedSettings &s)
 	struct Line { const char *key; int &offset; };
 	Line lines[] = { { "power_line", s.powerLine }, { "depth_line", s.depthLine },
 			 { "colour_line", s.colourLine }, { "calibration_line", s.calibrationLine },
-			 { "reader_line", s.readerLine }, { "error_line", s.errorLine } };
+			 { "reader_line", s.readerLine }, { "error_line", s.errorLine },
+			 { "board_line", s.boardLine } };
 	bool ok = true;
 	for (Line &line : lines)
 		ok = sec.integer(line.key, line.offset, -1, 511) && ok;
@@ -316,6 +359,7 @@ void bindSettings(TomlSection &root, Settings &s)
 	root.table("siox", [&](TomlSection &sec) { bindSiox(sec, s.siox); });
 	root.table("decision", [&](TomlSection &sec) { bindDecision(sec, s.decision); });
 	root.table("composite", [&](TomlSection &sec) { bindComposite(sec, s.composite); });
+	root.table("board", [&](TomlSection &sec) { bindBoard(sec, s.board); });
 	root.table("output", [&](TomlSection &sec) { bindOutput(sec, s.output); });
 	root.table("leds", [&](TomlSection &sec) { bindLeds(sec, s.leds); });
 	root.table("sim", [&](TomlSection &sec) { bindSim(sec, s.sim); });

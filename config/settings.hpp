@@ -100,6 +100,8 @@ struct LearningSettings {
 struct SioxSettings {
 	int smoothing = 1;                  // 0..8 passes of 3x3 confidence smoothing
 	bool softAlpha = true;              // fractional alpha on the boundary
+	int guidedRadius = 3;               // 0..7: guided filter of the matte (edge-aware alpha); 0 = off
+	int guidedEps = 400;                // 1..65025: its smoothing, in squared 8-bit levels
 	bool operator==(const SioxSettings &) const = default;
 };
 
@@ -118,14 +120,33 @@ struct DecisionSettings {
 
 struct CompositeSettings {
 	double opacity = 0.5;               // 0..1, lecturer over board
-	uint32_t boardColour = 0x1e3c28;    // 0xRRGGBB board source (solid colour)
-	std::string boardImage = "";        // PNG/JPEG board source; "" = board_colour
 	bool operator==(const CompositeSettings &) const = default;
+};
+
+// The board's own picture behind the lecturer (paper Figure 1) and the
+// geometry it is composited in (hal/board/, algo/board_compositor.hpp).
+struct BoardSettings {
+	std::string backend = "sim";        // colour | image | v4l2 | sim
+	uint32_t colour = 0x1e3c28;         // 0xRRGGBB: "colour", and until a picture arrives
+	std::string image = "";             // PNG/JPEG for "image", absolute
+	// v4l2: the capture stick; width/height are also the picture size of
+	// "colour" and the width of "sim" (whose height follows the display)
+	std::string device = "/dev/video2";
+	int width = 1920;                   // 16..3840
+	int height = 1080;                  // 16..2160
+	int fps = 10;                       // 1..60, v4l2 and sim
+	std::string pixelFormat = "auto";   // auto | yuyv | nv12 | mjpeg
+	int timeoutMs = 2000;               // no frame this long: capture lost
+	int outputWidth = 0;                // composite size in board geometry; 0 = the picture's
+	int outputHeight = 0;
+	std::string homographyFile = "";    // H colour px -> board px (depthkey-calibrate --board); "" = camera geometry
+	bool operator==(const BoardSettings &) const = default;
 };
 
 struct OutputSettings {
 	std::string compositeName = "/depthkey.composite";
 	std::string lecturerName = "/depthkey.lecturer";
+	std::string boardLecturerName = "/depthkey.lecturer.board"; // the layer in board geometry
 	int slots = 3;                      // 2..8 ring slots per stream
 	std::string group = "";             // group owning the objects (mode 0640); "" = own group
 	bool operator==(const OutputSettings &) const = default;
@@ -142,6 +163,7 @@ struct LedSettings {
 	int calibrationLine = 3;
 	int readerLine = 4;
 	int errorLine = 5;
+	int boardLine = 6;
 	bool operator==(const LedSettings &) const = default;
 };
 
@@ -197,6 +219,7 @@ struct Settings {
 	SioxSettings siox;
 	DecisionSettings decision;
 	CompositeSettings composite;
+	BoardSettings board;
 	OutputSettings output;
 	LedSettings leds;
 	SimSettings sim;

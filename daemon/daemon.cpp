@@ -1,6 +1,7 @@
 #include "daemon/daemon.hpp"
 
 #include "config/config_loader.hpp"
+#include "algo/composite.hpp"
 #include "algo/pipeline_stages.hpp"
 #include "daemon/pipeline_setup.hpp"
 #include "daemon/log.hpp"
@@ -44,6 +45,7 @@ Daemon::~Daemon()
 {
 	recorder_.stop();
 	stopCameras();
+	board_.stop();
 	if (sink_)
 		sink_->close();
 	if (leds_)
@@ -83,6 +85,15 @@ int Daemon::start(const Settings &settings)
 		logger().errorOnce("leds", "status LEDs unavailable, running without them",
 				   { { "DEVICE", "leds" } });
 
+	board_.start(
+		loop_, settings_, factory_.boardSource, pipeline_,
+		[this](const std::string &name, const DeviceStatus &s) { onDeviceStatus(name, s); },
+		[this] { // the composite's geometry or size changed
+			if (sink_) {
+				sink_->close();
+				openOutput();
+			}
+		});
 	openOutput();
 	updateRecording();
 	startCameras();
@@ -101,6 +112,7 @@ int Daemon::run()
 	int ret = loop_.run();
 	notifier_.stopping();
 	stopCameras();
+	board_.stop();
 	recorder_.stop();
 	if (sink_)
 		sink_->close();
@@ -118,7 +130,8 @@ int Daemon::openOutput()
 {
 	if (!sink_)
 		sink_ = factory_.frameSink(settings_);
-	int ret = sink_->open(settings_.output, settings_.colour.width, settings_.colour.height);
+	int ret = sink_->open(settings_.output, settings_.colour.width, settings_.colour.height,
+			      board_.outputWidth(), board_.outputHeight());
 	sinkOpen_ = ret >= 0;
 	if (ret < 0)
 		logger().errorOnce("output", "cannot open shared-memory output: " + sink_->describeError(),
@@ -250,6 +263,14 @@ void Daemon::keyFrame(const PairingQueue::Keying &keying)
 	} else {
 		pipeline_.passThrough(frame, output_);
 	}
+	// Board geometry: the lecturer warped onto the board's picture. Without
+	// depth the board's picture alone goes out, marked offline: it is the
+	// lecture's content, and warping the whole colour frame would cost the
+	// CPU a slow box needs to get depth back.
+	if (depth)
+		board_.compose(output_.lecturer, pipeline_.roi(), opacityToQ8(settings_.composite.opacity));
+	else
+		board_.showBoardOnly();
 	if (settings_.daemon.snapshotDir.size() || overrides_.previewDir.size())
 		colourLatest_ = frame; // kept only for snapshots
 	if (depth)
@@ -272,9 +293,12 @@ void Daemon::publish(uint64_t captureNs, uint32_t flags)
 		return;
 	if (!sinkOpen_ && openOutput() < 0)
 		return;
-	int ret = sink_->publishComposite(output_.composite, captureNs, flags);
+	const bool board = board_.boardGeometry();
+	int ret = sink_->publishComposite(board ? board_.composite() : output_.composite, captureNs, flags);
 	if (ret >= 0)
 		ret = sink_->publishLecturer(output_.lecturer, captureNs, flags);
+	if (ret >= 0 && board)
+		ret = sink_->publishBoardLecturer(board_.lecturer(), captureNs, flags);
 	if (ret < 0) {
 		logger().errorOnce("output", "cannot publish: " + sink_->describeError(),
 				   { { "DEVICE", "shm" }, { "ERROR", errnoText(ret) } });
@@ -313,6 +337,7 @@ void Daemon::publishNoSignal(uint64_t nowNs)
 	std::fill(output_.alpha.data(), output_.alpha.data() + output_.alpha.size(), 0);
 	output_.lecturer.resize(w, h);
 	std::fill(output_.lecturer.data(), output_.lecturer.data() + output_.lecturer.size(), Rgba8{ 0, 0, 0, 0 });
+	board_.showBoardOnly(); // in board geometry the board's picture goes on, marked offline
 	publish(nowNs, depthFresh(nowNs) ? DK_SHM_FLAG_DEPTH_OK : 0);
 }
 
@@ -323,6 +348,8 @@ StatusSummary Daemon::summary() const
 	s.depthOk = depth_ && depth_->status().state == DeviceState::Streaming;
 	s.calibrated = calibrated_ && pipeline_.status().mappingFits;
 	s.error = logger().activeErrorCount() > 0;
+	s.boardOk = board_.sourceOk();
+	s.boardCalibrated = board_.boardGeometry();
 	return s;
 }
 
@@ -347,10 +374,10 @@ void Daemon::onStatusTick()
 			      settings_.pairing.offsetAuto ? "" : " (not applied)");
 	else
 		std::snprintf(offset, sizeof(offset), "depth offset %s", settings_.pairing.offsetAuto ? "measuring" : "set");
-	char text[640];
+	char text[768];
 	std::snprintf(text, sizeof(text),
 		      "colour %s %s %.1f fps %llu dropped; depth %s %s %.1f fps %llu dropped; "
-		      "paired %llu unpaired %llu; %s; output %.1f fps; %s",
+		      "paired %llu unpaired %llu; %s; output %.1f fps; %s; %s",
 		      colour_ ? colour_->name().c_str() : "-", deviceStateName(cs.state),
 		      rate(colourFrames_, colourFramesAtStatus_),
 		      static_cast<unsigned long long>(cs.droppedFrames),
@@ -359,7 +386,8 @@ void Daemon::onStatusTick()
 		      static_cast<unsigned long long>(ds.droppedFrames),
 		      static_cast<unsigned long long>(ps.paired),
 		      static_cast<unsigned long long>(ps.unpaired), offset, rate(published_, publishedAtStatus_),
-		      summary().calibrated ? "calibrated" : "not calibrated (identity mapping)");
+		      summary().calibrated ? "calibrated" : "not calibrated (identity mapping)",
+		      board_.statusText().c_str());
 	statusAtUs_ = now;
 	notifier_.status(text);
 	checkRecording();
@@ -411,6 +439,7 @@ void Daemon::apply(const Settings &next)
 	if (parseLogLevel(next.daemon.logLevel, level))
 		logger().setLevel(level);
 	configurePipeline();
+	board_.apply(next);
 	configurePairing();
 	if (previous.daemon.recordDir != next.daemon.recordDir ||
 	    previous.daemon.recordCompression != next.daemon.recordCompression)

@@ -6,6 +6,7 @@
 #include "algo/latency_estimator.hpp"
 #include "algo/pairing_queue.hpp"
 #include "algo/pipeline.hpp"
+#include "daemon/board_output.hpp"
 #include "config/settings.hpp"
 #include "daemon/device_factory.hpp"
 #include "daemon/frame_recorder.hpp"
@@ -103,6 +104,7 @@ private:
 	uint64_t lastPreviewFrame_ = 0;
 
 	Pipeline pipeline_;
+	BoardOutput board_;        // the board's picture, H and board-geometry composite
 	MappingModel mapping_;     // the last good calibration, or identity
 	bool calibrated_ = false;
 	PipelineOutput output_;

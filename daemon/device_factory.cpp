@@ -1,6 +1,7 @@
 #include "daemon/device_factory.hpp"
 
 #include "daemon/log.hpp"
+#include "hal/board/board_sources.hpp"
 #include "hal/gpio/gpiod_status_leds.hpp"
 #include "hal/replay/replay_cameras.hpp"
 #include "hal/shm_frame_sink.hpp"
@@ -66,6 +67,11 @@ std::unique_ptr<StatusLeds> createStatusLeds(const Settings &settings)
 						   { { "DEVICE", device }, { "ERROR", errnoText(error) } });
 			});
 	return std::make_unique<NoStatusLeds>();
+}
+
+std::unique_ptr<ColourCamera> createBoardSourceFor(const Settings &settings)
+{
+	return createBoardSource(settings);
 }
 
 } // namespace depthkey

@@ -16,6 +16,8 @@ std::unique_ptr<ColourCamera> createColourCamera(const Settings &settings);
 std::unique_ptr<DepthCamera> createDepthCamera(const Settings &settings);
 std::unique_ptr<FrameSink> createFrameSink(const Settings &settings);
 std::unique_ptr<StatusLeds> createStatusLeds(const Settings &settings);
+// board.backend (hal/board/board_sources.hpp).
+std::unique_ptr<ColourCamera> createBoardSourceFor(const Settings &settings);
 
 // What the daemon calls to get its devices: the backends above by default,
 // fakes in tests of the daemon's own behaviour (offline frames, recovery).
@@ -24,6 +26,7 @@ struct DeviceFactory {
 	std::function<std::unique_ptr<DepthCamera>(const Settings &)> depthCamera = createDepthCamera;
 	std::function<std::unique_ptr<FrameSink>(const Settings &)> frameSink = createFrameSink;
 	std::function<std::unique_ptr<StatusLeds>(const Settings &)> statusLeds = createStatusLeds;
+	std::function<std::unique_ptr<ColourCamera>(const Settings &)> boardSource = createBoardSourceFor;
 };
 
 } // namespace depthkey

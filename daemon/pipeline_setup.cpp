@@ -46,8 +46,10 @@ PipelineFiles loadPipelineFiles(const Settings &settings)
 			files.calibrationError = result.errors.front().toString() + moreErrors(result.errors.size());
 		}
 	}
-	if (!settings.composite.boardImage.empty() &&
-	    readRgbImage(settings.composite.boardImage, files.board, files.boardError) < 0)
+	// The daemon's board comes from its board source (daemon/board_output.hpp);
+	// the eval composites over a board image when one is configured.
+	if (settings.board.backend == "image" && !settings.board.image.empty() &&
+	    readRgbImage(settings.board.image, files.board, files.boardError) < 0)
 		files.board = RgbImage();
 	return files;
 }
@@ -87,12 +89,9 @@ void Daemon::configurePipeline()
 				    { { "DEVICE", "calibration" }, { "CALIBRATION_FILE", path } });
 	}
 
-	if (!files.boardError.empty())
-		logger().errorOnce("board_image", "board image unusable, showing board_colour: " + files.boardError,
-				   { { "DEVICE", "board_image" } });
-	else if (!settings_.composite.boardImage.empty())
-		logger().clearError("board_image", "board image loaded", { { "DEVICE", "board_image" } });
-	depthkey::configurePipeline(pipeline_, settings_, mapping_, files.board);
+	// The board picture is the board source's (its errors are its own).
+	depthkey::configurePipeline(pipeline_, settings_, mapping_,
+				    board_.boardGeometry() ? RgbImage() : board_.picture());
 }
 
 } // namespace depthkey

@@ -6,9 +6,12 @@
 #
 # The daemon runs with CONFIG (default config/depthkey.toml) except for
 # [mapping] calibration_file, which names BUILD/sim-calibration.toml, the
-# calibration `make` fits to the simulator with depthkey-calibrate --sim. The
+# calibration `make` fits to the simulator with depthkey-calibrate --sim, and
+# [board] homography_file, which names BUILD/sim-board.toml, the board
+# calibration `make` fits with depthkey-calibrate --board --sim (so that the
+# composite is in the simulated board's geometry: the paper's Figure 1). The
 # merged config is written to BUILD/run.toml (rewritten by every run); the
-# shipped default config keeps calibration_file = "".
+# shipped default config keeps both "".
 # With RUN_SIM_PREPARE_ONLY=1 it only writes BUILD/run.toml and prints its
 # path (for the tests).
 set -eu
@@ -35,7 +38,13 @@ case $calibration in
 esac
 [ "$(grep -c '^calibration_file = ""$' "$source")" = 1 ] ||
 	fail "$source: expected exactly one line 'calibration_file = \"\"' to point at $calibration"
-sed "s|^calibration_file = \"\"\$|calibration_file = \"$calibration\"|" "$source" > "$config.tmp"
+board=$build/sim-board.toml # the same folder: its path passed the check above
+[ -r "$board" ] ||
+	fail "$board is missing: make run fits it ($bin/depthkey-calibrate --board --sim --output $board)"
+[ "$(grep -c '^homography_file = ""$' "$source")" = 1 ] ||
+	fail "$source: expected exactly one line 'homography_file = \"\"' to point at $board"
+sed -e "s|^calibration_file = \"\"\$|calibration_file = \"$calibration\"|" \
+    -e "s|^homography_file = \"\"\$|homography_file = \"$board\"|" "$source" > "$config.tmp"
 mv "$config.tmp" "$config"
 
 if [ "${RUN_SIM_PREPARE_ONLY:-0}" = 1 ]; then
@@ -46,7 +55,10 @@ fi
 cat <<MSG
 depthkeyd is starting on simulated cameras with config $config:
 $source with [mapping] calibration_file = "$calibration"
-(fitted to the simulator; make run writes $config afresh from $source each time).
+and [board] homography_file = "$board"
+(both fitted to the simulator; make run writes $config afresh from $source each time).
+The composite is in the board's geometry: the simulated board's slide and strokes,
+the lecturer laid over them half transparent.
 Look at its output from another terminal:
   $bin/depthkey-shmcat --frames 250 | ffmpeg -y -i - composite.mp4     # 10 s of the composite
   $bin/depthkey-shmcat --stream lecturer --frames 1 | ffmpeg -y -i - lecturer.png

@@ -11,13 +11,16 @@ namespace depthkey {
 class FakeFrameSink : public FrameSink
 {
 public:
-	int open(const OutputSettings &settings, int width, int height) override
+	int open(const OutputSettings &settings, int width, int height, int boardWidth = 0,
+		 int boardHeight = 0) override
 	{
 		if (failOpen_)
 			return failOpen_;
 		settings_ = settings;
 		width_ = width;
 		height_ = height;
+		boardWidth_ = boardWidth;
+		boardHeight_ = boardHeight;
 		open_ = true;
 		opens_++;
 		return 0;
@@ -25,7 +28,8 @@ public:
 
 	int publishComposite(const RgbImage &image, uint64_t captureNs, uint32_t flags) override
 	{
-		int ret = check(image.width(), image.height());
+		int ret = boardWidth_ ? check(image.width(), image.height(), boardWidth_, boardHeight_)
+				      : check(image.width(), image.height());
 		if (ret)
 			return ret;
 		composite_ = image;
@@ -47,6 +51,20 @@ public:
 		return 0;
 	}
 
+	int publishBoardLecturer(const RgbaImage &image, uint64_t captureNs, uint32_t flags) override
+	{
+		if (!boardWidth_)
+			return -EBADF;
+		int ret = check(image.width(), image.height(), boardWidth_, boardHeight_);
+		if (ret)
+			return ret;
+		boardLecturer_ = image;
+		boardLecturerCount_++;
+		captureNs_ = captureNs;
+		flags_ = flags;
+		return 0;
+	}
+
 	void close() override { open_ = false; }
 
 	std::string describeError() const override
@@ -60,6 +78,10 @@ public:
 	int opens() const { return opens_; }
 	int width() const { return width_; }
 	int height() const { return height_; }
+	int boardWidth() const { return boardWidth_; }
+	int boardHeight() const { return boardHeight_; }
+	const RgbaImage &boardLecturer() const { return boardLecturer_; }
+	uint64_t boardLecturerCount() const { return boardLecturerCount_; }
 	const OutputSettings &settings() const { return settings_; }
 	const RgbImage &composite() const { return composite_; }
 	const RgbaImage &lecturer() const { return lecturer_; }
@@ -69,11 +91,12 @@ public:
 	uint32_t lastFlags() const { return flags_; }
 
 private:
-	int check(int width, int height) const
+	int check(int width, int height) const { return check(width, height, width_, height_); }
+	int check(int width, int height, int wantWidth, int wantHeight) const
 	{
 		if (!open_)
 			return -EBADF;
-		return width == width_ && height == height_ ? 0 : -EINVAL;
+		return width == wantWidth && height == wantHeight ? 0 : -EINVAL;
 	}
 
 	OutputSettings settings_;
@@ -82,7 +105,10 @@ private:
 	int opens_ = 0;
 	int width_ = 0;
 	int height_ = 0;
+	int boardWidth_ = 0, boardHeight_ = 0;
 	RgbImage composite_;
+	RgbaImage boardLecturer_;
+	uint64_t boardLecturerCount_ = 0;
 	RgbaImage lecturer_;
 	uint64_t compositeCount_ = 0;
 	uint64_t lecturerCount_ = 0;

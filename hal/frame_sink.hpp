@@ -17,15 +17,21 @@ class FrameSink
 public:
 	virtual ~FrameSink() = default;
 
-	// Opens both streams at width x height. Calling it again (config reload,
-	// new resolution) re-opens them. Returns 0 or a negative errno.
-	virtual int open(const OutputSettings &settings, int width, int height) = 0;
+	// Opens the streams at width x height (the colour camera's geometry).
+	// With boardWidth > 0 (the board calibrated) the composite is in the
+	// board's geometry, boardWidth x boardHeight, and a third stream carries
+	// the lecturer layer warped into it. Calling it again (config reload,
+	// new resolution or geometry) re-opens them. Returns 0 or a negative errno.
+	virtual int open(const OutputSettings &settings, int width, int height, int boardWidth = 0,
+			 int boardHeight = 0) = 0;
 
 	// flags: DK_SHM_FLAG_* from hal/depthkey_shm.h. captureNs is the
 	// CLOCK_MONOTONIC capture time of the colour frame. Images must have the
 	// size given to open() (-EINVAL otherwise); -EBADF when not open.
 	virtual int publishComposite(const RgbImage &image, uint64_t captureNs, uint32_t flags) = 0;
 	virtual int publishLecturer(const RgbaImage &image, uint64_t captureNs, uint32_t flags) = 0;
+	// The board-geometry lecturer layer; -EBADF when opened without a board size.
+	virtual int publishBoardLecturer(const RgbaImage &image, uint64_t captureNs, uint32_t flags) = 0;
 
 	// Marks the streams offline; consumers keep the last frames.
 	virtual void close() = 0;

@@ -6,13 +6,15 @@
 
 namespace depthkey {
 
-int ShmFrameSink::open(const OutputSettings &settings, int width, int height)
+int ShmFrameSink::open(const OutputSettings &settings, int width, int height, int boardWidth,
+		       int boardHeight)
 {
 	failed_ = nullptr;
 	sizeMismatch_ = nullptr;
 
-	int ret = composite_.open(settings.compositeName, width, height, DK_SHM_FORMAT_RGB24,
-				  settings.slots, settings.group);
+	const bool board = boardWidth > 0 && boardHeight > 0;
+	int ret = composite_.open(settings.compositeName, board ? boardWidth : width, board ? boardHeight : height,
+				  DK_SHM_FORMAT_RGB24, settings.slots, settings.group);
 	if (ret) {
 		failed_ = &composite_;
 		lecturer_.close(); // no half-configured pair from an earlier open
@@ -23,6 +25,20 @@ int ShmFrameSink::open(const OutputSettings &settings, int width, int height)
 	if (ret) {
 		failed_ = &lecturer_;
 		composite_.close();
+		return ret;
+	}
+	// In camera geometry the board layer's stream is marked offline: a
+	// reader sees it is not being fed rather than a frozen old frame.
+	if (!board) {
+		boardLecturer_.close();
+		return 0;
+	}
+	ret = boardLecturer_.open(settings.boardLecturerName, boardWidth, boardHeight, DK_SHM_FORMAT_RGBA32,
+				  settings.slots, settings.group);
+	if (ret) {
+		failed_ = &boardLecturer_;
+		composite_.close();
+		lecturer_.close();
 		return ret;
 	}
 	return 0;
@@ -62,10 +78,16 @@ int ShmFrameSink::publishLecturer(const RgbaImage &image, uint64_t captureNs, ui
 	return publish(lecturer_, image, captureNs, flags);
 }
 
+int ShmFrameSink::publishBoardLecturer(const RgbaImage &image, uint64_t captureNs, uint32_t flags)
+{
+	return publish(boardLecturer_, image, captureNs, flags);
+}
+
 void ShmFrameSink::close()
 {
 	composite_.close();
 	lecturer_.close();
+	boardLecturer_.close();
 }
 
 std::string ShmFrameSink::describeError() const

@@ -1,5 +1,6 @@
 // FrameSink backend for the recorder: one shared-memory ring per stream,
-// settings.compositeName as RGB24 and settings.lecturerName as RGBA32.
+// settings.compositeName as RGB24, settings.lecturerName as RGBA32 and, in
+// board geometry, settings.boardLecturerName as RGBA32.
 #pragma once
 
 #include "hal/frame_sink.hpp"
@@ -10,15 +11,18 @@ namespace depthkey {
 class ShmFrameSink : public FrameSink
 {
 public:
-	int open(const OutputSettings &settings, int width, int height) override;
+	int open(const OutputSettings &settings, int width, int height, int boardWidth = 0,
+		 int boardHeight = 0) override;
 	int publishComposite(const RgbImage &image, uint64_t captureNs, uint32_t flags) override;
 	int publishLecturer(const RgbaImage &image, uint64_t captureNs, uint32_t flags) override;
+	int publishBoardLecturer(const RgbaImage &image, uint64_t captureNs, uint32_t flags) override;
 	void close() override;
 	std::string describeError() const override;
 
 	// For tests and status reports.
 	const ShmRingWriter &composite() const { return composite_; }
 	const ShmRingWriter &lecturer() const { return lecturer_; }
+	const ShmRingWriter &boardLecturer() const { return boardLecturer_; }
 
 private:
 	template<typename Image>
@@ -26,6 +30,7 @@ private:
 
 	ShmRingWriter composite_;
 	ShmRingWriter lecturer_;
+	ShmRingWriter boardLecturer_;   // open only in board geometry
 	// The writer that failed last, or null when the failure was our own
 	// (sizeMismatch_) or there was none.
 	const ShmRingWriter *failed_ = nullptr;

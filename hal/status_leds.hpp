@@ -16,6 +16,8 @@ struct StatusSummary {
 	bool calibrated = false;
 	bool readerAttached = false; // a recorder reads the shared memory (when known)
 	bool error = false;     // a persistent error is being reported
+	bool boardOk = true;    // the board source delivers (false: lost, last picture kept)
+	bool boardCalibrated = true; // the composite is in the board's geometry
 	bool operator==(const StatusSummary &) const = default;
 };
 

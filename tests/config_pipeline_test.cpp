@@ -35,7 +35,7 @@ TEST(ConfigPipeline, ValuesAreBound)
 				     "dilate_px = 9\n[mapping]\ncalibration_file = \"/etc/depthkey/cal.toml\"\n"
 				     "[learning]\ninitial_frames = 5\nboard_rate = 0.5\nlecturer_rate = 0\nsamples = 1000\n"
 				     "margin_px = 0\nrelearn_misfit = 0.2\n[siox]\nsmoothing = 0\nsoft_alpha = false\n"
-				     "[composite]\nboard_image = \"/srv/board.png\"\n",
+				     "[board]\nbackend = \"image\"\nimage = \"/srv/board.png\"\n",
 				     "t.toml");
 	ASSERT_TRUE(r.ok()) << r.errors.front().toString();
 	EXPECT_EQ(r.settings.segmentation.maxAmplitude, 20000);
@@ -45,7 +45,7 @@ TEST(ConfigPipeline, ValuesAreBound)
 	EXPECT_DOUBLE_EQ(r.settings.learning.boardRate, 0.5);
 	EXPECT_EQ(r.settings.siox.smoothing, 0);
 	EXPECT_FALSE(r.settings.siox.softAlpha);
-	EXPECT_EQ(r.settings.composite.boardImage, "/srv/board.png");
+	EXPECT_EQ(r.settings.board.image, "/srv/board.png");
 }
 
 TEST(ConfigPipeline, OutOfRangeAndInconsistentValuesAreRefused)
@@ -59,5 +59,15 @@ TEST(ConfigPipeline, OutOfRangeAndInconsistentValuesAreRefused)
 	EXPECT_NE(firstError("[learning]\nsamples = 10\n").find("learning.samples"), std::string::npos);
 	EXPECT_NE(firstError("[siox]\nsmoothing = 9\n").find("siox.smoothing"), std::string::npos);
 	EXPECT_NE(firstError("[siox]\nsoft = true\n").find("siox.soft"), std::string::npos);
-	EXPECT_NE(firstError("[composite]\nboard_image = \"b.png\"\n").find("composite.board_image"), std::string::npos);
+	EXPECT_NE(firstError("[board]\nimage = \"b.png\"\n").find("board.image"), std::string::npos);
+	// The board's keys moved from [composite] to [board]: the error says where.
+	EXPECT_NE(firstError("[composite]\nboard_colour = 0x102030\n").find("has moved: [board] colour"), std::string::npos);
+	EXPECT_NE(firstError("[composite]\nboard_image = \"/b.png\"\n").find("composite.board_image: has moved"),
+		  std::string::npos);
+	EXPECT_NE(firstError("[board]\nbackend = \"image\"\n").find("board.image: must name"), std::string::npos);
+	EXPECT_NE(firstError("[board]\noutput_width = 1280\n").find("both be 0"), std::string::npos);
+	EXPECT_NE(firstError("[board]\nbackend = \"hdmi\"\n").find("board.backend"), std::string::npos);
+	EXPECT_NE(firstError("[output]\nboard_lecturer_name = \"/depthkey.composite\"\n").find("must differ"),
+		  std::string::npos);
+	EXPECT_NE(firstError("[leds]\nboard_line = 5\n").find("use the same line 5"), std::string::npos);
 }

@@ -119,10 +119,23 @@ near_mm = 800
 far_mm = 2500
 [composite]
 opacity = 1
-board_colour = "#FF8000"
+[board]
+backend = "v4l2"
+colour = "#FF8000"
+image = "/srv/board.png"
+device = "/dev/video4"
+width = 1280
+height = 720
+fps = 30
+pixel_format = "mjpeg"
+timeout_ms = 3000
+output_width = 1920
+output_height = 1080
+homography_file = "/var/lib/depthkey/board.toml"
 [output]
 composite_name = "/room12.composite"
 lecturer_name = "/room12.lecturer"
+board_lecturer_name = "/room12.lecturer.board"
 slots = 5
 group = "video"
 [leds]
@@ -135,6 +148,7 @@ colour_line = 12
 calibration_line = 13
 reader_line = -1
 error_line = 15
+board_line = 7
 [sim]
 seed = 9007199254740993
 board_distance_mm = 2400
@@ -176,9 +190,11 @@ loop = false
 			   848, 480, "y16", 0.125 };
 	expected.pairing = { -40, false, 80, 0 };
 	expected.segmentation = { 800, 2500 };
-	expected.composite = { 1.0, 0xff8000 };
-	expected.output = { "/room12.composite", "/room12.lecturer", 5, "video" };
-	expected.leds = { "gpiod", "/dev/gpiochip1", true, 10, 11, 12, 13, -1, 15 };
+	expected.composite = { 1.0 };
+	expected.board = { "v4l2", 0xff8000, "/srv/board.png", "/dev/video4", 1280, 720, 30, "mjpeg", 3000,
+			   1920, 1080, "/var/lib/depthkey/board.toml" };
+	expected.output = { "/room12.composite", "/room12.lecturer", "/room12.lecturer.board", 5, "video" };
+	expected.leds = { "gpiod", "/dev/gpiochip1", true, 10, 11, 12, 13, -1, 15, 7 };
 	expected.sim = { 9007199254740993u, 2400, 1.5, false, false, false, 0.3, 60.0, 0.0, 0.0, false, 80,
 			 false, 9000.0, 0.2, 1000.0, 0, 0.25, 0, false, 10.0, 0.0, 0.0 };
 	expected.replay = { "/srv/recordings/lecture1", false, false };
@@ -290,11 +306,11 @@ TEST(ConfigLoader, OutOfRange)
 		  (ConfigError{ kFile, 2, 11, "composite.opacity", "nan is out of range: 0..1" }));
 	EXPECT_EQ(onlyError("[sim]\nseed = -1\n"),
 		  (ConfigError{ kFile, 2, 8, "sim.seed", "-1 is out of range: must be at least 0" }));
-	EXPECT_EQ(onlyError("[composite]\nboard_colour = 0x1000000\n"),
-		  (ConfigError{ kFile, 2, 16, "composite.board_colour",
+	EXPECT_EQ(onlyError("[board]\ncolour = 0x1000000\n"),
+		  (ConfigError{ kFile, 2, 10, "board.colour",
 				"16777216 is not a colour: expected 0x000000..0xffffff" }));
-	EXPECT_EQ(onlyError("[composite]\nboard_colour = \"#12345\"\n"),
-		  (ConfigError{ kFile, 2, 16, "composite.board_colour",
+	EXPECT_EQ(onlyError("[board]\ncolour = \"#12345\"\n"),
+		  (ConfigError{ kFile, 2, 10, "board.colour",
 				"\"#12345\" is not a colour: expected \"#rrggbb\"" }));
 }
 

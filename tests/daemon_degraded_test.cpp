@@ -94,6 +94,7 @@ TEST(DaemonDegraded, PublishesOfflineFramesWhileACameraIsLostAndRecovers)
 	settings.colour.width = 64;
 	settings.colour.height = 48;
 	settings.colour.fps = 50;
+	settings.board.backend = "colour"; // the composite below is over board.colour
 	Daemon daemon("unused.toml", {}, h.factory());
 	ASSERT_EQ(daemon.start(settings), 0);
 	ASSERT_NE(h.colour, nullptr);

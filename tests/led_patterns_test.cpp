@@ -43,6 +43,21 @@ TEST(LedPatterns, AllWellIsHeartbeatCamerasOnRestDark)
 	EXPECT_EQ(patternOf(s, StatusLed::Calibration), LedPattern::Off);
 	EXPECT_EQ(patternOf(s, StatusLed::Reader), LedPattern::On);
 	EXPECT_EQ(patternOf(s, StatusLed::Error), LedPattern::Off);
+	EXPECT_EQ(patternOf(s, StatusLed::Board), LedPattern::On);
+}
+
+// The board LED: lost outranks not calibrated (the picture is frozen).
+TEST(LedPatterns, BoardLedSaysLostOrNotCalibrated)
+{
+	StatusSummary s{ .colourOk = true, .depthOk = true, .calibrated = true, .readerAttached = true,
+			 .error = false, .boardOk = true, .boardCalibrated = false };
+	EXPECT_EQ(patternOf(s, StatusLed::Board), LedPattern::SlowBlink);
+	s.boardOk = false;
+	EXPECT_EQ(patternOf(s, StatusLed::Board), LedPattern::FastBlink);
+	s.boardCalibrated = true;
+	EXPECT_EQ(patternOf(s, StatusLed::Board), LedPattern::FastBlink);
+	EXPECT_EQ(patternOf(s, StatusLed::Colour), LedPattern::On);
+	EXPECT_STREQ(statusLedName(StatusLed::Board), "board");
 }
 
 TEST(LedPatterns, EachProblemShowsOnItsOwnLed)

@@ -9,7 +9,9 @@
 #include <sstream>
 #include <unistd.h>
 
+#include "config/board_calibration_file.hpp"
 #include "config/calibration_file.hpp"
+#include "hal/sim/board_display.hpp"
 #include "config/config_loader.hpp"
 #include "hal/sim/lecture_simulator.hpp"
 #include "tests/shell_command.hpp"
@@ -69,18 +71,27 @@ TEST(RunSimConfig, ShippedConfigPointedAtTheSimCalibration)
 		std::string out = test::run(test::binDir() + "/depthkey-calibrate --sim --output " + calibration, status);
 		ASSERT_EQ(status, 0) << out;
 	}
+	std::string board = build + "/sim-board.toml";
+	if (access(board.c_str(), R_OK) != 0) {
+		std::string out = test::run(test::binDir() + "/depthkey-calibrate --board --sim --output " + board, status);
+		ASSERT_EQ(status, 0) << out;
+	}
 
 	std::string out = prepare(build, "", status);
 	ASSERT_EQ(status, 0) << out;
 	std::string config = test::lastLine(out);
 	EXPECT_EQ(config, build + "/run.toml");
 
-	// Word for word the shipped file but for the one line.
+	// Word for word the shipped file but for the two lines.
 	std::string shipped = readFile(test::sourceDir() + "/config/depthkey.toml");
 	size_t line = shipped.find(kEmptyCalibrationLine);
 	ASSERT_NE(line, std::string::npos) << "config/depthkey.toml must ship uncalibrated";
 	std::string expected = shipped;
 	expected.replace(line, kEmptyCalibrationLine.size(), "calibration_file = \"" + calibration + "\"");
+	const std::string emptyBoardLine = "homography_file = \"\"";
+	size_t boardLine = expected.find(emptyBoardLine);
+	ASSERT_NE(boardLine, std::string::npos) << "config/depthkey.toml must ship without a board calibration";
+	expected.replace(boardLine, emptyBoardLine.size(), "homography_file = \"" + board + "\"");
 	EXPECT_EQ(firstDifference(readFile(config), expected), "");
 
 	ConfigResult loaded = loadConfig(config);
@@ -91,6 +102,13 @@ TEST(RunSimConfig, ShippedConfigPointedAtTheSimCalibration)
 	EXPECT_EQ(settings.mapping.calibrationFile, calibration);
 	EXPECT_EQ(settings.colour.backend, "sim");
 	EXPECT_EQ(settings.depth.backend, "sim");
+	// The board calibration fits the simulated board make run shows.
+	EXPECT_EQ(settings.board.backend, "sim");
+	BoardCalibrationResult boardResult = loadBoardCalibration(settings.board.homographyFile);
+	ASSERT_TRUE(boardResult.ok()) << boardResult.errors.front().toString();
+	EXPECT_EQ(boardResult.calibration.colourWidth, settings.colour.width);
+	EXPECT_EQ(boardResult.calibration.boardWidth, settings.board.width);
+	EXPECT_EQ(boardResult.calibration.boardHeight, simBoardHeight(settings.board.width));
 
 	CalibrationResult result = loadCalibration(settings.mapping.calibrationFile);
 	for (const ConfigError &e : result.errors)
@@ -139,6 +157,17 @@ TEST_F(RunSimConfigErrors, MissingCalibrationSaysHowToMakeIt)
 	std::string out = prepare(dir_, "", status);
 	EXPECT_EQ(status, 1) << out;
 	EXPECT_NE(out.find(dir_ + "/sim-calibration.toml is missing: make run fits it"), std::string::npos) << out;
+	EXPECT_FALSE(std::filesystem::exists(dir_ + "/run.toml"));
+}
+
+TEST_F(RunSimConfigErrors, MissingBoardCalibrationSaysHowToMakeIt)
+{
+	write("sim-calibration.toml", "");
+	int status = 0;
+	std::string out = prepare(dir_, "", status);
+	EXPECT_EQ(status, 1) << out;
+	EXPECT_NE(out.find(dir_ + "/sim-board.toml is missing: make run fits it"), std::string::npos) << out;
+	EXPECT_NE(out.find("depthkey-calibrate --board --sim --output"), std::string::npos) << out;
 	EXPECT_FALSE(std::filesystem::exists(dir_ + "/run.toml"));
 }
 

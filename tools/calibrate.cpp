@@ -30,6 +30,7 @@
 #include "config/calibration_file.hpp"
 #include "hal/sequence_folder.hpp"
 #include "hal/sim/calibration_pattern.hpp"
+#include "tools/calibrate_board/board_command.hpp"
 
 using namespace depthkey;
 
@@ -260,6 +261,9 @@ private:
 
 int main(int argc, char **argv)
 {
+	// --board: the board calibration, a mode of its own.
+	if (wantsBoardCalibration(argc, argv))
+		return runBoardCalibration(argc, argv);
 	Options o;
 	if (int ret = parseOptions(argc, argv, o); ret)
 		return ret;

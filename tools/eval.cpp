@@ -245,8 +245,31 @@ public:
 	// depth's fault, a wrong band pixel SIOX's), and the bound of the seeds.
 	void attribute(const Gray8Image &alpha, const Gray8Image &truth, SegmentationScorer &scorer)
 	{
-		if (!depthOnly_)
-			attribution_.add(alpha, truth, pipeline_.trimap(), scorer);
+		if (depthOnly_)
+			return;
+		attribution_.add(alpha, truth, pipeline_.trimap(), scorer);
+		// The alpha's error against the truth's fractional coverage, over
+		// the frame and inside the band (superset minus core).
+		const Gray8Image &trimap = pipeline_.trimap();
+		if (trimap.size() != alpha.size() || truth.size() != alpha.size())
+			return;
+		for (size_t i = 0; i < alpha.size(); ++i) {
+			const unsigned e = unsigned(std::abs(int(alpha.data()[i]) - int(truth.data()[i])));
+			alphaError_ += e;
+			const uint8_t t = trimap.data()[i];
+			if (t != kTrimapBoard && t != kTrimapLecturer) {
+				bandAlphaError_ += e;
+				bandPixels_++;
+			}
+		}
+		alphaPixels_ += alpha.size();
+	}
+	void printAlphaError() const
+	{
+		if (alphaPixels_)
+			std::printf("  alpha mean absolute error (of 255): whole frame %.2f, band %.2f\n",
+				    double(alphaError_) / double(alphaPixels_),
+				    bandPixels_ ? double(bandAlphaError_) / double(bandPixels_) : 0.0);
 	}
 	void printAttribution() const
 	{
@@ -296,6 +319,7 @@ private:
 	Gray8Image alpha_;
 	double seconds_ = 0;
 	TrimapAttribution attribution_;
+	uint64_t alphaError_ = 0, bandAlphaError_ = 0, alphaPixels_ = 0, bandPixels_ = 0;
 };
 
 // Four frames spread over the run (at 1/8, 3/8, 5/8, 7/8 of it), or of an
@@ -461,6 +485,7 @@ int main(int argc, char **argv)
 	std::printf("  lecturer pixels lost (FNR) %.3f  board pixels taken (FPR) %.3f  %.0f frames/s\n", m.fnr,
 		    m.fpr, fps);
 	method.printAttribution();
+	method.printAlphaError();
 	const PairingStats &ps = queue.pairer().stats();
 	std::printf("  pairing: %llu paired, %llu colour frames without depth (scored unkeyed)\n",
 		    static_cast<unsigned long long>(ps.paired), static_cast<unsigned long long>(ps.unpaired));

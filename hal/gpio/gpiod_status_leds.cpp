@@ -46,7 +46,7 @@ int GpiodStatusLeds::open(EventLoop &loop, const LedSettings &settings)
 	}
 	int offsets[kStatusLedCount] = { settings.powerLine, settings.depthLine,
 					 settings.colourLine, settings.calibrationLine,
-					 settings.readerLine, settings.errorLine };
+					 settings.readerLine, settings.errorLine, settings.boardLine };
 	gpiod::line_request request{ "depthkeyd", gpiod::line_request::DIRECTION_OUTPUT,
 				     settings.activeLow ? gpiod::line_request::FLAG_ACTIVE_LOW
 							: std::bitset<32>() };

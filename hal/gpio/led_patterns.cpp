@@ -39,6 +39,9 @@ LedPatterns ledPatternsFor(const StatusSummary &s)
 		s.calibrated ? LedPattern::Off : LedPattern::SlowBlink;
 	p[static_cast<size_t>(StatusLed::Reader)] = s.readerAttached ? LedPattern::On : LedPattern::Off;
 	p[static_cast<size_t>(StatusLed::Error)] = s.error ? LedPattern::On : LedPattern::Off;
+	p[static_cast<size_t>(StatusLed::Board)] = !s.boardOk		? LedPattern::FastBlink
+						   : !s.boardCalibrated ? LedPattern::SlowBlink
+									: LedPattern::On;
 	return p;
 }
 
@@ -62,6 +65,8 @@ const char *statusLedName(StatusLed led)
 		return "reader";
 	case StatusLed::Error:
 		return "error";
+	case StatusLed::Board:
+		return "board";
 	}
 	return "unknown";
 }

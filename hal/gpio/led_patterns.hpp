@@ -12,6 +12,9 @@
 //                slow blink (1 Hz)       calibration missing: keying is uncalibrated
 //   reader       on / off                a recorder is / is not reading the output
 //   error        on                      a persistent error is in the journal
+//   board        on                      board picture live, composite in board geometry
+//                slow blink (1 Hz)       board not calibrated: camera-geometry composite
+//                fast blink (4 Hz)       board source lost: its last good picture stays
 #pragma once
 
 #include "hal/status_leds.hpp"
@@ -21,8 +24,8 @@
 
 namespace depthkey {
 
-enum class StatusLed { Power, Depth, Colour, Calibration, Reader, Error };
-constexpr size_t kStatusLedCount = 6;
+enum class StatusLed { Power, Depth, Colour, Calibration, Reader, Error, Board };
+constexpr size_t kStatusLedCount = 7;
 
 enum class LedPattern { Off, On, SlowBlink, FastBlink, Heartbeat };
 

@@ -1,5 +1,6 @@
 #include "hal/sim/lecture_simulator.hpp"
 
+#include "hal/sim/board_display.hpp"
 #include "hal/sim/hash_noise.hpp"
 
 #include <algorithm>
@@ -71,6 +72,13 @@ void LectureSimulator::renderCalibrationPattern(const sim::CalibrationTarget &ta
 	renderDepth(timeS, depth);
 }
 
+void LectureSimulator::showOnBoard(const RgbImage &picture)
+{
+	shownPicture_ = picture;
+	shown_.clear();
+	colourReady_ = false;
+}
+
 void LectureSimulator::poseLecturer(double timeS, std::vector<sim::Capsule> &out) const
 {
 	if (target_ || !lecturerVisible_)
@@ -87,6 +95,38 @@ void LectureSimulator::ensureColourGrid()
 							 target_ ? &*target_ : nullptr);
 	colourGrid_.configure(rig_.colour(), 1, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(), scene);
 	colourReady_ = true;
+	if (shownPicture_.empty())
+		return;
+	// The picture on the display, per colour pixel where the display is seen.
+	constexpr int kSub = 4;
+	const int pw = shownPicture_.width(), ph = shownPicture_.height();
+	const double d = settings_.boardDistanceMm / 1000.0;
+	auto sample = [&](double u, double v, int ch) {
+		u = std::clamp(u, 0.0, pw - 1.0);
+		v = std::clamp(v, 0.0, ph - 1.0);
+		int x0 = std::min(int(u), pw - 2 < 0 ? 0 : pw - 2), y0 = std::min(int(v), ph - 2 < 0 ? 0 : ph - 2);
+		int x1 = std::min(x0 + 1, pw - 1), y1 = std::min(y0 + 1, ph - 1);
+		double fx = u - x0, fy = v - y0;
+		auto at = [&](int x, int y) { const Rgb8 &p = shownPicture_.at(x, y); return double(ch == 0 ? p.r : ch == 1 ? p.g : p.b); };
+		return (at(x0, y0) * (1 - fx) + at(x1, y0) * fx) * (1 - fy) + (at(x0, y1) * (1 - fx) + at(x1, y1) * fx) * fy;
+	};
+	shown_.assign(size_t(colourWidth_) * colourHeight_, Rgb8{});
+	for (int y = 0; y < colourHeight_; ++y)
+		for (int x = 0; x < colourWidth_; ++x) {
+			size_t k = size_t(y) * colourWidth_ + x;
+			if (colourGrid_.boardTexel()[k] < 0)
+				continue;
+			double sum[3] = { 0, 0, 0 };
+			for (int j = 0; j < kSub; ++j)
+				for (int i = 0; i < kSub; ++i) {
+					double u, v;
+					simColourToBoard(rig_, d, pw, ph, x + (i + 0.5) / kSub - 0.5, y + (j + 0.5) / kSub - 0.5, u, v);
+					for (int ch = 0; ch < 3; ++ch)
+						sum[ch] += sample(u, v, ch);
+				}
+			shown_[k] = { clampU8(int(std::lround(sum[0] / (kSub * kSub)))), clampU8(int(std::lround(sum[1] / (kSub * kSub)))),
+				      clampU8(int(std::lround(sum[2] / (kSub * kSub)))) };
+		}
 }
 
 void LectureSimulator::ensureDepthGrid()
@@ -182,7 +222,9 @@ void LectureSimulator::renderColour(double timeS, ColourFrame &out, GroundTruth 
 		for (int x = 0; x < w; ++x) {
 			const size_t k = base + x;
 			Rgb8 c = staticColour[k];
-			if (int32_t t = texelOf[k]; t >= 0) {
+			if (int32_t t = texelOf[k]; t >= 0 && !shown_.empty()) {
+				c = shown_[k];
+			} else if (t >= 0) {
 				const sim::BoardTexel &texel = board_[static_cast<size_t>(t)];
 				bool inked = texel.ink && tick >= texel.writeTick && tick < texel.eraseTick;
 				c = inked ? ink[texel.ink] : texel.background;

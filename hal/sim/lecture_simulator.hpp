@@ -56,6 +56,11 @@ public:
 	// the target, renders colour and depth at timeS; the target stays set.
 	void renderCalibrationPattern(const sim::CalibrationTarget &target, double timeS, ColourFrame &colour,
 				      DepthFrame &depth);
+	// The board's display shows this picture (e.g. the board calibration
+	// pattern, algo/board_pattern.hpp) over its whole area instead of the
+	// slide and strokes; an empty picture brings them back. Each colour pixel
+	// averages 4x4 bilinear samples of it, through the lens as it is.
+	void showOnBoard(const RgbImage &picture);
 	// An empty room (the board, the desk), e.g. to measure the ToF's noise.
 	void setLecturerVisible(bool visible) { lecturerVisible_ = visible; }
 
@@ -80,6 +85,8 @@ private:
 	bool lecturerVisible_ = true;
 	std::vector<sim::Capsule> capsules_;
 	std::vector<sim::BoardTexel> board_;
+	RgbImage shownPicture_;
+	std::vector<Rgb8> shown_;            // per colour pixel, when shownPicture_ is set
 	uint64_t boardCycle_ = ~0ull;
 	int8_t colourNoise_[256]{};
 	sim::TofAccumulator tof_;

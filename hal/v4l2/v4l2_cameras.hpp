@@ -15,8 +15,11 @@ std::vector<uint32_t> colourFourccs(const std::string &pixelFormat);
 class V4l2ColourCamera : public ColourCamera
 {
 public:
-	explicit V4l2ColourCamera(const ColourCameraSettings &settings) : settings_(settings) {}
-	std::string name() const override { return "v4l2-colour"; }
+	// name: "v4l2-colour"; the board's capture stick is the same class as
+	// "v4l2-board" (hal/board/board_sources.hpp).
+	explicit V4l2ColourCamera(const ColourCameraSettings &settings, std::string name = "v4l2-colour")
+		: settings_(settings), name_(std::move(name)) {}
+	std::string name() const override { return name_; }
 	int start(EventLoop &loop, FrameHandler onFrame, StatusHandler onStatus) override;
 	void stop() override { stream_.stop(); }
 	DeviceStatus status() const override { return stream_.status(); }
@@ -25,6 +28,7 @@ private:
 	int convert(const V4l2Buffer &buffer, const V4l2Format &format);
 
 	ColourCameraSettings settings_;
+	std::string name_;
 	V4l2Stream stream_;
 	MjpegDecoder mjpeg_;
 	FrameHandler onFrame_;

@@ -122,7 +122,12 @@ void V4l2Stream::onReadable(uint32_t revents)
 {
 	if (revents & (EPOLLERR | EPOLLHUP))
 		return fail(-ENODEV, "device error or disconnected (poll)");
-	for (;;) {
+	// At most the ring's worth per wake-up: when converting and handling a
+	// frame takes longer than a frame period there is always another buffer,
+	// and draining them all would never give the loop back to the other
+	// devices, the LEDs and the watchdog (epoll is level-triggered: the rest
+	// comes at the next dispatch).
+	for (unsigned n = 0; n < kBufferCount; ++n) {
 		V4l2Buffer buffer;
 		int ret = device_.dequeueBuffer(buffer);
 		if (ret == -EAGAIN)

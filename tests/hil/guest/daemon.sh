@@ -3,7 +3,9 @@
 # LEDs on gpio-sim. Asserts frames flow, then injects each fault and checks
 # that the daemon keeps running and publishing frames marked offline, shows
 # it on the LEDs, and recovers within 2 s of the device's return; finally 50
-# unplug/replug cycles must not leak file descriptors or memory.
+# unplug/replug cycles must not leak file descriptors or memory. The board
+# is a second vivid instance as the capture stick, in board geometry (its
+# unplug and return: the "board" section).
 
 DK_CONFIG=/run/hil-depthkey.toml
 DK_LOG=$HIL_LOGS/depthkeyd.log
@@ -16,7 +18,7 @@ HIL_SANITIZER=${HIL_SANITIZER:-0}
 # Shared-memory flags (hal/depthkey_shm.h).
 ONLINE=0x7 COLOUR_OK=0x2 DEPTH_OK=0x4
 # LED lines on the simulated chip (the README's legend).
-LED_POWER=0 LED_DEPTH=1 LED_COLOUR=2 LED_CALIBRATION=3 LED_READER=4 LED_ERROR=5
+LED_POWER=0 LED_DEPTH=1 LED_COLOUR=2 LED_CALIBRATION=3 LED_READER=4 LED_ERROR=5 LED_BOARD=6
 
 cat >"$DK_CONFIG" <<TOML
 [colour]
@@ -42,6 +44,19 @@ max_skew_ms = 350
 # Fitted by tests/hil/run.sh with depthkey-calibrate --sim (640x480 colour).
 calibration_file = "$VM_RESULTS/calibration.toml"
 
+[board]
+# The second vivid instance as the board computer's capture stick, at a
+# size TCG keeps up with; the board calibration fitted by tests/hil/run.sh
+# (depthkey-calibrate --board --sim --board-size 640x360).
+backend = "v4l2"
+device = "/dev/video1"
+width = 640
+height = 360
+fps = 5
+pixel_format = "yuyv"
+timeout_ms = 1000
+homography_file = "$VM_RESULTS/board.toml"
+
 [leds]
 backend = "gpiod"
 chip = "$led_chip"
@@ -51,6 +66,7 @@ colour_line = $LED_COLOUR
 calibration_line = $LED_CALIBRATION
 reader_line = $LED_READER
 error_line = $LED_ERROR
+board_line = $LED_BOARD
 TOML
 
 if ! out=$("$HIL_BIN/depthkeyd" --check-config "$DK_CONFIG" 2>&1); then
@@ -159,6 +175,11 @@ check_led led-depth-on $LED_DEPTH on
 check_led led-colour-on $LED_COLOUR on
 check_led led-calibration-loaded $LED_CALIBRATION off
 check_led led-error-off $LED_ERROR off
+check_led led-board-on $LED_BOARD on
+# Board geometry: the board-geometry lecturer layer is published beside the
+# camera's, and the status says so.
+check_flags daemon-board-geometry-layer "$ONLINE=$ONLINE" 3 --name /depthkey.lecturer.board
+hil_check daemon-status-board-geometry hil_wait 15 grep -q 'board v4l2-board streaming, board geometry 640x360' "$DK_LOG"
 
 # --- SR-2 faults ----------------------------------------------------------------
 sr2() { sr2_cmd "$@"; }
@@ -250,6 +271,37 @@ if hil_section webcam; then
 	fi
 fi
 
+# --- the board's capture stick (second vivid) unplugged and back -------------------
+# The output goes on, online, with the last good board picture; the board LED
+# blinks fast and the status says so; back within 2 s of its return.
+board_vivid() { v4l2-ctl -d /dev/video1 -c "$1=1"; }
+board_status_lost() { grep -q 'board v4l2-board lost (last good picture kept)' "$DK_LOG"; }
+if hil_section board; then
+	lost=$(lost_count v4l2-board) again=$(again_count v4l2-board)
+	exec 7</dev/video1 # fd 7: 8 is hil_sleep's, 9 the webcam's
+	board_vivid disconnect || hil_fail board-unplug-inject "v4l2-ctl -c disconnect=1 failed"
+	hil_check board-unplug-noticed hil_wait 15 lost_more_than v4l2-board "$lost"
+	check_flags board-unplug-output-stays-online "$ONLINE=$ONLINE" 3
+	check_led board-unplug-led-blinks $LED_BOARD blinking
+	hil_check board-unplug-status-says-lost hil_wait 15 board_status_lost
+	hil_check board-unplug-daemon-runs daemon_alive
+	since=$(hil_uptime)
+	exec 7<&-
+	if hil_wait 15 again_more_than v4l2-board "$again"; then
+		back=$(grep 'v4l2-board streaming again' "$DK_LOG" | tail -n1 | sed 's/^\[\([0-9.]*\)\].*/\1/')
+		ms=$(awk -v a="$back" -v b="$since" 'BEGIN { printf "%d", (a - b) * 1000 }')
+		seconds=$(awk -v ms="$ms" 'BEGIN { printf "%.3f", ms / 1000 }')
+		echo "board-unplug $seconds" >>"$RECOVERY_LOG"
+		[ "$HIL_SANITIZER" = 1 ] || [ "$ms" -le "$RECOVERY_LIMIT_MS" ] &&
+			hil_pass board-unplug-recovery "board streaming again $seconds s after its return" ||
+			hil_fail board-unplug-recovery "board streaming again only $seconds s after its return (limit 2 s)"
+	else
+		hil_fail board-unplug-recovery "the board was not streaming again 15 s after its return"
+	fi
+	check_led board-unplug-led-on-again $LED_BOARD on
+	check_flags board-geometry-layer-again "$ONLINE=$ONLINE" 3 --name /depthkey.lecturer.board
+fi
+
 # --- leaks over 50 unplug/replug cycles ----------------------------------------
 fd_count() { local n=0 f; for f in /proc/"$DK_PID"/fd/*; do n=$((n + 1)); done; echo "$n"; }
 rss_kb() { sed -n 's/^VmRSS:[[:space:]]*\([0-9]*\) kB/\1/p' /proc/"$DK_PID"/status; }
@@ -300,7 +352,7 @@ kill -TERM "$DK_PID"
 hil_check daemon-stops hil_wait 20 sh -c "! kill -0 $DK_PID"
 hil_check daemon-clean-stop hil_wait 10 grep -q 'hil: depthkeyd exit status 0' "$DK_LOG"
 dark=1
-for line in $LED_POWER $LED_DEPTH $LED_COLOUR $LED_CALIBRATION $LED_READER $LED_ERROR; do
+for line in $LED_POWER $LED_DEPTH $LED_COLOUR $LED_CALIBRATION $LED_READER $LED_ERROR $LED_BOARD; do
 	[ "$(gpio_value "$line")" = 0 ] || dark=0
 done
-[ "$dark" -eq 1 ] && hil_pass leds-dark-after-stop "all six lines low" || hil_fail leds-dark-after-stop "a line is still high"
+[ "$dark" -eq 1 ] && hil_pass leds-dark-after-stop "all seven lines low" || hil_fail leds-dark-after-stop "a line is still high"

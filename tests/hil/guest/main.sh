@@ -20,7 +20,9 @@ hil_check udev-running hil_wait 20 udevadm control --ping
 
 # gpio-sim and dummy_hcd are this project's builds (tests/hil/kmod).
 hil_check gpio-sim-module modprobe gpio-sim
-hil_check vivid-module modprobe vivid n_devs=1 node_types=0x1 input_types=0x0
+# Two vivid instances: /dev/video0 the webcam, /dev/video1 the board's
+# capture stick (board.backend = "v4l2").
+hil_check vivid-module modprobe vivid n_devs=2 node_types=0x1,0x1 input_types=0x0,0x0
 hil_check usb-gadget-modules modprobe -a libcomposite usb_f_fs dummy_hcd
 
 led_chip=$(gpio_sim_create)
@@ -34,6 +36,8 @@ kill "$gpioset_pid"; wait "$gpioset_pid" 2>/dev/null
 
 hil_check vivid-streams v4l2-ctl -d /dev/video0 --set-fmt-video=width=640,height=480,pixelformat=YUYV \
 	--stream-mmap --stream-count=10
+hil_check vivid-board-streams v4l2-ctl -d /dev/video1 --set-fmt-video=width=640,height=360,pixelformat=YUYV \
+	--stream-mmap --stream-count=5
 
 sr2_start
 hil_check sr2-enumerates hil_wait 20 sr2_present

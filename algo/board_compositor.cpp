@@ -1,0 +1,199 @@
+#include "algo/board_compositor.hpp"
+
+#include "algo/board_warp_rows.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace depthkey {
+
+bool BoardCompositor::configure(const Homography &colourToOutput, int colourWidth, int colourHeight,
+				int outputWidth, int outputHeight)
+{
+	clear();
+	Homography outputToColour;
+	if (colourWidth < 2 || colourHeight < 2 || outputWidth <= 0 || outputHeight <= 0 ||
+	    !colourToOutput.inverse(outputToColour))
+		return false;
+	colourToOutput_ = colourToOutput;
+	colourWidth_ = colourWidth;
+	colourHeight_ = colourHeight;
+	const size_t n = size_t(outputWidth) * outputHeight;
+	index_.resize(n);
+	frac_.resize(n);
+	// Seen: within the colour image's pixel area [-0.5, w - 0.5]. The
+	// sample point is clamped so that x0 + 1 and y0 + 1 stay inside (at most
+	// 1/256 px off at the last row and column), so the kernel needs no
+	// bounds checks.
+	const long maxX = (colourWidth - 1) * 256L - 1, maxY = (colourHeight - 1) * 256L - 1;
+	for (int y = 0; y < outputHeight; ++y)
+		for (int x = 0; x < outputWidth; ++x) {
+			size_t k = size_t(y) * outputWidth + x;
+			double sx, sy;
+			bool seen = outputToColour.apply(x, y, sx, sy) && sx >= -0.5 && sx <= colourWidth - 0.5 &&
+				    sy >= -0.5 && sy <= colourHeight - 0.5;
+			if (!seen) {
+				index_[k] = kOutsideView;
+				frac_[k] = 0;
+				continue;
+			}
+			long qx = std::clamp(std::lround(sx * 256.0), 0L, maxX), qy = std::clamp(std::lround(sy * 256.0), 0L, maxY);
+			index_[k] = int32_t((qy >> 8) * colourWidth + (qx >> 8));
+			frac_[k] = uint16_t((qx & 255) | (qy & 255) << 8);
+		}
+	outputWidth_ = outputWidth;
+	outputHeight_ = outputHeight;
+	tileSources();
+	return true;
+}
+
+// Which colour tiles each board tile's pixels read (their 2x2 taps).
+void BoardCompositor::tileSources()
+{
+	tilesX_ = (outputWidth_ + kBoardTile - 1) / kBoardTile;
+	tilesY_ = (outputHeight_ + kBoardTile - 1) / kBoardTile;
+	colourTilesX_ = (colourWidth_ + kColourTile - 1) / kColourTile;
+	colourTilesY_ = (colourHeight_ + kColourTile - 1) / kColourTile;
+	tileSources_.assign(size_t(tilesX_) * tilesY_, TileSources{ 0xFFFF, 0xFFFF, 0, 0 });
+	occupied_.assign(size_t(colourTilesX_) * colourTilesY_, 0);
+	for (int y = 0; y < outputHeight_; ++y)
+		for (int x = 0; x < outputWidth_; ++x) {
+			int32_t k = index_[size_t(y) * outputWidth_ + x];
+			if (k == kOutsideView)
+				continue;
+			TileSources &t = tileSources_[size_t(y / kBoardTile) * tilesX_ + x / kBoardTile];
+			int sx = k % colourWidth_, sy = k / colourWidth_;
+			t.x0 = uint16_t(std::min<int>(t.x0, sx / kColourTile));
+			t.y0 = uint16_t(std::min<int>(t.y0, sy / kColourTile));
+			t.x1 = uint16_t(std::max<int>(t.x1, (sx + 1) / kColourTile));
+			t.y1 = uint16_t(std::max<int>(t.y1, (sy + 1) / kColourTile));
+		}
+	for (TileSources &t : tileSources_)
+		if (t.x0 == 0xFFFF)
+			t = TileSources{}; // nothing seen: never warped
+}
+
+// Which colour tiles of the ROI hold some alpha (the source's alpha bytes).
+void BoardCompositor::markOccupied(const RgbaImage &source, const Roi &roi)
+{
+	std::fill(occupied_.begin(), occupied_.end(), uint8_t(0));
+	for (int y = roi.y0; y < roi.y1; ++y) {
+		const Rgba8 *row = source.row(y);
+		uint8_t *tiles = occupied_.data() + size_t(y / kColourTile) * colourTilesX_;
+		for (int x = roi.x0; x < roi.x1; ++x)
+			tiles[x / kColourTile] |= row[x].a;
+	}
+}
+
+bool BoardCompositor::tileOccupied(const TileSources &t) const
+{
+	for (int ty = t.y0; ty <= t.y1 && ty < colourTilesY_; ++ty)
+		for (int tx = t.x0; tx <= t.x1 && tx < colourTilesX_; ++tx)
+			if (occupied_[size_t(ty) * colourTilesX_ + tx])
+				return true;
+	return false;
+}
+
+void BoardCompositor::clear()
+{
+	outputWidth_ = outputHeight_ = colourWidth_ = colourHeight_ = 0;
+	index_.clear();
+	frac_.clear();
+	tileSources_.clear();
+	occupied_.clear();
+	warped_ = cleared_ = Roi{};
+	layerValid_ = false;
+}
+
+// The board pixels whose bilinear footprint can touch the colour ROI: the
+// ROI grown by one pixel (a sample up to a pixel outside reads its edge),
+// mapped corner by corner. H maps straight edges to straight edges, so the
+// quadrilateral lies within the corners' bounding box.
+Roi BoardCompositor::boardRoiOf(const Roi &colourRoi) const
+{
+	if (colourRoi.empty())
+		return {};
+	const double x0 = colourRoi.x0 - 1.5, x1 = colourRoi.x1 + 0.5;
+	const double y0 = colourRoi.y0 - 1.5, y1 = colourRoi.y1 + 0.5;
+	const double cx[4] = { x0, x1, x1, x0 }, cy[4] = { y0, y0, y1, y1 };
+	double minU = 1e18, maxU = -1e18, minV = 1e18, maxV = -1e18;
+	for (int i = 0; i < 4; ++i) {
+		double u, v;
+		if (!colourToOutput_.apply(cx[i], cy[i], u, v))
+			return { 0, 0, outputWidth_, outputHeight_ }; // beyond the horizon: all of it
+		minU = std::min(minU, u);
+		maxU = std::max(maxU, u);
+		minV = std::min(minV, v);
+		maxV = std::max(maxV, v);
+	}
+	auto clampTo = [](double v, int hi) { return int(std::clamp(v, 0.0, double(hi))); };
+	Roi r{ clampTo(std::floor(minU), outputWidth_), clampTo(std::floor(minV), outputHeight_),
+	       clampTo(std::ceil(maxU) + 1, outputWidth_), clampTo(std::ceil(maxV) + 1, outputHeight_) };
+	return r.empty() ? Roi{} : r;
+}
+
+void BoardCompositor::compose(const RgbaImage &source, const Roi &roi, const RgbImage &board, int opacityQ8,
+			      RgbImage &composite, RgbaImage &lecturer)
+{
+	const int w = outputWidth_, h = outputHeight_;
+	composite.resize(w, h);
+	lecturer.resize(w, h);
+	if (!configured() || source.width() != colourWidth_ || source.height() != colourHeight_ ||
+	    board.width() != w || board.height() != h) {
+		// Sizes that do not fit the map: the board alone (the caller
+		// reconfigures; this never reads out of bounds).
+		if (board.width() == w && board.height() == h)
+			std::memcpy(composite.data(), board.data(), composite.size() * sizeof(Rgb8));
+		std::fill(lecturer.data(), lecturer.data() + lecturer.size(), Rgba8{ 0, 0, 0, 0 });
+		layerValid_ = false;
+		return;
+	}
+	const Roi clampedRoi{ std::max(roi.x0, 0), std::max(roi.y0, 0), std::min(roi.x1, colourWidth_),
+			      std::min(roi.y1, colourHeight_) };
+	warped_ = boardRoiOf(clampedRoi);
+	// The layer is transparent outside what was written last time: clear
+	// only that (a whole 1920x1080 RGBA clear would cost as much as the warp).
+	if (!layerValid_) {
+		std::fill(lecturer.data(), lecturer.data() + lecturer.size(), Rgba8{ 0, 0, 0, 0 });
+		layerValid_ = true;
+	} else {
+		for (int y = cleared_.y0; y < cleared_.y1; ++y)
+			std::memset(lecturer.row(y) + cleared_.x0, 0, size_t(cleared_.x1 - cleared_.x0) * sizeof(Rgba8));
+	}
+	// The composite is the board but where a tile is warped over it.
+	std::memcpy(composite.data(), board.data(), composite.size() * sizeof(Rgb8));
+	markOccupied(source, clampedRoi);
+	Roi written{ w, h, 0, 0 };
+	warpedPixels_ = 0;
+	const int tx0 = warped_.x0 / kBoardTile, tx1 = (warped_.x1 + kBoardTile - 1) / kBoardTile;
+	const int ty0 = warped_.y0 / kBoardTile, ty1 = (warped_.y1 + kBoardTile - 1) / kBoardTile;
+	for (int ty = ty0; ty < ty1; ++ty) {
+		const int y0 = ty * kBoardTile, y1 = std::min(h, y0 + kBoardTile);
+		// Runs of occupied tiles along the tile row: one kernel call per
+		// pixel row and run, not per tile.
+		for (int tx = tx0; tx < tx1;) {
+			if (!tileOccupied(tileSources_[size_t(ty) * tilesX_ + tx])) {
+				++tx;
+				continue;
+			}
+			int end = tx + 1;
+			while (end < tx1 && tileOccupied(tileSources_[size_t(ty) * tilesX_ + end]))
+				++end;
+			const int x0 = tx * kBoardTile, x1 = std::min(w, end * kBoardTile);
+			tx = end;
+			warpedPixels_ += size_t(x1 - x0) * (y1 - y0);
+			written = { std::min(written.x0, x0), std::min(written.y0, y0), std::max(written.x1, x1),
+				    std::max(written.y1, y1) };
+			for (int y = y0; y < y1; ++y) {
+				const size_t k = size_t(y) * w + x0;
+				boardWarpRow(path_, { index_.data() + k, frac_.data() + k, source.data(), colourWidth_,
+						      board.row(y) + x0, composite.row(y) + x0, lecturer.row(y) + x0, x1 - x0 },
+					     opacityQ8);
+			}
+		}
+	}
+	cleared_ = written.empty() ? Roi{} : written;
+}
+
+} // namespace depthkey

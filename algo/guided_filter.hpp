@@ -1,0 +1,55 @@
+// The guided filter (He, Sun and Tang, ECCV 2010) of a matte, with the
+// colour image's luma as guide, in fixed point (issue 11 section 5): in
+// every (2r+1)^2 window k the output is a linear function of the guide,
+// q = a_k I + b_k, fitted to the input p by least squares with a penalty
+// eps on a_k:
+//   a_k = cov_k(I, p) / (var_k(I) + eps),   b_k = mean_k(p) - a_k mean_k(I),
+// and each pixel averages the a_k, b_k of the windows holding it. Where the
+// guide has an edge the matte follows it, where the guide is flat the matte
+// is smoothed: hard staircase edges from the ToF's coarse pixels become soft
+// edges that lie on the colour image's.
+//
+// Only pixels within 2r of the matte's edge can change: where a window's p
+// is constant, a = 0 and b = p exactly. So a, b and q are computed only
+// within 2r of an edge; the rest of the ROI is copied. Windows are
+// clipped to the ROI (the matte is 0 outside it). Box sums come from integral
+// images of I, p, I^2 and I p over the ROI, kept modulo 2^32 (a box sum is
+// below 2^32, so differences of wrapped sums are exact).
+//   a in Q16 (|a| <= 255 / (2 sqrt(eps)) < 2^8), b in Q8: their box sums
+//   fit 32 bits for r <= 7. The two divisions per pixel are 64-bit.
+// Allocation-free once sized; tests compare it with a double reference.
+#pragma once
+
+#include "algo/image.hpp"
+#include "algo/trimap.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace depthkey {
+
+class GuidedFilter
+{
+public:
+	static constexpr int kMaxRadius = 7;
+
+	// radius 1..kMaxRadius, eps in squared 8-bit levels (>= 1).
+	void configure(int radius, int eps);
+
+	// matte: 0..255 inside roi, 0 outside; out receives the filtered matte
+	// inside roi (resized to the image; outside roi untouched).
+	void filter(const RgbImage &colour, const Gray8Image &matte, const Roi &roi, Gray8Image &out);
+
+	// The window's coefficients for a pixel, for the double reference:
+	// how many pixels changed in the last filter().
+	size_t changedPixels() const { return changed_; }
+
+private:
+	int radius_ = 3, eps_ = 400;
+	size_t changed_ = 0;
+	Gray8Image guide_, near_;              // luma; 1 = within 2r of an edge
+	std::vector<uint32_t> sumI_, sumP_, sumII_, sumIP_; // the last two hold a's and b's later
+	std::vector<int32_t> a_, b_;            // per ROI pixel, Q16 and Q8
+};
+
+} // namespace depthkey

@@ -1,0 +1,50 @@
+// The board calibration file: the homography colour px -> board px that
+// depthkey-calibrate --board fits and the daemon's board-geometry composite
+// uses (board.homography_file).
+//
+// A file of its own, not a section of the depth calibration file: the two
+// are made by different procedures (a pattern on the board's screen, a
+// printed pattern held at five depths) and go stale for different reasons
+// (the camera knocked against the board vs. the ToF bracket re-mounted), so
+// a technician redoes one without rewriting, or risking, the other; and a
+// box whose depth calibration is fine keeps it while the board is redone.
+//
+// TOML, every key required, nothing unknown allowed; a corrupt, partial or
+// impossible file (a singular H) is refused with FILE:LINE:COLUMN: KEY:
+// MESSAGE, and the daemon keeps its last good H. Written atomically, and
+// only what the reader accepts.
+#pragma once
+
+#include "algo/homography.hpp"
+#include "config/config_error.hpp"
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace depthkey {
+
+constexpr int kBoardCalibrationFormat = 1;
+
+struct BoardCalibration {
+	Homography colourToBoard;
+	int colourWidth = 0, colourHeight = 0; // the colour image H was fitted in
+	int boardWidth = 0, boardHeight = 0;   // the board picture's pixels
+	std::string date;                      // UTC, "2024-05-01T12:00:00Z"
+	int points = 0;                        // circles fitted on
+	double rmsPx = 0, maxPx = 0;           // reprojection error, board px
+};
+
+struct BoardCalibrationResult {
+	BoardCalibration calibration;   // meaningful only when ok()
+	std::vector<ConfigError> errors;
+	bool ok() const { return errors.empty(); }
+};
+
+BoardCalibrationResult loadBoardCalibration(const std::string &path);
+BoardCalibrationResult parseBoardCalibration(std::string_view text, const std::string &sourceName);
+std::string formatBoardCalibration(const BoardCalibration &calibration);
+// -EINVAL (never written) when the reader would refuse it; else atomic.
+int writeBoardCalibration(const std::string &path, const BoardCalibration &calibration, std::string &error);
+
+} // namespace depthkey

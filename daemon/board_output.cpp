@@ -1,0 +1,208 @@
+#include "daemon/board_output.hpp"
+
+#include "daemon/log.hpp"
+#include "hal/sim/board_display.hpp"
+
+#include <algorithm>
+#include <cstring>
+
+namespace depthkey {
+
+namespace {
+
+// The picture size before the first picture arrives: what the source will
+// deliver, so that the geometry (and the output streams) are right at once.
+void expectedSize(const BoardSettings &b, int &width, int &height)
+{
+	width = b.width;
+	height = b.backend == "sim" ? simBoardHeight(b.width) : b.height;
+}
+
+bool sameSource(const Settings &a, const Settings &b)
+{
+	BoardSettings x = a.board, y = b.board;
+	x.outputWidth = y.outputWidth = x.outputHeight = y.outputHeight = 0;
+	x.homographyFile = y.homographyFile = "";
+	return x == y && (a.board.backend != "sim" || a.sim == b.sim);
+}
+
+std::string sizeText(int w, int h)
+{
+	return std::to_string(w) + "x" + std::to_string(h);
+}
+
+} // namespace
+
+void BoardOutput::start(EventLoop &loop, const Settings &settings, SourceFactory factory, Pipeline &pipeline,
+			StatusHandler onStatus, std::function<void()> onGeometry)
+{
+	loop_ = &loop;
+	settings_ = settings;
+	factory_ = std::move(factory);
+	pipeline_ = &pipeline;
+	onStatus_ = std::move(onStatus);
+	onGeometry_ = std::move(onGeometry);
+	int w, h;
+	expectedSize(settings.board, w, h);
+	picture_.resize(w, h);
+	uint32_t c = settings.board.colour;
+	std::fill(picture_.data(), picture_.data() + picture_.size(), Rgb8{ uint8_t(c >> 16), uint8_t(c >> 8), uint8_t(c) });
+	loadHomography();
+	updateGeometry();
+	startSource();
+}
+
+void BoardOutput::stop()
+{
+	if (source_)
+		source_->stop();
+}
+
+void BoardOutput::startSource()
+{
+	stop();
+	source_ = factory_(settings_);
+	std::string name = source_->name();
+	int ret = source_->start(
+		*loop_, [this](const ColourFrame &f) { onPicture(f); },
+		[this, name](const DeviceStatus &s) { onStatus_(name, s); });
+	if (ret < 0)
+		onStatus_(name, { DeviceState::Lost, ret, "cannot start" });
+	else
+		logger().info("board source " + name + " started", { { "DEVICE", name } });
+}
+
+void BoardOutput::apply(const Settings &next)
+{
+	bool restart = !sameSource(settings_, next);
+	settings_ = next;
+	loadHomography();
+	updateGeometry();
+	if (restart)
+		startSource();
+}
+
+void BoardOutput::onPicture(const ColourFrame &frame)
+{
+	bool resized = frame.rgb.width() != picture_.width() || frame.rgb.height() != picture_.height();
+	picture_ = frame.rgb; // same size: no allocation
+	if (resized)
+		updateGeometry();
+	if (boardGeometry())
+		scalePicture();
+	else if (pipeline_)
+		pipeline_->setBoardImage(picture_);
+}
+
+void BoardOutput::loadHomography()
+{
+	const std::string &path = settings_.board.homographyFile;
+	if (path.empty()) {
+		haveCalibration_ = false;
+		logger().clearError("board_calibration", "board calibration no longer used", { { "DEVICE", "board_calibration" } });
+		return;
+	}
+	BoardCalibrationResult result = loadBoardCalibration(path);
+	if (!result.ok()) {
+		logger().errorOnce("board_calibration",
+				   "board calibration refused: " + result.errors.front().toString() +
+					   (haveCalibration_ ? "; keeping the previous one" : "; compositing in camera geometry"),
+				   { { "DEVICE", "board_calibration" }, { "CALIBRATION_FILE", path } });
+		return;
+	}
+	calibration_ = result.calibration;
+	haveCalibration_ = true;
+	logger().clearError("board_calibration",
+			    "board calibration loaded: " + sizeText(calibration_.boardWidth, calibration_.boardHeight) +
+				    " board px, fitted rms " + std::to_string(calibration_.rmsPx) + " px",
+			    { { "DEVICE", "board_calibration" }, { "CALIBRATION_FILE", path } });
+}
+
+void BoardOutput::updateGeometry()
+{
+	const int cw = settings_.colour.width, ch = settings_.colour.height;
+	const int pw = picture_.width(), ph = picture_.height();
+	const int ow = settings_.board.outputWidth ? settings_.board.outputWidth : pw;
+	const int oh = settings_.board.outputHeight ? settings_.board.outputHeight : ph;
+	const BoardCalibration &c = calibration_;
+	if (settings_.board.homographyFile.empty())
+		notCalibrated_ = "board.homography_file is empty";
+	else if (!haveCalibration_)
+		notCalibrated_ = "no usable board calibration";
+	else if (c.colourWidth != cw || c.colourHeight != ch)
+		notCalibrated_ = "calibrated for colour " + sizeText(c.colourWidth, c.colourHeight) + ", the camera gives " +
+				 sizeText(cw, ch);
+	else if (c.boardWidth != pw || c.boardHeight != ph)
+		notCalibrated_ = "calibrated for a board picture of " + sizeText(c.boardWidth, c.boardHeight) +
+				 ", the source gives " + sizeText(pw, ph);
+	else
+		notCalibrated_.clear();
+
+	int before = outputWidth() * 100000 + outputHeight();
+	if (notCalibrated_.empty() &&
+	    compositor_.configure(c.colourToBoard.then(boardScaling(pw, ph, ow, oh)), cw, ch, ow, oh)) {
+		scaled_.resize(ow, oh);
+		scalePicture();
+		showBoardOnly();
+		if (pipeline_)
+			pipeline_->setBoardImage(RgbImage()); // the camera-geometry composite is not published
+	} else {
+		if (notCalibrated_.empty())
+			notCalibrated_ = "the board calibration's homography is singular";
+		compositor_.clear();
+		if (pipeline_)
+			pipeline_->setBoardImage(picture_);
+	}
+	if (outputWidth() * 100000 + outputHeight() != before && onGeometry_)
+		onGeometry_();
+}
+
+// Nearest neighbour, pixel centres kept; a plain copy at the same size.
+void BoardOutput::scalePicture()
+{
+	const int sw = picture_.width(), sh = picture_.height(), dw = scaled_.width(), dh = scaled_.height();
+	if (sw == dw && sh == dh) {
+		std::memcpy(scaled_.data(), picture_.data(), picture_.size() * sizeof(Rgb8));
+		return;
+	}
+	for (int y = 0; y < dh; ++y) {
+		const Rgb8 *src = picture_.row(int((2 * int64_t(y) + 1) * sh / (2 * dh)));
+		Rgb8 *dst = scaled_.row(y);
+		for (int x = 0; x < dw; ++x)
+			dst[x] = src[(2 * int64_t(x) + 1) * sw / (2 * dw)];
+	}
+}
+
+void BoardOutput::compose(const RgbaImage &cameraLayer, const Roi &roi, int opacityQ8)
+{
+	if (boardGeometry())
+		compositor_.compose(cameraLayer, roi, scaled_, opacityQ8, composite_, lecturer_);
+}
+
+void BoardOutput::showBoardOnly()
+{
+	if (!boardGeometry())
+		return;
+	composite_ = scaled_;
+	lecturer_.resize(scaled_.width(), scaled_.height());
+	std::fill(lecturer_.data(), lecturer_.data() + lecturer_.size(), Rgba8{ 0, 0, 0, 0 });
+	compositor_.forgetLayer();
+}
+
+bool BoardOutput::sourceOk() const
+{
+	return source_ && source_->status().state == DeviceState::Streaming;
+}
+
+std::string BoardOutput::statusText() const
+{
+	std::string text = "board " + (source_ ? source_->name() : std::string("-")) + " " +
+			   deviceStateName(source_ ? source_->status().state : DeviceState::Stopped);
+	if (source_ && source_->status().state == DeviceState::Lost)
+		text += " (last good picture kept)";
+	if (boardGeometry())
+		return text + ", board geometry " + sizeText(outputWidth(), outputHeight());
+	return text + "; board not calibrated (" + notCalibrated_ + ")";
+}
+
+} // namespace depthkey

@@ -1,0 +1,80 @@
+// The daemon's board: its source (hal/board/), its calibration (the
+// homography file), and the board-geometry composite (algo/board_compositor).
+// Wiring only: it decides which geometry the output is in and keeps the last
+// good picture and the last good H when a new one is refused.
+//
+// Geometry: the board geometry needs an H fitted for this colour size and
+// this board picture size; otherwise the composite stays in the colour
+// camera's geometry (the pipeline's), the board picture is handed to the
+// pipeline instead, and the status says "board not calibrated" and why.
+#pragma once
+
+#include "algo/board_compositor.hpp"
+#include "algo/pipeline.hpp"
+#include "config/board_calibration_file.hpp"
+#include "config/settings.hpp"
+#include "hal/camera.hpp"
+
+#include <functional>
+#include <memory>
+#include <string>
+
+namespace depthkey {
+
+class BoardOutput
+{
+public:
+	using SourceFactory = std::function<std::unique_ptr<ColourCamera>(const Settings &)>;
+	using StatusHandler = std::function<void(const std::string &device, const DeviceStatus &)>;
+
+	// onGeometry: the output streams' sizes changed (re-open them).
+	void start(EventLoop &loop, const Settings &settings, SourceFactory factory, Pipeline &pipeline,
+		   StatusHandler onStatus, std::function<void()> onGeometry);
+	void stop();
+	// On reload: the source restarts only when its settings changed; H is
+	// read again (a refused file keeps the last good H).
+	void apply(const Settings &settings);
+
+	// After the pipeline ran: warps its camera-geometry lecturer layer into
+	// the board picture. Does nothing in camera geometry.
+	void compose(const RgbaImage &cameraLayer, const Roi &roi, int opacityQ8);
+	// The board picture alone, the lecturer layer empty (NO SIGNAL frames).
+	void showBoardOnly();
+
+	bool boardGeometry() const { return compositor_.configured(); }
+	int outputWidth() const { return compositor_.outputWidth(); }
+	int outputHeight() const { return compositor_.outputHeight(); }
+	const RgbImage &composite() const { return composite_; }
+	const RgbaImage &lecturer() const { return lecturer_; }
+	const RgbImage &picture() const { return picture_; }
+
+	bool sourceOk() const;
+	// "board sim-board streaming, board geometry 1920x780" or "...; board not calibrated (why)".
+	std::string statusText() const;
+
+private:
+	void startSource();
+	void onPicture(const ColourFrame &frame);
+	void loadHomography();
+	void updateGeometry();
+	void scalePicture();
+
+	EventLoop *loop_ = nullptr;
+	Settings settings_;
+	SourceFactory factory_;
+	Pipeline *pipeline_ = nullptr;
+	StatusHandler onStatus_;
+	std::function<void()> onGeometry_;
+	std::unique_ptr<ColourCamera> source_;
+
+	RgbImage picture_;            // last good board picture, the source's size
+	RgbImage scaled_;             // the picture at the output size
+	BoardCalibration calibration_;
+	bool haveCalibration_ = false; // last good H
+	std::string notCalibrated_;    // why the composite is in camera geometry
+	BoardCompositor compositor_;
+	RgbImage composite_;
+	RgbaImage lecturer_;
+};
+
+} // namespace depthkey

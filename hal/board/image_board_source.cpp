@@ -1,0 +1,141 @@
+#include "hal/board/image_board_source.hpp"
+
+#include "hal/image_file.hpp"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <sys/epoll.h>
+#include <sys/inotify.h>
+#include <unistd.h>
+
+namespace depthkey {
+
+namespace {
+
+constexpr uint64_t kWatchRetryUs = 1'000'000;
+
+// OpenCV's imread decodes a JPEG that was cut short (the board's computer
+// died while writing it in place) with only a warning, the rest grey; a
+// PNG cut short it refuses. A JPEG ends with the EOI marker FF D9 (encoders
+// may pad after it), so one without it near its end is refused here.
+// Returns "" or why the file is not whole.
+std::string jpegCutShort(const std::string &path)
+{
+	FILE *f = std::fopen(path.c_str(), "rb");
+	if (!f)
+		return ""; // the reader says why
+	unsigned char head[2] = { 0, 0 }, tail[32];
+	size_t n = 0;
+	bool jpeg = std::fread(head, 1, 2, f) == 2 && head[0] == 0xFF && head[1] == 0xD8;
+	if (jpeg && std::fseek(f, -long(sizeof(tail)), SEEK_END) != 0)
+		std::fseek(f, 2, SEEK_SET);
+	if (jpeg)
+		n = std::fread(tail, 1, sizeof(tail), f);
+	std::fclose(f);
+	if (!jpeg)
+		return "";
+	for (size_t i = 0; i + 1 < n; ++i)
+		if (tail[i] == 0xFF && tail[i + 1] == 0xD9)
+			return "";
+	return path + ": a JPEG without its end marker: cut short (half written?)";
+}
+
+} // namespace
+
+int ImageBoardSource::start(EventLoop &loop, FrameHandler onFrame, StatusHandler onStatus)
+{
+	if (path_.empty() || path_[0] != '/')
+		return -EINVAL;
+	stop();
+	loop_ = &loop;
+	onFrame_ = std::move(onFrame);
+	onStatus_ = std::move(onStatus);
+	size_t slash = path_.rfind('/');
+	folder_ = slash == 0 ? "/" : path_.substr(0, slash);
+	fileName_ = path_.substr(slash + 1);
+	frame_.sequence = 0;
+	watch();
+	return 0;
+}
+
+void ImageBoardSource::stop()
+{
+	io_.reset();
+	retry_.reset();
+	if (fd_ >= 0)
+		::close(fd_);
+	fd_ = -1;
+	status_ = { DeviceState::Stopped, 0, "", status_.droppedFrames };
+}
+
+void ImageBoardSource::setStatus(DeviceState state, int error, const std::string &detail)
+{
+	if (status_.set(state, error, detail) && onStatus_)
+		onStatus_(status_);
+}
+
+// Watch first, then read: a replacement landing in between is not missed.
+void ImageBoardSource::watch()
+{
+	if (fd_ < 0)
+		fd_ = inotify_init1(IN_NONBLOCK | IN_CLOEXEC);
+	int ret = fd_ < 0 ? -errno : 0;
+	if (ret == 0 && inotify_add_watch(fd_, folder_.c_str(), IN_CLOSE_WRITE | IN_MOVED_TO | IN_DELETE_SELF |
+								  IN_MOVE_SELF | IN_ONLYDIR) < 0)
+		ret = -errno;
+	if (ret < 0) {
+		setStatus(DeviceState::Lost, ret, folder_ + ": cannot watch for a new board picture: " + std::strerror(-ret));
+		loop_->addTimer(kWatchRetryUs, [this] { watch(); }, retry_);
+		return;
+	}
+	loop_->addIo(fd_, EPOLLIN, [this](uint32_t) { onInotify(); }, io_);
+	reload();
+}
+
+void ImageBoardSource::onInotify()
+{
+	alignas(struct inotify_event) char buf[4096];
+	bool changed = false, folderGone = false;
+	for (;;) {
+		ssize_t n = ::read(fd_, buf, sizeof(buf));
+		if (n <= 0)
+			break;
+		for (char *p = buf; p < buf + n;) {
+			auto *event = reinterpret_cast<struct inotify_event *>(p);
+			if (event->mask & (IN_DELETE_SELF | IN_MOVE_SELF | IN_IGNORED))
+				folderGone = true;
+			else if (event->len && fileName_ == event->name)
+				changed = true;
+			p += sizeof(struct inotify_event) + event->len;
+		}
+	}
+	if (folderGone) {
+		io_.reset();
+		::close(fd_);
+		fd_ = -1;
+		setStatus(DeviceState::Lost, -ENOENT, folder_ + ": folder gone, watching for it again");
+		loop_->addTimer(kWatchRetryUs, [this] { watch(); }, retry_);
+		return;
+	}
+	if (changed)
+		reload();
+}
+
+void ImageBoardSource::reload()
+{
+	reads_++;
+	std::string error = jpegCutShort(path_);
+	int ret = error.empty() ? readRgbImage(path_, frame_.rgb, error) : -EINVAL;
+	if (ret < 0) {
+		status_.droppedFrames++;
+		setStatus(DeviceState::Lost, ret, "board picture refused, keeping the last good one: " + error);
+		return;
+	}
+	frame_.timestampNs = loop_ ? loop_->nowUs() * 1000u : 0;
+	frame_.sequence++;
+	setStatus(DeviceState::Streaming, 0, "");
+	onFrame_(frame_);
+}
+
+} // namespace depthkey

@@ -1,0 +1,105 @@
+// Per-frame cost of the board-geometry output (algo/board_compositor.hpp):
+// the lecturer's colour and alpha warped into a 1920x1080 board picture and
+// blended, plus the board-geometry lecturer layer, from a 640x480 colour
+// frame of the simulated lecture with its true alpha and ROI (the lecturer
+// in the middle, talking, and at the board, writing). Beside it the
+// camera-geometry composite + layer of the same frame (compositeRoi +
+// lecturerLayer at 640x480), what the daemon publishes without H; and the
+// upper bound, alpha everywhere (the whole colour frame warped), and the
+// floor, nobody there (the board picture copied).
+#include "algo/board_compositor.hpp"
+#include "algo/composite.hpp"
+#include "hal/kernel_path_env.hpp"
+#include "hal/sim/board_display.hpp"
+#include "hal/sim/lecture_simulator.hpp"
+
+#include <benchmark/benchmark.h>
+
+using namespace depthkey;
+
+namespace {
+
+constexpr int kBoardW = 1920, kBoardH = 1080;
+
+struct Frame {
+	ColourFrame colour;
+	GroundTruth truth;
+	Roi roi;
+	RgbImage board;
+	Homography colourToBoard;
+};
+
+Frame lectureFrame(double timeS)
+{
+	Frame f;
+	LectureSimulator sim;
+	sim.configure(SimSettings{}, 640, 480);
+	sim.renderColour(timeS, f.colour, &f.truth);
+	f.roi = { 640, 480, 0, 0 };
+	for (int y = 0; y < 480; ++y)
+		for (int x = 0; x < 640; ++x)
+			if (f.truth.alpha.at(x, y))
+				f.roi = { std::min(f.roi.x0, x), std::min(f.roi.y0, y), std::max(f.roi.x1, x + 1),
+					  std::max(f.roi.y1, y + 1) };
+	// The simulated board shown at 1920x1080: its H, scaled.
+	const int simH = simBoardHeight(kBoardW);
+	f.colourToBoard = simTrueHomography(sim.rig(), 2.0, kBoardW, simH).then(boardScaling(kBoardW, simH, kBoardW, kBoardH));
+	SimBoardDisplay display;
+	display.configure(SimSettings{}, kBoardW);
+	RgbImage picture;
+	display.render(timeS, picture);
+	f.board.resize(kBoardW, kBoardH);
+	for (int y = 0; y < kBoardH; ++y)
+		for (int x = 0; x < kBoardW; ++x)
+			f.board.at(x, y) = picture.at(x, y * simH / kBoardH);
+	return f;
+}
+
+// range(0): scene time (s) of the frame; range(1): 1 = the whole frame opaque,
+// 2 = an empty ROI (the cost of the board copy alone).
+void BM_BoardWarpComposite(benchmark::State &state)
+{
+	Frame f = lectureFrame(double(state.range(0)));
+	Gray8Image alpha = f.truth.alpha;
+	Roi roi = f.roi;
+	if (state.range(1) == 1) {
+		alpha = Gray8Image(640, 480, 255);
+		roi = { 0, 0, 640, 480 };
+	} else if (state.range(1) == 2) {
+		roi = {}; // nobody there: the board picture copied, nothing warped
+	}
+	BoardCompositor compositor;
+	compositor.configure(f.colourToBoard, 640, 480, kBoardW, kBoardH);
+	compositor.setKernelPath(kernelPathFromEnvironment());
+	RgbImage composite;
+	RgbaImage layer, cameraLayer;
+	lecturerLayer(f.colour.rgb, alpha, cameraLayer); // the pipeline's output, its input
+	for (auto _ : state) {
+		compositor.compose(cameraLayer, roi, f.board, 128, composite, layer);
+		benchmark::DoNotOptimize(composite.data());
+		benchmark::ClobberMemory();
+	}
+	const Roi &w = compositor.warpedRoi();
+	state.counters["roi_px"] = double(w.x1 - w.x0) * (w.y1 - w.y0);
+	state.counters["warped_px"] = double(compositor.warpedPixels());
+}
+
+void BM_CameraGeometryComposite(benchmark::State &state)
+{
+	Frame f = lectureFrame(double(state.range(0)));
+	RgbImage board(640, 480, Rgb8{ 30, 60, 40 }), composite;
+	RgbaImage layer;
+	const KernelPath path = kernelPathFromEnvironment();
+	for (auto _ : state) {
+		compositeRoi(f.colour.rgb, f.truth.alpha, board, f.roi, 128, composite, path);
+		lecturerLayer(f.colour.rgb, f.truth.alpha, layer, path);
+		benchmark::DoNotOptimize(composite.data());
+		benchmark::ClobberMemory();
+	}
+}
+
+} // namespace
+
+// 1 s: talking in the middle of the room; 8 s: writing at the board.
+BENCHMARK(BM_BoardWarpComposite)->Args({ 1, 0 })->Args({ 8, 0 })->Args({ 8, 1 })->Args({ 8, 2 })->ArgNames({ "t", "whole" })->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_CameraGeometryComposite)->Args({ 1 })->Args({ 8 })->ArgNames({ "t" })->Unit(benchmark::kMicrosecond);

@@ -1,0 +1,213 @@
+// The board calibration: the homography found from the simulator's board
+// showing the pattern against the simulator's truth, RANSAC against a
+// circle found in the wrong place, and depthkey-calibrate --board end to end
+// (pattern file, summary line, the written file, the refusal limit).
+#include "algo/board_calibration.hpp"
+#include "config/board_calibration_file.hpp"
+#include "hal/image_file.hpp"
+#include "hal/sim/board_display.hpp"
+#include "hal/sim/lecture_simulator.hpp"
+#include "tests/shell_command.hpp"
+#include "tests/test_paths.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+using namespace depthkey;
+
+namespace {
+
+struct Shot {
+	LectureSimulator simulator;
+	ColourFrame colour;
+	BoardPattern pattern{ 1920, simBoardHeight(1920) };
+};
+
+void shoot(Shot &shot, bool distortion)
+{
+	SimSettings s;
+	s.distortion = distortion;
+	s.table = false;
+	shot.simulator.configure(s, 640, 480);
+	shot.simulator.setLecturerVisible(false);
+	RgbImage picture;
+	shot.pattern.render(picture);
+	shot.simulator.showOnBoard(picture);
+	shot.simulator.renderColour(1.0, shot.colour);
+}
+
+// RMS over the display the camera sees of |H(x) - truth(x)|, board px.
+double rmsAgainstTruth(const Shot &shot, const Homography &h, double &worst)
+{
+	double sum = 0;
+	int n = 0;
+	worst = 0;
+	const int bw = shot.pattern.boardWidth, bh = shot.pattern.boardHeight;
+	for (int y = 0; y < 480; y += 4)
+		for (int x = 0; x < 640; x += 4) {
+			double tu, tv, u, v;
+			if (!simColourToBoard(shot.simulator.rig(), 2.0, bw, bh, x, y, tu, tv) || tu < -0.5 ||
+			    tv < -0.5 || tu > bw - 0.5 || tv > bh - 0.5 || !h.apply(x, y, u, v))
+				continue;
+			double e = std::hypot(u - tu, v - tv);
+			sum += e * e;
+			worst = std::max(worst, e);
+			n++;
+		}
+	EXPECT_GT(n, 10000);
+	return std::sqrt(sum / n);
+}
+
+std::string tempDir(const char *name)
+{
+	auto dir = std::filesystem::temp_directory_path() / (std::string("depthkey-") + name + "-" + std::to_string(getpid()));
+	std::filesystem::remove_all(dir);
+	std::filesystem::create_directories(dir);
+	return dir.string();
+}
+
+} // namespace
+
+// The bar: the true H within 0.5 board px RMS over the display. It
+// exists when the colour lens is a pinhole.
+TEST(BoardCalibration, RecoversTheSimulatorsTrueHomography)
+{
+	Shot shot;
+	shoot(shot, false);
+	BoardFit fit;
+	std::vector<ImagePoint> found;
+	std::string error;
+	ASSERT_EQ(calibrateBoard(shot.colour.rgb, shot.pattern, fit, found, error), 0) << error;
+	EXPECT_EQ(fit.inliers, 45);
+	EXPECT_LT(fit.rmsPx, 0.1);
+	double worst;
+	EXPECT_LT(rmsAgainstTruth(shot, fit.colourToBoard, worst), 0.5);
+	// And the coefficients: the true H is a scale and shift (the sim camera
+	// faces the board), maps the image's corners where it does.
+	Homography truth = simTrueHomography(shot.simulator.rig(), 2.0, 1920, simBoardHeight(1920));
+	for (auto [x, y] : { std::pair{ 0.0, 0.0 }, { 639.0, 0.0 }, { 0.0, 479.0 }, { 639.0, 479.0 } }) {
+		double u, v, tu, tv;
+		fit.colourToBoard.apply(x, y, u, v);
+		truth.apply(x, y, tu, tv);
+		EXPECT_NEAR(u, tu, 0.5);
+		EXPECT_NEAR(v, tv, 0.5);
+	}
+}
+
+// With the webcam's barrel distortion no homography is exact: the fit stays
+// well under the refusal limit and within a few board px of the truth.
+TEST(BoardCalibration, WithLensDistortionTheFitStaysClose)
+{
+	Shot shot;
+	shoot(shot, true);
+	BoardFit fit;
+	std::vector<ImagePoint> found;
+	std::string error;
+	ASSERT_EQ(calibrateBoard(shot.colour.rgb, shot.pattern, fit, found, error), 0) << error;
+	EXPECT_LT(fit.rmsPx, 1.0);
+	double worst;
+	EXPECT_LT(rmsAgainstTruth(shot, fit.colourToBoard, worst), 2.5);
+}
+
+TEST(BoardCalibration, RansacIgnoresACircleFoundInTheWrongPlace)
+{
+	BoardPattern pattern{ 1920, 1080 };
+	std::vector<ImagePoint> board = pattern.centres(), colour;
+	Homography inverse;
+	Homography h;
+	h.h = { 0.3, 0.02, 40, -0.01, 0.31, 25, 1e-5, 2e-5, 1 };
+	h.inverse(inverse);
+	for (const ImagePoint &p : board) {
+		double x = 0, y = 0;
+		inverse.apply(p.x, p.y, x, y);
+		colour.push_back({ x, y });
+	}
+	colour[7].x += 25; // one blob mistaken
+	BoardFit fit;
+	std::string error;
+	ASSERT_EQ(fitBoardHomography(colour, board, fit, error), 0) << error;
+	EXPECT_EQ(fit.inliers, pattern.grid.count() - 1);
+	double u, v;
+	fit.colourToBoard.apply(300, 200, u, v);
+	double tu, tv;
+	h.apply(300, 200, tu, tv);
+	EXPECT_NEAR(u, tu, 0.01);
+	EXPECT_NEAR(v, tv, 0.01);
+	// The error report still shows the bad circle.
+	EXPECT_GT(fit.maxPx, 5.0);
+}
+
+TEST(BoardCalibration, RefusesAPictureWithoutTheWholeGrid)
+{
+	BoardPattern pattern;
+	RgbImage grey(640, 480, Rgb8{ 128, 128, 128 });
+	BoardFit fit;
+	std::vector<ImagePoint> found;
+	std::string error;
+	EXPECT_EQ(calibrateBoard(grey, pattern, fit, found, error), -ENOENT);
+	EXPECT_NE(error.find("does not see the whole 9x5 circle grid"), std::string::npos) << error;
+}
+
+TEST(BoardCalibrateTool, SimWritesTheFileAndEndsWithTheSummary)
+{
+	std::string dir = tempDir("board-cal");
+	int status;
+	std::string out = test::run(test::binDir() + "/depthkey-calibrate --board --sim --no-distortion --output " +
+					    dir + "/board.toml --write-board-pattern " + dir + "/pattern.png",
+				    status);
+	ASSERT_EQ(status, 0) << out;
+	double rms = -1, max = -1;
+	ASSERT_EQ(std::sscanf(test::lastLine(out).c_str(), "summary board rms_px=%lf max_px=%lf", &rms, &max), 2) << out;
+	EXPECT_LT(rms, 0.5);
+	EXPECT_GE(max, rms);
+	double truthRms = -1;
+	size_t at = out.find("against the simulator's truth");
+	ASSERT_NE(at, std::string::npos) << out;
+	ASSERT_EQ(std::sscanf(out.c_str() + out.find("rms ", at), "rms %lf", &truthRms), 1);
+	EXPECT_LT(truthRms, 0.5);
+
+	BoardCalibrationResult loaded = loadBoardCalibration(dir + "/board.toml");
+	ASSERT_TRUE(loaded.ok()) << loaded.errors.front().toString();
+	EXPECT_EQ(loaded.calibration.boardWidth, 1920);
+	EXPECT_EQ(loaded.calibration.boardHeight, simBoardHeight(1920));
+	EXPECT_EQ(loaded.calibration.colourWidth, 640);
+
+	// The pattern file is the board's resolution and has the circles.
+	RgbImage pattern;
+	std::string error;
+	ASSERT_EQ(readRgbImage(dir + "/pattern.png", pattern, error), 0) << error;
+	EXPECT_EQ(pattern.width(), 1920);
+	BoardPattern layout{ 1920, simBoardHeight(1920) };
+	ImagePoint c = layout.centre(0);
+	EXPECT_LT(pattern.at(int(c.x), int(c.y)).r, 20);
+	EXPECT_GT(pattern.at(int(c.x + layout.spacingPx() / 2), int(c.y)).r, 235);
+
+	// Over the limit: refused, the file left as it was, the summary still last.
+	std::string before = formatBoardCalibration(loaded.calibration);
+	out = test::run(test::binDir() + "/depthkey-calibrate --board --sim --max-rms 0.0001 --output " + dir +
+				"/board.toml",
+			status);
+	EXPECT_EQ(status, 1) << out;
+	EXPECT_NE(out.find("refused: rms"), std::string::npos) << out;
+	EXPECT_EQ(test::lastLine(out).rfind("summary board rms_px=", 0), 0u) << out;
+	BoardCalibrationResult after = loadBoardCalibration(dir + "/board.toml");
+	ASSERT_TRUE(after.ok());
+	EXPECT_EQ(formatBoardCalibration(after.calibration), before);
+	std::filesystem::remove_all(dir);
+}
+
+TEST(BoardCalibrateTool, BadUseIsAUsageError)
+{
+	int status;
+	std::string out = test::run(test::binDir() + "/depthkey-calibrate --board", status);
+	EXPECT_EQ(status, 2) << out;
+	EXPECT_NE(out.find("--board needs"), std::string::npos) << out;
+	out = test::run(test::binDir() + "/depthkey-calibrate --board --sim --board-size 12x9000", status);
+	EXPECT_EQ(status, 2) << out;
+	out = test::run(test::binDir() + "/depthkey-calibrate --board --image /nonexistent/colour.png", status);
+	EXPECT_EQ(status, 1) << out;
+	EXPECT_NE(out.find("/nonexistent/colour.png"), std::string::npos) << out;
+}

@@ -1,0 +1,162 @@
+// board.backend "image": the picture is read again when the board's computer
+// replaces the file (by rename, the normal case, or written in place), and a
+// half-written or broken file is refused with its error while the last good
+// picture stays (the source delivers nothing and reports Lost).
+#include "hal/board/image_board_source.hpp"
+
+#include <gtest/gtest.h>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <fcntl.h>
+#include <functional>
+#include <unistd.h>
+#include <vector>
+
+using namespace depthkey;
+
+namespace {
+
+std::vector<uchar> encodePng(Rgb8 colour, int w = 32, int h = 24)
+{
+	cv::Mat mat(h, w, CV_8UC3, cv::Scalar(colour.b, colour.g, colour.r));
+	std::vector<uchar> bytes;
+	cv::imencode(".png", mat, bytes);
+	return bytes;
+}
+
+void writeBytes(const std::string &path, const std::vector<uchar> &bytes, size_t count)
+{
+	int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+	ASSERT_GE(fd, 0);
+	ASSERT_EQ(::write(fd, bytes.data(), count), ssize_t(count));
+	::close(fd);
+}
+
+// As the board's computer should: a temporary file renamed over the picture.
+void replaceByRename(const std::string &path, const std::vector<uchar> &bytes)
+{
+	writeBytes(path + ".tmp", bytes, bytes.size());
+	ASSERT_EQ(std::rename((path + ".tmp").c_str(), path.c_str()), 0);
+}
+
+struct Harness {
+	EventLoop loop;
+	std::string dir, path;
+	std::vector<Rgb8> pictures; // top-left pixel of each delivered picture
+	std::vector<DeviceStatus> statuses;
+	EventSource step;
+	std::vector<std::function<void()>> steps;
+	size_t next = 0;
+
+	Harness()
+	{
+		dir = (std::filesystem::temp_directory_path() / ("depthkey-board-image-" + std::to_string(getpid()))).string();
+		std::filesystem::remove_all(dir);
+		std::filesystem::create_directories(dir);
+		path = dir + "/board.png";
+		EXPECT_EQ(loop.open(), 0);
+	}
+	~Harness() { std::filesystem::remove_all(dir); }
+
+	// Each step 50 ms after the last, on the loop, then the loop ends.
+	void run(ImageBoardSource &source)
+	{
+		ASSERT_EQ(source.start(loop, [this](const ColourFrame &f) { pictures.push_back(f.rgb.at(0, 0)); },
+				       [this](const DeviceStatus &s) { statuses.push_back(s); }),
+			  0);
+		loop.addPeriodic(50000, [this] {
+			if (next < steps.size())
+				steps[next++]();
+			else
+				loop.exit(0);
+		}, step);
+		loop.run();
+	}
+};
+
+} // namespace
+
+TEST(ImageBoardSource, ReadsAgainWhenTheFileIsReplacedAndRefusesAHalfWrittenOne)
+{
+	Harness h;
+	std::vector<uchar> red = encodePng({ 200, 10, 10 }), green = encodePng({ 10, 200, 10 }),
+			   blue = encodePng({ 10, 10, 200 });
+	replaceByRename(h.path, red);
+	BoardSettings settings;
+	settings.backend = "image";
+	settings.image = h.path;
+	ImageBoardSource source(settings);
+	size_t afterStart = 0, afterRename = 0, afterHalf = 0, afterInPlace = 0;
+	DeviceStatus halfStatus;
+	h.steps.push_back([&] { afterStart = h.pictures.size(); replaceByRename(h.path, green); });
+	h.steps.push_back([&] {
+		afterRename = h.pictures.size();
+		writeBytes(h.path, blue, blue.size() / 2); // the writer died half way
+	});
+	h.steps.push_back([&] {
+		afterHalf = h.pictures.size();
+		halfStatus = source.status();
+		writeBytes(h.path, blue, blue.size()); // written in place, whole
+	});
+	h.steps.push_back([&] { afterInPlace = h.pictures.size(); });
+	// Another file in the folder is none of its business.
+	h.steps.push_back([&] { replaceByRename(h.dir + "/other.png", red); });
+	h.run(source);
+
+	ASSERT_EQ(afterStart, 1u);
+	EXPECT_EQ(h.pictures[0], (Rgb8{ 200, 10, 10 }));
+	ASSERT_EQ(afterRename, 2u);
+	EXPECT_EQ(h.pictures[1], (Rgb8{ 10, 200, 10 }));
+	// Refused: nothing delivered (the daemon keeps green), Lost with the reader's words.
+	EXPECT_EQ(afterHalf, 2u);
+	EXPECT_EQ(halfStatus.state, DeviceState::Lost);
+	EXPECT_NE(halfStatus.detail.find(h.path), std::string::npos) << halfStatus.detail;
+	EXPECT_NE(halfStatus.detail.find("keeping the last good one"), std::string::npos) << halfStatus.detail;
+	ASSERT_EQ(afterInPlace, 3u);
+	EXPECT_EQ(h.pictures[2], (Rgb8{ 10, 10, 200 }));
+	EXPECT_EQ(h.pictures.size(), 3u);
+	EXPECT_EQ(source.status().state, DeviceState::Streaming);
+	EXPECT_EQ(source.status().droppedFrames, 1u);
+}
+
+// OpenCV decodes a JPEG cut short with a warning only: the source refuses it.
+TEST(ImageBoardSource, RefusesAJpegCutShort)
+{
+	Harness h;
+	cv::Mat mat(24, 32, CV_8UC3, cv::Scalar(10, 20, 30));
+	std::vector<uchar> jpeg;
+	cv::imencode(".jpg", mat, jpeg);
+	std::string path = h.dir + "/board.jpg";
+	replaceByRename(path, jpeg);
+	BoardSettings settings;
+	settings.image = path;
+	ImageBoardSource source(settings);
+	DeviceStatus cut;
+	h.steps.push_back([&] { writeBytes(path, jpeg, jpeg.size() * 2 / 3); });
+	h.steps.push_back([&] { cut = source.status(); });
+	h.run(source);
+	EXPECT_EQ(h.pictures.size(), 1u);
+	EXPECT_EQ(cut.state, DeviceState::Lost);
+	EXPECT_NE(cut.detail.find("cut short"), std::string::npos) << cut.detail;
+}
+
+TEST(ImageBoardSource, AMissingFileIsLostUntilItAppears)
+{
+	Harness h;
+	BoardSettings settings;
+	settings.image = h.path;
+	ImageBoardSource source(settings);
+	DeviceState before = DeviceState::Stopped;
+	h.steps.push_back([&] { before = source.status().state; replaceByRename(h.path, encodePng({ 1, 2, 3 })); });
+	h.steps.push_back([] {});
+	h.run(source);
+	EXPECT_EQ(before, DeviceState::Lost);
+	ASSERT_FALSE(h.statuses.empty());
+	EXPECT_EQ(h.statuses.front().error, -ENOENT);
+	ASSERT_EQ(h.pictures.size(), 1u);
+	EXPECT_EQ(h.pictures[0], (Rgb8{ 1, 2, 3 }));
+	EXPECT_EQ(source.status().state, DeviceState::Streaming);
+}
