@@ -28,6 +28,9 @@ constexpr uint64_t kTerminalStatusEvery = 5; // status ticks (seconds)
 // --preview: stage images of this many keyed frames, this many frames apart.
 constexpr int kPreviewCount = 3;
 constexpr uint64_t kPreviewEveryFrames = 50;
+// Reader heartbeats are sampled this often: a dead reader is gone within
+// DK_SHM_READER_TIMEOUT_MS plus this.
+constexpr uint64_t kReaderTickUs = 250'000;
 
 } // namespace
 
@@ -88,6 +91,7 @@ int Daemon::start(const Settings &settings)
 
 	loop_.addPeriodic(1000000u / settings_.colour.fps, [this] { onFrameTick(); }, frameTick_);
 	loop_.addPeriodic(1000000u, [this] { onStatusTick(); }, statusTick_);
+	loop_.addPeriodic(kReaderTickUs, [this] { onReaderTick(); }, readerTick_);
 	if (uint64_t usec = ServiceNotifier::watchdogUsec())
 		loop_.addPeriodic(usec / 2, [this] { onWatchdogTick(); }, watchdogTick_);
 
@@ -268,7 +272,24 @@ StatusSummary Daemon::summary() const
 	s.depthOk = depth_ && depth_->status().state == DeviceState::Streaming;
 	s.calibrated = calibrated_ && pipeline_.status().mappingFits;
 	s.error = logger().activeErrorCount() > 0;
+	s.readerAttached = readers_.total() > 0;
 	return s;
+}
+
+void Daemon::onReaderTick()
+{
+	if (!sink_ || !sinkOpen_)
+		return;
+	ReaderCounts now = sink_->countReaders(loop_.nowUs() * 1000u);
+	if (now == readers_)
+		return;
+	bool attachedChanged = (now.total() > 0) != (readers_.total() > 0);
+	readers_ = now;
+	logger().info("readers: composite " + std::to_string(now.composite) + ", lecturer " +
+			      std::to_string(now.lecturer),
+		      { { "DEVICE", "shm" } });
+	if (attachedChanged && leds_)
+		leds_->show(summary());
 }
 
 void Daemon::onStatusTick()
@@ -288,7 +309,7 @@ void Daemon::onStatusTick()
 	char text[512];
 	std::snprintf(text, sizeof(text),
 		      "colour %s %s %.1f fps %llu dropped; depth %s %s %.1f fps %llu dropped; "
-		      "paired %llu unpaired %llu; output %.1f fps; %s",
+		      "paired %llu unpaired %llu; output %.1f fps; readers %d; %s",
 		      colour_ ? colour_->name().c_str() : "-", deviceStateName(cs.state),
 		      rate(colourFrames_, colourFramesAtStatus_),
 		      static_cast<unsigned long long>(cs.droppedFrames),
@@ -297,6 +318,7 @@ void Daemon::onStatusTick()
 		      static_cast<unsigned long long>(ds.droppedFrames),
 		      static_cast<unsigned long long>(ps.paired),
 		      static_cast<unsigned long long>(ps.unpaired), rate(published_, publishedAtStatus_),
+		      readers_.total(),
 		      summary().calibrated ? "calibrated" : "not calibrated (identity mapping)");
 	statusAtUs_ = now;
 	notifier_.status(text);

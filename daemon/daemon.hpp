@@ -52,6 +52,7 @@ private:
 	void onFrameTick();
 	void onStatusTick();
 	void onWatchdogTick();
+	void onReaderTick();
 	void reload();
 	void writeSnapshot();
 	int writeStages(const std::string &dir, const std::string &prefix, const DepthFrame *depth);
@@ -86,7 +87,8 @@ private:
 	bool sinkOpen_ = false;
 
 	EventSource sigterm_, sigint_, sighup_, sigusr1_, sigusr2_;
-	EventSource frameTick_, statusTick_, watchdogTick_;
+	EventSource frameTick_, statusTick_, watchdogTick_, readerTick_;
+	ReaderCounts readers_; // recorders reading the output, sampled every 250 ms
 
 	FrameRecorder recorder_;
 	uint64_t recorderDropsLogged_ = 0;

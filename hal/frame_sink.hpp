@@ -12,6 +12,14 @@
 
 namespace depthkey {
 
+// Readers present on each stream (see ShmRingWriter::countReaders).
+struct ReaderCounts {
+	int composite = 0;
+	int lecturer = 0;
+	int total() const { return composite + lecturer; }
+	bool operator==(const ReaderCounts &) const = default;
+};
+
 class FrameSink
 {
 public:
@@ -26,6 +34,10 @@ public:
 	// size given to open() (-EINVAL otherwise); -EBADF when not open.
 	virtual int publishComposite(const RgbImage &image, uint64_t captureNs, uint32_t flags) = 0;
 	virtual int publishLecturer(const RgbaImage &image, uint64_t captureNs, uint32_t flags) = 0;
+
+	// Samples the readers' heartbeats at nowNs (CLOCK_MONOTONIC); called
+	// every 250 ms. Never blocks.
+	virtual ReaderCounts countReaders(uint64_t nowNs) = 0;
 
 	// Marks the streams offline; consumers keep the last frames.
 	virtual void close() = 0;

@@ -62,6 +62,11 @@ int ShmFrameSink::publishLecturer(const RgbaImage &image, uint64_t captureNs, ui
 	return publish(lecturer_, image, captureNs, flags);
 }
 
+ReaderCounts ShmFrameSink::countReaders(uint64_t nowNs)
+{
+	return { composite_.countReaders(nowNs), lecturer_.countReaders(nowNs) };
+}
+
 void ShmFrameSink::close()
 {
 	composite_.close();

@@ -13,6 +13,7 @@ public:
 	int open(const OutputSettings &settings, int width, int height) override;
 	int publishComposite(const RgbImage &image, uint64_t captureNs, uint32_t flags) override;
 	int publishLecturer(const RgbaImage &image, uint64_t captureNs, uint32_t flags) override;
+	ReaderCounts countReaders(uint64_t nowNs) override;
 	void close() override;
 	std::string describeError() const override;
 

@@ -159,6 +159,15 @@ check_led led-depth-on $LED_DEPTH on
 check_led led-colour-on $LED_COLOUR on
 check_led led-calibration-loaded $LED_CALIBRATION off
 check_led led-error-off $LED_ERROR off
+# Reader presence: the reader LED is off with no reader, on while
+# depthkey-shmcat reads (its heartbeats), and off again once it is killed.
+check_led led-reader-off-without-reader $LED_READER off
+"$HIL_BIN/depthkey-shmcat" --timeout 60 >/dev/null 2>&1 9<&- &
+SHMCAT_PID=$!
+check_led led-reader-on-while-shmcat-reads $LED_READER on
+kill -KILL "$SHMCAT_PID"
+wait "$SHMCAT_PID" 2>/dev/null
+check_led led-reader-off-after-reader-killed $LED_READER off
 
 # --- SR-2 faults ----------------------------------------------------------------
 sr2() { sr2_cmd "$@"; }
