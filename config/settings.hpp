@@ -111,8 +111,17 @@ struct OutputSettings {
 	std::string compositeName = "/depthkey.composite";
 	std::string lecturerName = "/depthkey.lecturer";
 	int slots = 3;                      // 2..8 ring slots per stream
-	std::string group = "";             // group owning the objects (mode 0640); "" = own group
+	std::string group = "";             // group owning the objects (mode 0660); "" = own group
 	bool operator==(const OutputSettings &) const = default;
+};
+
+// The live preview page (hal/preview/preview_server.hpp).
+struct PreviewSettings {
+	std::string listen = "127.0.0.1:8080"; // IP:PORT; "" = off; beyond loopback needs passwordFile
+	std::string passwordFile = "";      // "USER:CRYPT-HASH" lines, mode 0600; required off loopback
+	int maxClients = 4;                 // 1..32 concurrent streams
+	int jpegQuality = 80;               // 10..100
+	bool operator==(const PreviewSettings &) const = default;
 };
 
 struct LedSettings {
@@ -181,6 +190,7 @@ struct Settings {
 	SioxSettings siox;
 	CompositeSettings composite;
 	OutputSettings output;
+	PreviewSettings preview;
 	LedSettings leds;
 	SimSettings sim;
 	ReplaySettings replay;

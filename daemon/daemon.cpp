@@ -44,6 +44,7 @@ void CommandLineOverrides::applyTo(Settings &settings) const
 
 Daemon::~Daemon()
 {
+	preview_.stop();
 	recorder_.stop();
 	stopCameras();
 	if (sink_)
@@ -87,6 +88,7 @@ int Daemon::start(const Settings &settings)
 
 	openOutput();
 	updateRecording();
+	preview_.apply(settings_.preview);
 	startCameras();
 
 	loop_.addPeriodic(1000000u / settings_.colour.fps, [this] { onFrameTick(); }, frameTick_);
@@ -103,6 +105,7 @@ int Daemon::run()
 {
 	int ret = loop_.run();
 	notifier_.stopping();
+	preview_.stop();
 	stopCameras();
 	recorder_.stop();
 	if (sink_)
@@ -169,6 +172,12 @@ void Daemon::configurePairing()
 
 void Daemon::onDeviceStatus(const std::string &device, const DeviceStatus &status)
 {
+	DeviceCounters &counters = deviceCounters_[device];
+	if (status.state == DeviceState::Lost && !counters.lost)
+		counters.faults++;
+	if (status.state == DeviceState::Streaming && counters.lost)
+		counters.reconnects++;
+	counters.lost = status.state == DeviceState::Lost;
 	if (status.state == DeviceState::Lost)
 		logger().errorOnce(device, device + " lost: " + status.detail,
 				   { { "DEVICE", device }, { "ERROR", errnoText(status.error) } });
@@ -183,6 +192,8 @@ void Daemon::onDepthFrame(const DepthFrame &frame)
 	pairer_.addDepth(frame); // same-size copy: no allocation after the first
 	recorder_.recordDepth(frame);
 	depthFrames_++;
+	const double latencyMs = (static_cast<double>(loop_.nowUs()) * 1000.0 - static_cast<double>(frame.timestampNs)) / 1e6;
+	depthLatencyMs_ += (latencyMs - depthLatencyMs_) * (depthFrames_ == 1 ? 1.0 : 0.1);
 }
 
 void Daemon::onColourFrame(const ColourFrame &frame)
@@ -203,6 +214,8 @@ void Daemon::onColourFrame(const ColourFrame &frame)
 		colourLatest_ = frame; // kept only for snapshots
 	if (depth)
 		maybeWritePreview(colourFrames_, *depth);
+	preview_.offer(&frame, depth, depth ? &pipeline_.trimap() : nullptr, output_, frame.timestampNs,
+		       loop_.nowUs() * 1000u);
 	publish(frame.timestampNs, flags);
 }
 
@@ -262,6 +275,7 @@ void Daemon::publishNoSignal(uint64_t nowNs)
 	std::fill(output_.alpha.data(), output_.alpha.data() + output_.alpha.size(), 0);
 	output_.lecturer.resize(w, h);
 	std::fill(output_.lecturer.data(), output_.lecturer.data() + output_.lecturer.size(), Rgba8{ 0, 0, 0, 0 });
+	preview_.offer(nullptr, nullptr, nullptr, output_, nowNs, nowNs);
 	publish(nowNs, depthFresh(nowNs) ? DK_SHM_FLAG_DEPTH_OK : 0);
 }
 
@@ -306,18 +320,22 @@ void Daemon::onStatusTick()
 	DeviceStatus cs = colour_ ? colour_->status() : DeviceStatus{};
 	DeviceStatus ds = depth_ ? depth_->status() : DeviceStatus{};
 	const PairingStats &ps = pairer_.stats();
+	const double colourFps = rate(colourFrames_, colourFramesAtStatus_);
+	const double depthFps = rate(depthFrames_, depthFramesAtStatus_);
+	const double outputFps = rate(published_, publishedAtStatus_);
+	preview_.setStatus(previewStatus(colourFps, depthFps, outputFps));
 	char text[512];
 	std::snprintf(text, sizeof(text),
 		      "colour %s %s %.1f fps %llu dropped; depth %s %s %.1f fps %llu dropped; "
 		      "paired %llu unpaired %llu; output %.1f fps; readers %d; %s",
 		      colour_ ? colour_->name().c_str() : "-", deviceStateName(cs.state),
-		      rate(colourFrames_, colourFramesAtStatus_),
+		      colourFps,
 		      static_cast<unsigned long long>(cs.droppedFrames),
 		      depth_ ? depth_->name().c_str() : "-", deviceStateName(ds.state),
-		      rate(depthFrames_, depthFramesAtStatus_),
+		      depthFps,
 		      static_cast<unsigned long long>(ds.droppedFrames),
 		      static_cast<unsigned long long>(ps.paired),
-		      static_cast<unsigned long long>(ps.unpaired), rate(published_, publishedAtStatus_),
+		      static_cast<unsigned long long>(ps.unpaired), outputFps,
 		      readers_.total(),
 		      summary().calibrated ? "calibrated" : "not calibrated (identity mapping)");
 	statusAtUs_ = now;
@@ -389,6 +407,7 @@ void Daemon::apply(const Settings &next)
 	}
 	if (previous.colour.fps != next.colour.fps)
 		loop_.addPeriodic(1000000u / next.colour.fps, [this] { onFrameTick(); }, frameTick_);
+	preview_.apply(next.preview);
 	if (!(previous.leds == next.leds)) {
 		leds_->close();
 		leds_ = factory_.statusLeds(next);

@@ -8,6 +8,7 @@
 #include "config/settings.hpp"
 #include "daemon/device_factory.hpp"
 #include "daemon/frame_recorder.hpp"
+#include "daemon/preview_feed.hpp"
 #include "daemon/service_notifier.hpp"
 #include "daemon/test_fault.hpp"
 #include "hal/camera.hpp"
@@ -15,6 +16,7 @@
 #include "hal/frame_sink.hpp"
 #include "hal/status_leds.hpp"
 
+#include <map>
 #include <memory>
 #include <string>
 
@@ -72,6 +74,7 @@ private:
 	bool depthFresh(uint64_t nowNs) const;
 	void configurePairing();
 	StatusSummary summary() const;
+	PreviewStatus previewStatus(double colourFps, double depthFps, double outputFps) const;
 
 	std::string configPath_;
 	CommandLineOverrides overrides_;
@@ -89,6 +92,15 @@ private:
 	EventSource sigterm_, sigint_, sighup_, sigusr1_, sigusr2_;
 	EventSource frameTick_, statusTick_, watchdogTick_, readerTick_;
 	ReaderCounts readers_; // recorders reading the output, sampled every 250 ms
+
+	// The live preview page and what only it reports.
+	PreviewFeed preview_;
+	struct DeviceCounters {
+		uint64_t faults = 0, reconnects = 0;
+		bool lost = false;
+	};
+	std::map<std::string, DeviceCounters> deviceCounters_;
+	double depthLatencyMs_ = 0; // smoothed arrival after capture
 
 	FrameRecorder recorder_;
 	uint64_t recorderDropsLogged_ = 0;
