@@ -119,7 +119,7 @@ struct OutputSettings {
 struct PreviewSettings {
 	std::string listen = "127.0.0.1:8080"; // IP:PORT; "" = off; beyond loopback needs passwordFile
 	std::string passwordFile = "";      // "USER:CRYPT-HASH" lines, mode 0600; required off loopback
-	int maxClients = 4;                 // 1..32 concurrent streams
+	int maxClients = 10;                // 1..32 concurrent streams (the page opens 5)
 	int jpegQuality = 80;               // 10..100
 	bool operator==(const PreviewSettings &) const = default;
 };
