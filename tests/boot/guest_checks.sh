@@ -73,6 +73,12 @@ sed 's/^/  recorder: /' /tmp/recorder.err
 check "a user outside the group cannot" \
 	bash -c '! setpriv --reuid stranger --regid stranger --init-groups depthkey-shmcat --frames 1 --timeout 5 >/dev/null 2>&1'
 
+echo "== preview page on loopback only"
+check "the preview page answers on 127.0.0.1:8080 (/status.json names the cameras)" \
+	bash -c 'curl -s --max-time 5 http://127.0.0.1:8080/status.json | grep -q "\"sim-colour\""'
+check "the preview listens on no other address" \
+	bash -c '! ss -Hltn | awk "{ print \$4 }" | grep ":8080\$" | grep -vq "^127\.0\.0\.1:8080\$"'
+
 echo "== journal fields"
 check "journalctl -u depthkeyd DEVICE=sim-depth filters by device" \
 	bash -c 'out=$(journalctl -q -o cat -u depthkeyd DEVICE=sim-depth); grep -q "depth camera sim-depth started" <<<"$out" && ! grep -q sim-colour <<<"$out"'
