@@ -46,10 +46,12 @@ void PreviewFeed::apply(const PreviewSettings &settings)
 	logger().info(text, { { "DEVICE", "preview" }, { "PREVIEW_URL", url } });
 }
 
+// The encoder first: its waiters (streams, snapshots) return at once, so
+// the server's connection threads end without their timeouts.
 void PreviewFeed::stop()
 {
-	server_.stop();
 	encoder_.stop();
+	server_.stop();
 }
 
 void PreviewFeed::offer(const ColourFrame *colour, const DepthFrame *depth, const Gray8Image *seeds,

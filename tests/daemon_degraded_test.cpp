@@ -93,6 +93,7 @@ TEST(DaemonDegraded, PublishesOfflineFramesWhileACameraIsLostAndRecovers)
 	Settings settings;
 	settings.colour.width = 64;
 	settings.colour.height = 48;
+	settings.preview.listen = "127.0.0.1:0"; // never the shared 8080 of parallel runs
 	settings.colour.fps = 50;
 	Daemon daemon("unused.toml", {}, h.factory());
 	ASSERT_EQ(daemon.start(settings), 0);
@@ -157,6 +158,7 @@ TEST(DaemonDegraded, StaleDepthPublishesColourUnkeyedAndOffline)
 	Settings settings;
 	settings.colour.width = 32;
 	settings.colour.height = 24;
+	settings.preview.listen = "127.0.0.1:0";
 	Daemon daemon("unused.toml", {}, h.factory());
 	ASSERT_EQ(daemon.start(settings), 0);
 	ColourFrame colour;

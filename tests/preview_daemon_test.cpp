@@ -154,16 +154,23 @@ TEST_F(PreviewDaemon, ClientsThatStopReadingDoNotSlowTheFrameRate)
 {
 	const std::string url = start("listen = \"127.0.0.1:0\"\n");
 	ASSERT_FALSE(url.empty()) << daemon_.log();
+	// The rate is compared with the daemon's own just before, so that a
+	// machine busy with other work does not decide the test.
+	auto publishedFps = [this] {
+		const uint64_t before = latestFrame();
+		const auto t0 = std::chrono::steady_clock::now();
+		std::this_thread::sleep_for(3s);
+		const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+		return static_cast<double>(latestFrame() - before) / seconds;
+	};
+	const double alone = publishedFps();
 	std::vector<int> stalled;
 	for (const char *stage : { "composite", "colour", "alpha" })
 		stalled.push_back(stalledClient(url, std::string("/stream/") + stage + ".mjpg"));
 	std::this_thread::sleep_for(1500ms); // their socket buffers are full by now
-	const uint64_t before = latestFrame();
-	const auto t0 = std::chrono::steady_clock::now();
-	std::this_thread::sleep_for(3s);
-	const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-	const double fps = static_cast<double>(latestFrame() - before) / seconds;
-	EXPECT_GE(fps, 22.0) << "the daemon publishes 25 fps; with clients that stop reading it made " << fps;
+	const double fps = publishedFps();
+	EXPECT_GE(fps, 0.8 * alone) << "alone " << alone << " fps, with three clients that stopped reading " << fps;
+	EXPECT_GT(alone, 5.0) << "the daemon hardly ran";
 	// The stalled clients are still connected and a new one is served.
 	EXPECT_EQ(mjpegParts(curlGet(url + "/stream/composite.mjpg", "--max-time 1").body).empty(), false);
 	for (int fd : stalled)
