@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "config/listen_address.hpp"
 #include "config/text_file.hpp"
 #include "config/toml_binder.hpp"
 
@@ -283,6 +284,23 @@ void bindOutput(TomlSection &sec, OutputSettings &s)
 	}
 }
 
+void bindPreview(TomlSection &sec, PreviewSettings &s)
+{
+	bool ok = sec.string("listen", s.listen, [](std::string_view text) {
+		ListenAddress address;
+		return text.empty() ? std::string() : parseListenAddress(text, address);
+	});
+	ok = sec.string("password_file", s.passwordFile, checkOptionalAbsolutePath) && ok;
+	sec.integer("max_clients", s.maxClients, 1, 32);
+	sec.integer("jpeg_quality", s.jpegQuality, 10, 100);
+	// The box sits on a school network: beyond loopback only with a password.
+	ListenAddress address;
+	if (ok && !s.listen.empty() && parseListenAddress(s.listen, address).empty())
+		sec.require(address.loopback || !s.passwordFile.empty(), "listen",
+			    "'" + s.listen + "' is reachable from the network: set preview.password_file "
+			    "(HTTP basic auth) or listen on 127.0.0.1 and use ssh -L");
+}
+
 void bindLeds(TomlSection &sec, LedSettings &s)
 {
 	sec.string("backend", s.backend, kLedBackends);
@@ -361,6 +379,7 @@ void bindSettings(TomlSection &root, Settings &s)
 	root.table("composite", [&](TomlSection &sec) { bindComposite(sec, s.composite); });
 	root.table("board", [&](TomlSection &sec) { bindBoard(sec, s.board); });
 	root.table("output", [&](TomlSection &sec) { bindOutput(sec, s.output); });
+	root.table("preview", [&](TomlSection &sec) { bindPreview(sec, s.preview); });
 	root.table("leds", [&](TomlSection &sec) { bindLeds(sec, s.leds); });
 	root.table("sim", [&](TomlSection &sec) { bindSim(sec, s.sim); });
 	bool replayUsed = s.colour.backend == "replay" || s.depth.backend == "replay";

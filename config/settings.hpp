@@ -148,8 +148,17 @@ struct OutputSettings {
 	std::string lecturerName = "/depthkey.lecturer";
 	std::string boardLecturerName = "/depthkey.lecturer.board"; // the layer in board geometry
 	int slots = 3;                      // 2..8 ring slots per stream
-	std::string group = "";             // group owning the objects (mode 0640); "" = own group
+	std::string group = "";             // group owning the objects (mode 0660); "" = own group
 	bool operator==(const OutputSettings &) const = default;
+};
+
+// The live preview page (hal/preview/preview_server.hpp).
+struct PreviewSettings {
+	std::string listen = "127.0.0.1:8080"; // IP:PORT; "" = off; beyond loopback needs passwordFile
+	std::string passwordFile = "";      // "USER:CRYPT-HASH" lines, mode 0600; required off loopback
+	int maxClients = 10;                // 1..32 concurrent streams (the page opens 5)
+	int jpegQuality = 80;               // 10..100
+	bool operator==(const PreviewSettings &) const = default;
 };
 
 struct LedSettings {
@@ -221,6 +230,7 @@ struct Settings {
 	CompositeSettings composite;
 	BoardSettings board;
 	OutputSettings output;
+	PreviewSettings preview;
 	LedSettings leds;
 	SimSettings sim;
 	ReplaySettings replay;

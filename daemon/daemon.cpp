@@ -30,6 +30,9 @@ constexpr uint64_t kTerminalStatusEvery = 5; // status ticks (seconds)
 // --preview: stage images of this many keyed frames, this many frames apart.
 constexpr int kPreviewCount = 3;
 constexpr uint64_t kPreviewEveryFrames = 50;
+// Reader heartbeats are sampled this often: a dead reader is gone within
+// DK_SHM_READER_TIMEOUT_MS plus this.
+constexpr uint64_t kReaderTickUs = 250'000;
 
 } // namespace
 
@@ -43,6 +46,7 @@ void CommandLineOverrides::applyTo(Settings &settings) const
 
 Daemon::~Daemon()
 {
+	preview_.stop();
 	recorder_.stop();
 	stopCameras();
 	board_.stop();
@@ -96,10 +100,12 @@ int Daemon::start(const Settings &settings)
 		});
 	openOutput();
 	updateRecording();
+	preview_.apply(settings_.preview);
 	startCameras();
 
 	loop_.addPeriodic(1000000u / settings_.colour.fps, [this] { onFrameTick(); }, frameTick_);
 	loop_.addPeriodic(1000000u, [this] { onStatusTick(); }, statusTick_);
+	loop_.addPeriodic(kReaderTickUs, [this] { onReaderTick(); }, readerTick_);
 	if (uint64_t usec = ServiceNotifier::watchdogUsec())
 		loop_.addPeriodic(usec / 2, [this] { onWatchdogTick(); }, watchdogTick_);
 
@@ -111,6 +117,7 @@ int Daemon::run()
 {
 	int ret = loop_.run();
 	notifier_.stopping();
+	preview_.stop();
 	stopCameras();
 	board_.stop();
 	recorder_.stop();
@@ -206,6 +213,12 @@ void Daemon::updateLatency()
 
 void Daemon::onDeviceStatus(const std::string &device, const DeviceStatus &status)
 {
+	DeviceCounters &counters = deviceCounters_[device];
+	if (status.state == DeviceState::Lost && !counters.lost)
+		counters.faults++;
+	if (status.state == DeviceState::Streaming && counters.lost)
+		counters.reconnects++;
+	counters.lost = status.state == DeviceState::Lost;
 	if (status.state == DeviceState::Lost)
 		logger().errorOnce(device, device + " lost: " + status.detail,
 				   { { "DEVICE", device }, { "ERROR", errnoText(status.error) } });
@@ -221,6 +234,8 @@ void Daemon::onDepthFrame(const DepthFrame &frame)
 	latency_.addDepth(frame, frame.timestampNs);
 	recorder_.recordDepth(frame);
 	depthFrames_++;
+	const double latencyMs = (static_cast<double>(loop_.nowUs()) * 1000.0 - static_cast<double>(frame.timestampNs)) / 1e6;
+	depthLatencyMs_ += (latencyMs - depthLatencyMs_) * (depthFrames_ == 1 ? 1.0 : 0.1);
 	keyDueFrames();
 }
 
@@ -275,6 +290,8 @@ void Daemon::keyFrame(const PairingQueue::Keying &keying)
 		colourLatest_ = frame; // kept only for snapshots
 	if (depth)
 		maybeWritePreview(colourFrames_, *depth);
+	preview_.offer(&frame, depth, depth ? &pipeline_.trimap() : nullptr, output_, frame.timestampNs,
+		       loop_.nowUs() * 1000u);
 	publish(frame.timestampNs, flags);
 }
 
@@ -338,6 +355,7 @@ void Daemon::publishNoSignal(uint64_t nowNs)
 	output_.lecturer.resize(w, h);
 	std::fill(output_.lecturer.data(), output_.lecturer.data() + output_.lecturer.size(), Rgba8{ 0, 0, 0, 0 });
 	board_.showBoardOnly(); // in board geometry the board's picture goes on, marked offline
+	preview_.offer(nullptr, nullptr, nullptr, output_, nowNs, nowNs);
 	publish(nowNs, depthFresh(nowNs) ? DK_SHM_FLAG_DEPTH_OK : 0);
 }
 
@@ -350,7 +368,24 @@ StatusSummary Daemon::summary() const
 	s.error = logger().activeErrorCount() > 0;
 	s.boardOk = board_.sourceOk();
 	s.boardCalibrated = board_.boardGeometry();
+	s.readerAttached = readers_.total() > 0;
 	return s;
+}
+
+void Daemon::onReaderTick()
+{
+	if (!sink_ || !sinkOpen_)
+		return;
+	ReaderCounts now = sink_->countReaders(loop_.nowUs() * 1000u);
+	if (now == readers_)
+		return;
+	bool attachedChanged = (now.total() > 0) != (readers_.total() > 0);
+	readers_ = now;
+	logger().info("readers: composite " + std::to_string(now.composite) + ", lecturer " +
+			      std::to_string(now.lecturer),
+		      { { "DEVICE", "shm" } });
+	if (attachedChanged && leds_)
+		leds_->show(summary());
 }
 
 void Daemon::onStatusTick()
@@ -368,6 +403,10 @@ void Daemon::onStatusTick()
 	DeviceStatus ds = depth_ ? depth_->status() : DeviceStatus{};
 	updateLatency();
 	const PairingStats &ps = queue_.pairer().stats();
+	const double colourFps = rate(colourFrames_, colourFramesAtStatus_);
+	const double depthFps = rate(depthFrames_, depthFramesAtStatus_);
+	const double outputFps = rate(published_, publishedAtStatus_);
+	preview_.setStatus(previewStatus(colourFps, depthFps, outputFps));
 	char offset[64];
 	if (latencyEstimate_.valid)
 		std::snprintf(offset, sizeof(offset), "depth offset %+.0f ms measured%s", latencyEstimate_.offsetMs,
@@ -377,15 +416,15 @@ void Daemon::onStatusTick()
 	char text[768];
 	std::snprintf(text, sizeof(text),
 		      "colour %s %s %.1f fps %llu dropped; depth %s %s %.1f fps %llu dropped; "
-		      "paired %llu unpaired %llu; %s; output %.1f fps; %s; %s",
+		      "paired %llu unpaired %llu; %s; output %.1f fps; readers %d; %s; %s",
 		      colour_ ? colour_->name().c_str() : "-", deviceStateName(cs.state),
-		      rate(colourFrames_, colourFramesAtStatus_),
+		      colourFps,
 		      static_cast<unsigned long long>(cs.droppedFrames),
 		      depth_ ? depth_->name().c_str() : "-", deviceStateName(ds.state),
-		      rate(depthFrames_, depthFramesAtStatus_),
+		      depthFps,
 		      static_cast<unsigned long long>(ds.droppedFrames),
 		      static_cast<unsigned long long>(ps.paired),
-		      static_cast<unsigned long long>(ps.unpaired), offset, rate(published_, publishedAtStatus_),
+		      static_cast<unsigned long long>(ps.unpaired), offset, outputFps, readers_.total(),
 		      summary().calibrated ? "calibrated" : "not calibrated (identity mapping)",
 		      board_.statusText().c_str());
 	statusAtUs_ = now;
@@ -458,6 +497,7 @@ void Daemon::apply(const Settings &next)
 	}
 	if (previous.colour.fps != next.colour.fps)
 		loop_.addPeriodic(1000000u / next.colour.fps, [this] { onFrameTick(); }, frameTick_);
+	preview_.apply(next.preview);
 	if (!(previous.leds == next.leds)) {
 		leds_->close();
 		leds_ = factory_.statusLeds(next);

@@ -10,6 +10,7 @@
 #include "config/settings.hpp"
 #include "daemon/device_factory.hpp"
 #include "daemon/frame_recorder.hpp"
+#include "daemon/preview_feed.hpp"
 #include "daemon/service_notifier.hpp"
 #include "daemon/test_fault.hpp"
 #include "hal/camera.hpp"
@@ -17,6 +18,7 @@
 #include "hal/frame_sink.hpp"
 #include "hal/status_leds.hpp"
 
+#include <map>
 #include <memory>
 #include <string>
 
@@ -58,6 +60,7 @@ private:
 	void onFrameTick();
 	void onStatusTick();
 	void onWatchdogTick();
+	void onReaderTick();
 	void reload();
 	void writeSnapshot();
 	int writeStages(const std::string &dir, const std::string &prefix, const DepthFrame *depth);
@@ -81,6 +84,7 @@ private:
 	void updateLatency();
 	int64_t offsetNs() const;
 	StatusSummary summary() const;
+	PreviewStatus previewStatus(double colourFps, double depthFps, double outputFps) const;
 
 	std::string configPath_;
 	CommandLineOverrides overrides_;
@@ -96,7 +100,18 @@ private:
 	bool sinkOpen_ = false;
 
 	EventSource sigterm_, sigint_, sighup_, sigusr1_, sigusr2_;
-	EventSource frameTick_, statusTick_, watchdogTick_, keyTimer_;
+	EventSource keyTimer_;
+	EventSource frameTick_, statusTick_, watchdogTick_, readerTick_;
+	ReaderCounts readers_; // recorders reading the output, sampled every 250 ms
+
+	// The live preview page and what only it reports.
+	PreviewFeed preview_;
+	struct DeviceCounters {
+		uint64_t faults = 0, reconnects = 0;
+		bool lost = false;
+	};
+	std::map<std::string, DeviceCounters> deviceCounters_;
+	double depthLatencyMs_ = 0; // smoothed arrival after capture
 
 	FrameRecorder recorder_;
 	uint64_t recorderDropsLogged_ = 0;

@@ -7,17 +7,32 @@
  * slot_count pixel slots starting at data_offset. Frame n (n >= 1) is written
  * into slot n % slot_count under that slot's seqlock, then latest_frame = n.
  * The writer never waits for readers; a reader that is lapped mid-copy sees the
- * sequence number change and retries. Readers map the object read-only, so a
+ * sequence number change and retries. Readers map the frames read-only, so a
  * reader that crashes or stalls cannot harm the writer or other readers.
+ *
+ * Reader presence (version 2): after the header, on a page of its own at
+ * reader_offset, a table of DK_SHM_MAX_READERS reader slots. A reader that
+ * may write the object (mode 0660, the reader in its group) maps that page
+ * alone read-write, claims a free slot and bumps its beat counter on every
+ * dk_shm_latest / dk_shm_read_latest / dk_shm_heartbeat call. The writer
+ * samples the counters; a slot whose counter has not moved for
+ * DK_SHM_READER_TIMEOUT_MS is counted gone and freed, so a reader that dies
+ * is gone within about a second, and a clean dk_shm_close frees it at once.
+ * A reader calls one of those functions at least every 500 ms to stay
+ * counted. Presence needs no clock in the reader; the writer never waits on
+ * it. A reader without write access still reads (presence_error says why it
+ * is not counted).
  *
  * Every field has a fixed width and offset (checked below) so that C, C++ and
  * other languages agree on the layout whatever the ABI. Multi-byte fields are
  * in host byte order: producer and consumers share one machine.
  *
- * This header compiles as C99 (define _POSIX_C_SOURCE 200809L or use gnu99 so
- * that shm_open and friends are declared) and as C++. Link with -lrt on old
- * glibc. 64-bit atomic loads must be plain loads (true on x86-64, arm64 and
- * armv7 with LPAE), because the mapping is read-only.
+ * This header compiles as strict C99 (gcc -std=c99 -pedantic, no feature
+ * macros needed: what strict mode hides, O_CLOEXEC, is replaced by
+ * fcntl(FD_CLOEXEC)), as C11 and as C++. It uses GCC/Clang __atomic builtins.
+ * Link with -lrt on old glibc. 64-bit atomic loads must be plain loads (true
+ * on x86-64, arm64 and armv7 with LPAE), because the frame mapping is
+ * read-only.
  */
 #ifndef DEPTHKEY_SHM_H
 #define DEPTHKEY_SHM_H
@@ -36,7 +51,7 @@ extern "C" {
 #endif
 
 #define DK_SHM_MAGIC 0x48534b44u /* "DKSH" in memory on little-endian */
-#define DK_SHM_VERSION 1u
+#define DK_SHM_VERSION 2u /* 2: reader presence table */
 #define DK_SHM_MIN_SLOTS 2u
 #define DK_SHM_MAX_SLOTS 8u
 #define DK_SHM_MAX_DIMENSION 16384u
@@ -44,6 +59,17 @@ extern "C" {
 #define DK_SHM_DATA_ALIGN 4096u
 /* Bounded so that a reader facing a very fast writer still returns promptly. */
 #define DK_SHM_READ_RETRIES 16
+/* Reader slots in the presence table; a 17th concurrent reader reads but is
+ * not counted (presence_error -EBUSY). */
+#define DK_SHM_MAX_READERS 16u
+/* A reader whose beat counter did not move for this long is counted gone. */
+#define DK_SHM_READER_TIMEOUT_MS 1000u
+
+#ifdef O_CLOEXEC
+#define DK_SHM_O_CLOEXEC O_CLOEXEC
+#else
+#define DK_SHM_O_CLOEXEC 0 /* hidden by strict C99: FD_CLOEXEC is set after open */
+#endif
 
 #define DK_SHM_FOURCC(a, b, c, d) \
 	((uint32_t)(a) | ((uint32_t)(b) << 8) | ((uint32_t)(c) << 16) | ((uint32_t)(d) << 24))
@@ -78,8 +104,25 @@ struct dk_shm_header {
 	uint64_t data_offset;   /* offset of slot 0's pixels from the object start */
 	uint64_t latest_frame;  /* newest complete frame, 0 = none yet */
 	uint32_t online;        /* 1 while a writer has the stream open */
-	uint8_t reserved[60];   /* slots start on their own cache line */
+	uint32_t reader_slots;  /* slots in the presence table, <= DK_SHM_MAX_READERS */
+	uint64_t reader_offset; /* offset of struct dk_shm_reader_table, page-aligned */
+	uint8_t reserved[48];   /* slots start on their own cache line */
 	struct dk_shm_slot slots[DK_SHM_MAX_SLOTS];
+};
+
+/* One reader's slot: a cache line of its own, so readers do not contend. */
+struct dk_shm_reader_slot {
+	uint64_t owner;         /* 0 = free, else the token of the reader holding it */
+	uint64_t beats;         /* bumped by the reader; the writer watches it move */
+	uint64_t frames_read;   /* frames the reader copied, for statistics */
+	uint32_t pid;           /* the reader's process, for diagnostics */
+	uint8_t reserved[36];
+};
+
+struct dk_shm_reader_table {
+	uint64_t next_token;    /* readers take tokens from here: unique per claim */
+	uint8_t reserved[56];
+	struct dk_shm_reader_slot readers[DK_SHM_MAX_READERS];
 };
 
 #if defined(__cplusplus)
@@ -101,8 +144,15 @@ DK_SHM_STATIC_ASSERT(offsetof(struct dk_shm_header, slot_size) == 40, hdr_slot_s
 DK_SHM_STATIC_ASSERT(offsetof(struct dk_shm_header, data_offset) == 48, hdr_data_offset);
 DK_SHM_STATIC_ASSERT(offsetof(struct dk_shm_header, latest_frame) == 56, hdr_latest);
 DK_SHM_STATIC_ASSERT(offsetof(struct dk_shm_header, online) == 64, hdr_online);
+DK_SHM_STATIC_ASSERT(offsetof(struct dk_shm_header, reader_slots) == 68, hdr_reader_slots);
+DK_SHM_STATIC_ASSERT(offsetof(struct dk_shm_header, reader_offset) == 72, hdr_reader_offset);
 DK_SHM_STATIC_ASSERT(offsetof(struct dk_shm_header, slots) == 128, hdr_slots);
 DK_SHM_STATIC_ASSERT(sizeof(struct dk_shm_header) == 640, hdr_size);
+DK_SHM_STATIC_ASSERT(sizeof(struct dk_shm_reader_slot) == 64, reader_slot_size);
+DK_SHM_STATIC_ASSERT(offsetof(struct dk_shm_reader_slot, beats) == 8, reader_slot_beats);
+DK_SHM_STATIC_ASSERT(offsetof(struct dk_shm_reader_slot, pid) == 24, reader_slot_pid);
+DK_SHM_STATIC_ASSERT(offsetof(struct dk_shm_reader_table, readers) == 64, reader_table_slots);
+DK_SHM_STATIC_ASSERT(sizeof(struct dk_shm_reader_table) <= 4096, reader_table_page);
 
 /* Bytes per pixel of a known format, 0 for an unknown one. */
 static inline uint32_t dk_shm_bytes_per_pixel(uint32_t fourcc)
@@ -126,6 +176,16 @@ struct dk_shm_reader {
 	/* Copies dropped because the writer overwrote the slot meanwhile: a
 	 * consumer that sees this grow fast copies too slowly for slot_count. */
 	uint64_t torn_copies;
+	/* Presence: the read-write mapping of the reader table (NULL when the
+	 * reader is not counted), the claimed slot and its token. */
+	struct dk_shm_reader_table *presence;
+	uint32_t presence_slots;
+	uint32_t presence_index;
+	uint64_t presence_token;
+	/* 0 while counted, else why not: -EACCES (no write access to the
+	 * object), -EBUSY (all reader slots taken; retried on every beat), or
+	 * the errno of mapping the table. */
+	int presence_error;
 };
 
 struct dk_shm_frame_info {
@@ -161,11 +221,88 @@ static inline int dk_shm_check_layout(const struct dk_shm_header *h, uint64_t si
 	    r->data_offset < sizeof(struct dk_shm_header) || r->data_offset > size ||
 	    (size - r->data_offset) / r->slot_count < r->slot_size)
 		return -EPROTO;
+	/* The presence table lies between the header and the pixels. */
+	r->presence_slots = h->reader_slots;
+	if (r->presence_slots == 0 || r->presence_slots > DK_SHM_MAX_READERS ||
+	    h->reader_offset < sizeof(struct dk_shm_header) || h->reader_offset % DK_SHM_DATA_ALIGN ||
+	    h->reader_offset > r->data_offset ||
+	    r->data_offset - h->reader_offset < sizeof(struct dk_shm_reader_table))
+		return -EPROTO;
 	return 0;
 }
 
+/* Claims a free reader slot with a fresh token; -EBUSY when all are taken. */
+static inline int dk_shm_claim_reader_slot(struct dk_shm_reader *r)
+{
+	struct dk_shm_reader_table *t = r->presence;
+	uint64_t token;
+	uint32_t i;
+
+	do
+		token = __atomic_add_fetch(&t->next_token, 1, __ATOMIC_RELAXED);
+	while (token == 0);
+	for (i = 0; i < r->presence_slots; i++) {
+		uint64_t expected = 0;
+		if (__atomic_compare_exchange_n(&t->readers[i].owner, &expected, token, 0,
+						__ATOMIC_ACQ_REL, __ATOMIC_RELAXED)) {
+			__atomic_store_n(&t->readers[i].pid, (uint32_t)getpid(), __ATOMIC_RELAXED);
+			__atomic_add_fetch(&t->readers[i].beats, 1, __ATOMIC_RELEASE);
+			r->presence_index = i;
+			r->presence_token = token;
+			r->presence_error = 0;
+			return 0;
+		}
+	}
+	r->presence_token = 0;
+	r->presence_error = -EBUSY;
+	return -EBUSY;
+}
+
+/*
+ * Tells the writer this reader is still there. The read functions call it;
+ * a reader that waits without reading calls it at least every 500 ms. If the
+ * writer freed the slot (the reader was stopped for longer than
+ * DK_SHM_READER_TIMEOUT_MS) or no slot was free, it claims one again.
+ * Returns 0 while counted, else presence_error. Never blocks.
+ */
+static inline int dk_shm_heartbeat(struct dk_shm_reader *r)
+{
+	struct dk_shm_reader_slot *slot;
+
+	if (!r->presence)
+		return r->presence_error;
+	slot = &r->presence->readers[r->presence_index];
+	if (r->presence_token == 0 ||
+	    __atomic_load_n(&slot->owner, __ATOMIC_ACQUIRE) != r->presence_token)
+		return dk_shm_claim_reader_slot(r);
+	__atomic_add_fetch(&slot->beats, 1, __ATOMIC_RELEASE);
+	return 0;
+}
+
+/* Maps the reader table read-write and claims a slot. Failing only leaves
+ * the reader uncounted. fd must be open read-write. */
+static inline void dk_shm_join_presence(struct dk_shm_reader *r, int fd)
+{
+	void *map = mmap(NULL, sizeof(struct dk_shm_reader_table), PROT_READ | PROT_WRITE,
+			 MAP_SHARED, fd, (off_t)r->header->reader_offset);
+	if (map == MAP_FAILED) {
+		r->presence_error = -errno;
+		return;
+	}
+	r->presence = (struct dk_shm_reader_table *)map;
+	dk_shm_claim_reader_slot(r);
+}
+
+/* Frees the reader's slot (the writer counts it gone at once) and unmaps. */
 static inline void dk_shm_close(struct dk_shm_reader *r)
 {
+	if (r->presence) {
+		uint64_t token = r->presence_token;
+		if (token)
+			__atomic_compare_exchange_n(&r->presence->readers[r->presence_index].owner,
+						    &token, 0, 0, __ATOMIC_RELEASE, __ATOMIC_RELAXED);
+		munmap((void *)r->presence, sizeof(struct dk_shm_reader_table));
+	}
 	if (r->base)
 		munmap((void *)r->base, r->map_size);
 	memset(r, 0, sizeof(*r));
@@ -183,12 +320,21 @@ static inline int dk_shm_open(const char *name, struct dk_shm_reader *r)
 	struct stat st;
 	uint64_t gen;
 	void *map;
-	int fd, ret;
+	int fd, ret, presence_error;
 
 	memset(r, 0, sizeof(*r));
-	fd = shm_open(name, O_RDONLY | O_CLOEXEC, 0);
+	/* Read-write only to beat in the presence table; the frames are mapped
+	 * read-only either way. */
+	fd = shm_open(name, O_RDWR | DK_SHM_O_CLOEXEC, 0);
+	if (fd < 0 && (errno == EACCES || errno == EROFS)) {
+		r->presence_error = -errno;
+		fd = shm_open(name, O_RDONLY | DK_SHM_O_CLOEXEC, 0);
+	}
 	if (fd < 0)
 		return -errno;
+	if (!DK_SHM_O_CLOEXEC)
+		fcntl(fd, F_SETFD, FD_CLOEXEC);
+	presence_error = r->presence_error;
 	if (fstat(fd, &st) < 0) {
 		ret = -errno;
 		close(fd);
@@ -203,10 +349,11 @@ static inline int dk_shm_open(const char *name, struct dk_shm_reader *r)
 		return -EPROTO;
 	}
 	map = mmap(NULL, (size_t)st.st_size, PROT_READ, MAP_SHARED, fd, 0);
-	ret = map == MAP_FAILED ? -errno : 0;
-	close(fd); /* the mapping keeps the object alive */
-	if (ret)
+	if (map == MAP_FAILED) {
+		ret = -errno;
+		close(fd);
 		return ret;
+	}
 	r->base = (const uint8_t *)map;
 	r->map_size = (size_t)st.st_size;
 	r->header = h = (const struct dk_shm_header *)map;
@@ -226,19 +373,25 @@ static inline int dk_shm_open(const char *name, struct dk_shm_reader *r)
 	if (ret == 0 && __atomic_load_n(&h->generation, __ATOMIC_RELAXED) != gen)
 		ret = -EAGAIN;
 	if (ret) {
+		close(fd);
 		dk_shm_close(r);
 		return ret;
 	}
 	r->generation = gen;
+	r->presence_error = presence_error;
+	if (!presence_error)
+		dk_shm_join_presence(r, fd);
+	close(fd); /* the mappings keep the object alive */
 	return 0;
 }
 
 /* The newest complete frame number (0 = none yet) in *frame, for cheap polling.
  * Returns 0, or -ESTALE when the writer restarted: close and open again. */
-static inline int dk_shm_latest(const struct dk_shm_reader *r, uint64_t *frame)
+static inline int dk_shm_latest(struct dk_shm_reader *r, uint64_t *frame)
 {
 	const struct dk_shm_header *h = r->header;
 
+	dk_shm_heartbeat(r);
 	*frame = __atomic_load_n(&h->latest_frame, __ATOMIC_ACQUIRE);
 	if (__atomic_load_n(&h->generation, __ATOMIC_ACQUIRE) != r->generation)
 		return -ESTALE;
@@ -257,6 +410,7 @@ static inline int dk_shm_read_latest(struct dk_shm_reader *r, void *dst, size_t 
 	const struct dk_shm_header *h = r->header;
 	int attempt;
 
+	dk_shm_heartbeat(r);
 	if (dst_size < r->frame_bytes)
 		return -ENOBUFS;
 
@@ -294,6 +448,9 @@ static inline int dk_shm_read_latest(struct dk_shm_reader *r, void *dst, size_t 
 		if (frame == 0)
 			continue; /* slot reset by a restarting writer */
 
+		if (r->presence && r->presence_token)
+			__atomic_add_fetch(&r->presence->readers[r->presence_index].frames_read, 1,
+					   __ATOMIC_RELAXED);
 		if (info) {
 			info->frame = frame;
 			info->timestamp_ns = timestamp;

@@ -65,7 +65,9 @@ public:
 		return 0;
 	}
 
+	ReaderCounts countReaders(uint64_t) override { return readers_; }
 	void close() override { open_ = false; }
+	void setReaders(ReaderCounts readers) { readers_ = readers; }
 
 	std::string describeError() const override
 	{
@@ -114,6 +116,7 @@ private:
 	uint64_t lecturerCount_ = 0;
 	uint64_t captureNs_ = 0;
 	uint32_t flags_ = 0;
+	ReaderCounts readers_;
 };
 
 } // namespace depthkey

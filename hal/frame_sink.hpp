@@ -12,6 +12,14 @@
 
 namespace depthkey {
 
+// Readers present on each stream (see ShmRingWriter::countReaders).
+struct ReaderCounts {
+	int composite = 0;
+	int lecturer = 0;
+	int total() const { return composite + lecturer; }
+	bool operator==(const ReaderCounts &) const = default;
+};
+
 class FrameSink
 {
 public:
@@ -32,6 +40,10 @@ public:
 	virtual int publishLecturer(const RgbaImage &image, uint64_t captureNs, uint32_t flags) = 0;
 	// The board-geometry lecturer layer; -EBADF when opened without a board size.
 	virtual int publishBoardLecturer(const RgbaImage &image, uint64_t captureNs, uint32_t flags) = 0;
+
+	// Samples the readers' heartbeats at nowNs (CLOCK_MONOTONIC); called
+	// every 250 ms. Never blocks.
+	virtual ReaderCounts countReaders(uint64_t nowNs) = 0;
 
 	// Marks the streams offline; consumers keep the last frames.
 	virtual void close() = 0;

@@ -83,6 +83,11 @@ int ShmFrameSink::publishBoardLecturer(const RgbaImage &image, uint64_t captureN
 	return publish(boardLecturer_, image, captureNs, flags);
 }
 
+ReaderCounts ShmFrameSink::countReaders(uint64_t nowNs)
+{
+	return { composite_.countReaders(nowNs), lecturer_.countReaders(nowNs) };
+}
+
 void ShmFrameSink::close()
 {
 	composite_.close();

@@ -16,6 +16,7 @@ public:
 	int publishComposite(const RgbImage &image, uint64_t captureNs, uint32_t flags) override;
 	int publishLecturer(const RgbaImage &image, uint64_t captureNs, uint32_t flags) override;
 	int publishBoardLecturer(const RgbaImage &image, uint64_t captureNs, uint32_t flags) override;
+	ReaderCounts countReaders(uint64_t nowNs) override;
 	void close() override;
 	std::string describeError() const override;
 

@@ -18,11 +18,21 @@ namespace depthkey {
 
 namespace {
 
-constexpr mode_t kMode = 0640;
+// Group read-write: readers beat in the presence table (they map the frames
+// read-only); others get nothing.
+constexpr mode_t kMode = 0660;
+static_assert(DK_SHM_MAX_READERS == 16, "readerSeen_ has one entry per reader slot");
 
 uint64_t roundUp(uint64_t value, uint64_t align)
 {
 	return (value + align - 1) / align * align;
+}
+
+// Readers map the presence table alone, so it starts on a page of its own.
+uint64_t pageAlign()
+{
+	long page = sysconf(_SC_PAGESIZE);
+	return page > static_cast<long>(DK_SHM_DATA_ALIGN) ? static_cast<uint64_t>(page) : DK_SHM_DATA_ALIGN;
 }
 
 bool validName(const std::string &name)
@@ -131,7 +141,9 @@ int ShmRingWriter::open(const std::string &name, int width, int height, uint32_t
 
 	const int stride = width * static_cast<int>(bpp);
 	const uint64_t slotSize = roundUp(static_cast<uint64_t>(stride) * height, DK_SHM_DATA_ALIGN);
-	const uint64_t dataOffset = roundUp(sizeof(dk_shm_header), DK_SHM_DATA_ALIGN);
+	const uint64_t align = pageAlign();
+	const uint64_t readerOffset = roundUp(sizeof(dk_shm_header), align);
+	const uint64_t dataOffset = readerOffset + roundUp(sizeof(dk_shm_reader_table), align);
 	const uint64_t needed = dataOffset + slotSize * slots;
 
 	int fd = shm_open(name.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, kMode);
@@ -149,7 +161,7 @@ int ShmRingWriter::open(const std::string &name, int width, int height, uint32_t
 	struct stat st{};
 	const char *step = nullptr;
 	if (fchmod(fd, kMode) < 0) // the umask may have narrowed the mode
-		step = "chmod 0640";
+		step = "chmod 0660";
 	else if (!group.empty() && fchown(fd, static_cast<uid_t>(-1), gid) < 0) {
 		step = "chgrp to";
 		detail_ = group;
@@ -174,6 +186,7 @@ int ShmRingWriter::open(const std::string &name, int width, int height, uint32_t
 	fd_ = fd;
 	header_ = static_cast<dk_shm_header *>(map);
 	data_ = static_cast<uint8_t *>(map) + dataOffset;
+	readers_ = reinterpret_cast<dk_shm_reader_table *>(static_cast<uint8_t *>(map) + readerOffset);
 	mapSize_ = needed;
 	width_ = width;
 	height_ = height;
@@ -182,14 +195,14 @@ int ShmRingWriter::open(const std::string &name, int width, int height, uint32_t
 	slots_ = slots;
 	slotSize_ = slotSize;
 	frame_ = 0;
-	writeHeader(slotSize, dataOffset);
+	writeHeader(slotSize, readerOffset, dataOffset);
 	return 0;
 }
 
 // The header has its own seqlock: generation 0 while the fields change, then
 // the new generation. Readers that raced with us see 0 or a new value and
 // retry; readers still on the old generation get -ESTALE.
-void ShmRingWriter::writeHeader(uint64_t slotSize, uint64_t dataOffset)
+void ShmRingWriter::writeHeader(uint64_t slotSize, uint64_t readerOffset, uint64_t dataOffset)
 {
 	dk_shm_header *h = header_;
 	const uint64_t previous = __atomic_load_n(&h->generation, __ATOMIC_RELAXED);
@@ -207,6 +220,9 @@ void ShmRingWriter::writeHeader(uint64_t slotSize, uint64_t dataOffset)
 	h->fourcc = fourcc_;
 	h->slot_size = slotSize;
 	h->data_offset = dataOffset;
+	h->reader_slots = DK_SHM_MAX_READERS;
+	h->reader_offset = readerOffset;
+	clearReaders();
 	__atomic_store_n(&h->latest_frame, 0, __ATOMIC_RELAXED);
 	for (dk_shm_slot &slot : h->slots) {
 		// Sequence numbers only ever grow; an odd one left by a writer
@@ -262,6 +278,51 @@ int ShmRingWriter::write(const uint8_t *pixels, int srcStride, uint64_t captureN
 	return 0;
 }
 
+// Readers of an earlier writer re-open on the new generation and claim new
+// slots; their old ones must not count. Tokens keep counting up, so an old
+// reader never mistakes a new claim for its own.
+void ShmRingWriter::clearReaders()
+{
+	for (dk_shm_reader_slot &slot : readers_->readers) {
+		__atomic_store_n(&slot.owner, 0, __ATOMIC_RELAXED);
+		__atomic_store_n(&slot.frames_read, 0, __ATOMIC_RELAXED);
+	}
+	readerSeen_ = {};
+}
+
+int ShmRingWriter::countReaders(uint64_t nowNs)
+{
+	if (!readers_)
+		return 0;
+	constexpr uint64_t kTimeoutNs = uint64_t{ DK_SHM_READER_TIMEOUT_MS } * 1000000u;
+	int present = 0;
+	for (size_t i = 0; i < readerSeen_.size(); i++) {
+		dk_shm_reader_slot &slot = readers_->readers[i];
+		ReaderSeen &seen = readerSeen_[i];
+		uint64_t owner = __atomic_load_n(&slot.owner, __ATOMIC_ACQUIRE);
+		uint64_t beats = __atomic_load_n(&slot.beats, __ATOMIC_ACQUIRE);
+		if (owner == 0) {
+			seen = {};
+			continue;
+		}
+		if (owner != seen.owner || beats != seen.beats) {
+			seen = { owner, beats, nowNs };
+			present++;
+		} else if (nowNs - seen.sinceNs <= kTimeoutNs) {
+			present++;
+		} else {
+			// Gone: free the slot unless its reader beat or a new one
+			// claimed it meanwhile (then the owner or count changed).
+			uint64_t expected = owner;
+			if (__atomic_load_n(&slot.beats, __ATOMIC_ACQUIRE) == beats &&
+			    __atomic_compare_exchange_n(&slot.owner, &expected, 0, false,
+							__ATOMIC_ACQ_REL, __ATOMIC_RELAXED))
+				seen = {};
+		}
+	}
+	return present;
+}
+
 void ShmRingWriter::close()
 {
 	if (!header_)
@@ -272,6 +333,7 @@ void ShmRingWriter::close()
 	fd_ = -1;
 	header_ = nullptr;
 	data_ = nullptr;
+	readers_ = nullptr;
 	mapSize_ = 0;
 }
 

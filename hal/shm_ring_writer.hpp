@@ -7,10 +7,12 @@
 // readers notice a restart (or a new geometry) and re-open.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 
 struct dk_shm_header;
+struct dk_shm_reader_table;
 
 namespace depthkey {
 
@@ -24,7 +26,7 @@ public:
 	ShmRingWriter &operator=(const ShmRingWriter &) = delete;
 
 	// Creates or reuses the object `name` ("/depthkey.composite") with mode
-	// 0640, owned by `group` unless it is empty. An existing object is grown
+	// 0660 (the group writes only its presence heartbeats), owned by `group` unless it is empty. An existing object is grown
 	// if needed but never shrunk, so readers still mapping it cannot fault.
 	// fourcc is DK_SHM_FORMAT_RGB24 or DK_SHM_FORMAT_RGBA32, slots 2..8.
 	// Re-opening an open writer closes it first. Returns 0 or a negative
@@ -45,6 +47,13 @@ public:
 	// Returns 0 or a negative errno (-ENOENT if already gone).
 	int unlink();
 
+	// Samples the readers' heartbeats (hal/depthkey_shm.h) at nowNs
+	// (CLOCK_MONOTONIC) and returns how many are present: their beat
+	// counter moved within DK_SHM_READER_TIMEOUT_MS. A slot that stopped
+	// beating is freed. Call it at least every 250 ms so that a dead reader
+	// is counted gone within 2 s. Only atomic loads and CAS: never waits.
+	int countReaders(uint64_t nowNs);
+
 	bool isOpen() const { return header_ != nullptr; }
 	const std::string &name() const { return name_; }
 	int width() const { return width_; }
@@ -63,12 +72,21 @@ public:
 private:
 	int fail(int error, const char *step, const char *reason = nullptr);
 	int resolveGroup(const std::string &group, unsigned int *gid);
-	void writeHeader(uint64_t slotSize, uint64_t dataOffset);
+	void writeHeader(uint64_t slotSize, uint64_t readerOffset, uint64_t dataOffset);
+	void clearReaders();
 
 	std::string name_;
 	int fd_ = -1; // held for the writer lock
 	dk_shm_header *header_ = nullptr;
 	uint8_t *data_ = nullptr;
+	dk_shm_reader_table *readers_ = nullptr;
+	// What countReaders() saw of each slot last, and since when.
+	struct ReaderSeen {
+		uint64_t owner = 0;
+		uint64_t beats = 0;
+		uint64_t sinceNs = 0;
+	};
+	std::array<ReaderSeen, 16> readerSeen_{};
 	size_t mapSize_ = 0;
 
 	int width_ = 0;

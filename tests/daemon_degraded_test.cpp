@@ -93,6 +93,7 @@ TEST(DaemonDegraded, PublishesOfflineFramesWhileACameraIsLostAndRecovers)
 	Settings settings;
 	settings.colour.width = 64;
 	settings.colour.height = 48;
+	settings.preview.listen = "127.0.0.1:0"; // never the shared 8080 of parallel runs
 	settings.colour.fps = 50;
 	settings.board.backend = "colour"; // the composite below is over board.colour
 	Daemon daemon("unused.toml", {}, h.factory());
@@ -159,6 +160,7 @@ TEST(DaemonDegraded, StaleDepthPublishesColourUnkeyedAndOffline)
 	settings.colour.width = 32;
 	settings.colour.height = 24;
 	settings.pairing.delayMs = 0; // keyed (here: not keyed) as it arrives
+	settings.preview.listen = "127.0.0.1:0";
 	Daemon daemon("unused.toml", {}, h.factory());
 	ASSERT_EQ(daemon.start(settings), 0);
 	ColourFrame colour;

@@ -34,15 +34,34 @@ DaemonProcess::~DaemonProcess()
 		std::system(("rm -rf '" + dir_ + "'").c_str());
 }
 
+// Test daemons serve their preview page on a port of the kernel's choosing,
+// never the default 8080 that parallel test runs (and a real daemon) share.
+// Added to the config the daemon runs on unless the test sets [preview].
+void DaemonProcess::ephemeralPreview(const std::string &path) const
+{
+	std::ifstream in(path);
+	std::stringstream text;
+	text << in.rdbuf();
+	if (text.str().find("[preview]") == std::string::npos)
+		std::ofstream(path, std::ios::app) << "\n[preview]\nlisten = \"127.0.0.1:0\"\n";
+}
+
 std::string DaemonProcess::writeFile(const std::string &name, const std::string &text) const
 {
 	std::string path = dir_ + "/" + name;
 	std::ofstream(path) << text;
+	if (path == configPath_)
+		ephemeralPreview(path);
 	return path;
 }
 
 bool DaemonProcess::start(const std::vector<std::string> &args, unsigned long watchdogUsec)
 {
+	for (size_t i = 0; i + 1 < args.size(); i++)
+		if (args[i] == "--config") {
+			configPath_ = args[i + 1];
+			ephemeralPreview(configPath_);
+		}
 	std::string socketPath = dir_ + "/notify.sock";
 	socket_ = socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
 	sockaddr_un addr{};

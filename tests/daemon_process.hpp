@@ -15,7 +15,9 @@ public:
 	DaemonProcess();
 	~DaemonProcess(); // kills a still running daemon
 
-	// A fresh temporary folder for config, notify socket and logs.
+	// A fresh temporary folder for config, notify socket and logs. The
+	// config given to start() (and rewritten here later) gets an ephemeral
+	// preview port unless it has a [preview] section.
 	const std::string &dir() const { return dir_; }
 	std::string writeFile(const std::string &name, const std::string &text) const;
 
@@ -42,8 +44,10 @@ public:
 
 private:
 	bool receive(std::chrono::milliseconds timeout);
+	void ephemeralPreview(const std::string &path) const;
 
 	std::string dir_;
+	std::string configPath_; // the --config the daemon runs on
 	int socket_ = -1;
 	int pid_ = -1;
 	int exitStatus_ = -1;

@@ -57,7 +57,7 @@ TEST(ShmRingWriter, ModeAndGroup)
 	struct stat st{};
 	ASSERT_EQ(fstat(fd, &st), 0);
 	close(fd);
-	EXPECT_EQ(st.st_mode & 0777, 0640u);
+	EXPECT_EQ(st.st_mode & 0777, 0660u);
 	EXPECT_EQ(st.st_gid, getegid());
 }
 

@@ -2,8 +2,10 @@
 // stdout, e.g.  depthkey-shmcat --frames 100 | ffmpeg -i - out.mp4
 //
 // It is also the reference consumer of hal/depthkey_shm.h: it uses nothing but
-// the C reader, re-opens when the writer restarts and never writes to the
-// object.
+// the C reader, re-opens when the writer restarts and writes nothing to the
+// object but its presence heartbeats (every poll beats; the daemon's reader
+// LED and STATUS count it). Without write access to the object it still
+// reads, uncounted, and says so once.
 //
 // Output: RGB24 streams as "C444 XCOLORRANGE=FULL" (yuv444p, full-range
 // BT.601 / JFIF, no chroma subsampling so colour edges of the key survive),
@@ -211,6 +213,9 @@ int ShmCat::run()
 
 	if (openReader(true, lastNew + timeout))
 		return 1;
+	if (reader_.presence_error)
+		std::fprintf(stderr, "depthkey-shmcat: reading %s uncounted (no reader heartbeat: %s)\n",
+			     opts_.name.c_str(), std::strerror(-reader_.presence_error));
 	width_ = reader_.width;
 	height_ = reader_.height;
 	fourcc_ = reader_.fourcc;

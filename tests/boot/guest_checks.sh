@@ -59,8 +59,8 @@ check "calibration folder /var/lib/depthkey owned by depthkey" test "$(stat -c %
 
 echo "== shared memory for the depthkey group"
 ls -l /dev/shm | sed 's/^/  /'
-check "/dev/shm/depthkey.composite is depthkey:depthkey 0640" \
-	test "$(stat -c %U:%G:%a /dev/shm/depthkey.composite)" = depthkey:depthkey:640
+check "/dev/shm/depthkey.composite is depthkey:depthkey 0660 (the group writes only reader heartbeats)" \
+	test "$(stat -c %U:%G:%a /dev/shm/depthkey.composite)" = depthkey:depthkey:660
 useradd --system --no-create-home --groups depthkey recorder
 useradd --system --no-create-home stranger
 t=$(now)
@@ -72,6 +72,12 @@ check "a recorder in group depthkey reads frames (y4m header + 3 frames)" \
 sed 's/^/  recorder: /' /tmp/recorder.err
 check "a user outside the group cannot" \
 	bash -c '! setpriv --reuid stranger --regid stranger --init-groups depthkey-shmcat --frames 1 --timeout 5 >/dev/null 2>&1'
+
+echo "== preview page on loopback only"
+check "the preview page answers on 127.0.0.1:8080 (/status.json names the cameras)" \
+	bash -c 'curl -s --max-time 5 http://127.0.0.1:8080/status.json | grep -q "\"sim-colour\""'
+check "the preview listens on no other address" \
+	bash -c '! ss -Hltn | awk "{ print \$4 }" | grep ":8080\$" | grep -vq "^127\.0\.0\.1:8080\$"'
 
 echo "== journal fields"
 check "journalctl -u depthkeyd DEVICE=sim-depth filters by device" \

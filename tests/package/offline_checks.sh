@@ -2,7 +2,8 @@
 # Offline checks of the built package, on the host (part of `make test`):
 #   1. `systemd-analyze verify` of the unit prints nothing (it exits 0 even
 #      on warnings, so its output is what counts);
-#   2. `systemd-analyze security --offline=true` exposure <= 2.0;
+#   2. `systemd-analyze security --offline=true` exposure <= 2.0, and IP
+#      allowed with localhost only (the preview page);
 #   3. lintian reports no error (its whole output is printed).
 # usage: offline_checks.sh PACKAGE.deb
 set -u
@@ -34,6 +35,15 @@ if [ -n "$score" ] && awk -v s="$score" 'BEGIN { exit !(s <= 2.0) }'; then
 else
 	printf '%s\n' "$out" | grep -v '^✓'
 	fail "systemd-analyze security --offline=true: exposure '${score:-?}' (want <= 2.0)"
+fi
+
+# The preview page listens on loopback: the unit lets IP through with
+# localhost only (a LAN address needs the technician's drop-in).
+if printf '%s\n' "$out" | grep -q 'IPAddressDeny=.*only localhost entries' &&
+	grep -qx 'IPAddressDeny=any' "$unit" && grep -qx 'IPAddressAllow=localhost' "$unit"; then
+	pass "IP traffic allowed with localhost only (IPAddressDeny=any, IPAddressAllow=localhost)"
+else
+	fail "the unit must deny IP but to localhost (IPAddressDeny=any, IPAddressAllow=localhost)"
 fi
 
 # lintian as root (CI) says so on stderr; that line is not a finding.

@@ -180,6 +180,15 @@ check_led led-board-on $LED_BOARD on
 # camera's, and the status says so.
 check_flags daemon-board-geometry-layer "$ONLINE=$ONLINE" 3 --name /depthkey.lecturer.board
 hil_check daemon-status-board-geometry hil_wait 15 grep -q 'board v4l2-board streaming, board geometry 640x360' "$DK_LOG"
+# Reader presence: the reader LED is off with no reader, on while
+# depthkey-shmcat reads (its heartbeats), and off again once it is killed.
+check_led led-reader-off-without-reader $LED_READER off
+"$HIL_BIN/depthkey-shmcat" --timeout 60 >/dev/null 2>&1 9<&- &
+SHMCAT_PID=$!
+check_led led-reader-on-while-shmcat-reads $LED_READER on
+kill -KILL "$SHMCAT_PID"
+wait "$SHMCAT_PID" 2>/dev/null
+check_led led-reader-off-after-reader-killed $LED_READER off
 
 # --- SR-2 faults ----------------------------------------------------------------
 sr2() { sr2_cmd "$@"; }

@@ -1,0 +1,84 @@
+#include "daemon/preview_feed.hpp"
+
+#include "daemon/log.hpp"
+
+namespace depthkey {
+
+namespace {
+
+// The page's JPEGs are taken at most this often per stage: enough to aim a
+// camera by, at a fraction of the encoding cost of every frame.
+constexpr int kPreviewMaxFps = 15;
+
+} // namespace
+
+void PreviewFeed::apply(const PreviewSettings &settings)
+{
+	if (applied_ && settings == settings_)
+		return;
+	stop();
+	settings_ = settings;
+	applied_ = true;
+	if (settings.listen.empty()) {
+		logger().clearError("preview", "preview server off (preview.listen = \"\")", { { "DEVICE", "preview" } });
+		logger().info("preview server off (preview.listen = \"\")", { { "DEVICE", "preview" } });
+		return;
+	}
+	PreviewServerOptions options;
+	std::string error = parseListenAddress(settings.listen, options.address);
+	options.passwordFile = settings.passwordFile;
+	options.maxClients = settings.maxClients;
+	int ret = error.empty() ? 0 : -EINVAL;
+	if (ret == 0) {
+		encoder_.start(settings.jpegQuality, kPreviewMaxFps);
+		ret = server_.start(options, encoder_, error);
+	}
+	if (ret < 0) {
+		encoder_.stop();
+		logger().errorOnce("preview", "preview server not started: " + error,
+				   { { "DEVICE", "preview" }, { "ERROR", errnoText(ret) } });
+		return;
+	}
+	const ListenAddress &a = options.address;
+	std::string url = "http://" + (a.ipv6 ? "[" + a.ip + "]" : a.ip) + ":" + std::to_string(server_.port()) + "/";
+	const std::string text = "preview page at " + url + (options.passwordFile.empty() ? "" : " (basic authentication)");
+	logger().clearError("preview", "preview server started", { { "DEVICE", "preview" } });
+	logger().info(text, { { "DEVICE", "preview" }, { "PREVIEW_URL", url } });
+}
+
+// The encoder first: its waiters (streams, snapshots) return at once, so
+// the server's connection threads end without their timeouts.
+void PreviewFeed::stop()
+{
+	encoder_.stop();
+	server_.stop();
+}
+
+void PreviewFeed::offer(const ColourFrame *colour, const DepthFrame *depth, const Gray8Image *seeds,
+			const PipelineOutput &output, uint64_t captureNs, uint64_t nowNs)
+{
+	if (!encoder_.running())
+		return;
+	auto give = [&](PreviewStage stage, const StageImage &image) {
+		if (encoder_.wanted(stage, nowNs))
+			encoder_.offer(stage, image, captureNs, nowNs);
+	};
+	if (colour && !colour->rgb.empty())
+		give(PreviewStage::Colour, { "", StageKind::Colour, &colour->rgb });
+	if (depth && !depth->depthMm.empty())
+		give(PreviewStage::Depth, { "", StageKind::Depth, nullptr, &depth->depthMm });
+	if (seeds && !seeds->empty())
+		give(PreviewStage::Seeds, { "", StageKind::Seeds, nullptr, nullptr, seeds });
+	if (!output.alpha.empty())
+		give(PreviewStage::Alpha, { "", StageKind::Mask, nullptr, nullptr, &output.alpha });
+	if (!output.composite.empty())
+		give(PreviewStage::Composite, { "", StageKind::Colour, &output.composite });
+}
+
+void PreviewFeed::setStatus(const PreviewStatus &status)
+{
+	if (server_.running())
+		server_.setStatus(status);
+}
+
+} // namespace depthkey

@@ -1,0 +1,39 @@
+// The daemon's side of the live preview: starts the JPEG worker and the HTTP
+// server from [preview] (restarting them when a reload changes it), hands
+// them the stages somebody watches, and the status once a second. A preview
+// that cannot start is logged (DEVICE=preview) and the daemon runs on.
+#pragma once
+
+#include "algo/frames.hpp"
+#include "algo/pipeline.hpp"
+#include "config/settings.hpp"
+#include "hal/preview/preview_encoder.hpp"
+#include "hal/preview/preview_server.hpp"
+
+namespace depthkey {
+
+class PreviewFeed
+{
+public:
+	~PreviewFeed() { stop(); }
+
+	void apply(const PreviewSettings &settings);
+	void stop();
+	bool running() const { return server_.running(); }
+	int port() const { return server_.port(); }
+
+	// Per frame, on the event loop: copies the stages that are watched (and
+	// due under the worker's frame cap). Null stages are left out. Without
+	// a watcher this is five atomic loads.
+	void offer(const ColourFrame *colour, const DepthFrame *depth, const Gray8Image *seeds,
+		   const PipelineOutput &output, uint64_t captureNs, uint64_t nowNs);
+	void setStatus(const PreviewStatus &status);
+
+private:
+	PreviewSettings settings_;
+	bool applied_ = false;
+	PreviewEncoder encoder_;
+	PreviewServer server_;
+};
+
+} // namespace depthkey

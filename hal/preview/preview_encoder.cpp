@@ -1,0 +1,181 @@
+#include "hal/preview/preview_encoder.hpp"
+
+#include "hal/preview/jpeg_encoder.hpp"
+#include "hal/preview/stage_picture.hpp"
+
+#include <ctime>
+
+namespace depthkey {
+
+namespace {
+
+// The worker also wakes this often, so a missed notify costs at most this.
+constexpr auto kIdleWake = std::chrono::milliseconds(50);
+
+uint64_t threadCpuNs()
+{
+	timespec ts{};
+	clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+	return static_cast<uint64_t>(ts.tv_sec) * 1'000'000'000u + static_cast<uint64_t>(ts.tv_nsec);
+}
+
+} // namespace
+
+int PreviewEncoder::start(int quality, int maxFps)
+{
+	stop();
+	quality_ = quality;
+	periodNs_ = maxFps > 0 ? 1'000'000'000u / static_cast<uint64_t>(maxFps) : 0;
+	stopping_ = false;
+	thread_ = std::thread([this] { run(); });
+	return 0;
+}
+
+void PreviewEncoder::stop()
+{
+	if (!thread_.joinable())
+		return;
+	stopping_ = true;
+	wake_.notify_all();
+	thread_.join();
+	for (Slot &slot : slots_) {
+		std::lock_guard lock(slot.outMutex);
+		slot.newFrame.notify_all();
+	}
+}
+
+bool PreviewEncoder::wanted(PreviewStage stage, uint64_t nowNs) const
+{
+	const Slot &slot = slots_[static_cast<size_t>(stage)];
+	if (slot.watchers.load(std::memory_order_relaxed) == 0 || !thread_.joinable())
+		return false;
+	return nowNs - slot.lastOfferNs.load(std::memory_order_relaxed) >= periodNs_;
+}
+
+bool PreviewEncoder::offer(PreviewStage stage, const StageImage &image, uint64_t captureNs, uint64_t nowNs)
+{
+	Slot &slot = slots_[static_cast<size_t>(stage)];
+	std::unique_lock lock(slot.mutex, std::try_to_lock);
+	if (!lock.owns_lock()) {
+		skipped_++;
+		return false;
+	}
+	slot.kind = image.kind;
+	// Same-size copies reuse the slot's buffers: no allocation once warm.
+	if (image.rgb)
+		slot.rgb = *image.rgb;
+	if (image.depth)
+		slot.depth = *image.depth;
+	if (image.gray)
+		slot.gray = *image.gray;
+	if (!image.rgb)
+		slot.rgb.resize(0, 0);
+	if (!image.depth)
+		slot.depth.resize(0, 0);
+	if (!image.gray)
+		slot.gray.resize(0, 0);
+	slot.captureNs = captureNs;
+	slot.fresh = true;
+	lock.unlock();
+	slot.lastOfferNs.store(nowNs, std::memory_order_relaxed);
+	pending_ = true;
+	wake_.notify_one();
+	return true;
+}
+
+void PreviewEncoder::watch(PreviewStage stage)
+{
+	slots_[static_cast<size_t>(stage)].watchers++;
+}
+
+void PreviewEncoder::unwatch(PreviewStage stage)
+{
+	slots_[static_cast<size_t>(stage)].watchers--;
+}
+
+int PreviewEncoder::watchers(PreviewStage stage) const
+{
+	return slots_[static_cast<size_t>(stage)].watchers.load();
+}
+
+std::shared_ptr<const EncodedFrame> PreviewEncoder::waitNewer(PreviewStage stage, uint64_t after,
+							       std::chrono::milliseconds timeout)
+{
+	Slot &slot = slots_[static_cast<size_t>(stage)];
+	std::unique_lock lock(slot.outMutex);
+	slot.newFrame.wait_for(lock, timeout, [&] { return stopping_ || slot.sequence > after; });
+	if (stopping_ || slot.sequence <= after)
+		return nullptr;
+	return slot.latest;
+}
+
+PreviewEncoderStats PreviewEncoder::stats() const
+{
+	return { encoded_.load(), skipped_.load(), encodeNs_.load(), failed_.load() };
+}
+
+// Swaps the slot's images with the worker's: O(1) under the lock, so that
+// offer() almost never finds it taken.
+bool PreviewEncoder::take(Slot &slot, Work &work)
+{
+	std::lock_guard lock(slot.mutex);
+	if (!slot.fresh)
+		return false;
+	std::swap(slot.rgb, work.rgb);
+	std::swap(slot.depth, work.depth);
+	std::swap(slot.gray, work.gray);
+	work.kind = slot.kind;
+	work.captureNs = slot.captureNs;
+	slot.fresh = false;
+	return true;
+}
+
+void PreviewEncoder::encode(Slot &slot, const Work &work, JpegEncoder &jpeg)
+{
+	StageImage stage{ "", work.kind, work.rgb.empty() ? nullptr : &work.rgb,
+			  work.depth.empty() ? nullptr : &work.depth, work.gray.empty() ? nullptr : &work.gray };
+	cv::Mat picture = drawStagePicture(stage);
+	if (picture.empty())
+		return;
+	// A new buffer per JPEG (on this thread, at most max_fps per stage):
+	// HTTP threads may still be sending the previous one.
+	auto frame = std::make_shared<EncodedFrame>();
+	const JpegPixels pixels = picture.channels() == 1 ? JpegPixels::Gray : JpegPixels::Bgr;
+	if (jpeg.encode(picture.data, picture.cols, picture.rows, static_cast<int>(picture.step), pixels, quality_,
+			frame->jpeg) < 0) {
+		failed_++;
+		return;
+	}
+	frame->captureNs = work.captureNs;
+	frame->width = picture.cols;
+	frame->height = picture.rows;
+	{
+		std::lock_guard lock(slot.outMutex);
+		frame->sequence = ++slot.sequence;
+		slot.latest = std::move(frame);
+	}
+	slot.newFrame.notify_all();
+	encoded_++;
+}
+
+void PreviewEncoder::run()
+{
+	JpegEncoder jpeg;
+	Work work;
+	while (!stopping_) {
+		{
+			std::unique_lock lock(wakeMutex_);
+			wake_.wait_for(lock, kIdleWake, [this] { return stopping_ || pending_; });
+		}
+		pending_ = false;
+		for (Slot &slot : slots_) {
+			if (stopping_ || !take(slot, work))
+				continue;
+			uint64_t t0 = threadCpuNs();
+			encode(slot, work, jpeg);
+			encodeNs_ += threadCpuNs() - t0;
+		}
+	}
+}
+
+} // namespace depthkey

@@ -1,0 +1,103 @@
+// The preview's JPEG worker: the event loop hands it copies of the stage
+// images somebody watches; its own thread draws them (hal/preview/
+// stage_picture.hpp) and encodes them with TurboJPEG; HTTP threads wait for
+// the newest JPEG of a stage.
+//
+// Nothing here makes the pipeline wait: offer() only try-locks its stage's
+// slot and skips the frame when the worker is taking the previous one, and
+// the worker encodes whichever frame is newest when it gets to it (a slow
+// encoder loses frames). With no watcher, wanted() is false and the event
+// loop copies nothing: the frame cost is one atomic load per stage.
+#pragma once
+
+#include "algo/image.hpp"
+#include "algo/stage_images.hpp"
+#include "hal/preview/preview_stages.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <memory>
+#include <mutex>
+#include <thread>
+
+namespace depthkey {
+
+struct PreviewEncoderStats {
+	uint64_t encoded = 0;     // JPEGs made
+	uint64_t skipped = 0;     // offers refused: the worker held the slot
+	uint64_t encodeNs = 0;    // thread time spent drawing and encoding
+	uint64_t failed = 0;      // encodes that failed
+};
+
+class PreviewEncoder
+{
+public:
+	PreviewEncoder() = default;
+	~PreviewEncoder() { stop(); }
+	PreviewEncoder(const PreviewEncoder &) = delete;
+	PreviewEncoder &operator=(const PreviewEncoder &) = delete;
+
+	// quality 10..100; maxFps caps how often each stage is taken.
+	int start(int quality, int maxFps);
+	void stop();
+	bool running() const { return thread_.joinable(); }
+
+	// Event loop side. wanted(): somebody watches the stage and its last
+	// copy is at least 1 / maxFps old (nowNs CLOCK_MONOTONIC).
+	bool wanted(PreviewStage stage, uint64_t nowNs) const;
+	// Copies the image into the stage's slot; false (frame skipped) when
+	// the worker holds the slot. Never waits.
+	bool offer(PreviewStage stage, const StageImage &image, uint64_t captureNs, uint64_t nowNs);
+
+	// HTTP side. A watcher makes the stage encoded until it unwatches.
+	void watch(PreviewStage stage);
+	void unwatch(PreviewStage stage);
+	int watchers(PreviewStage stage) const;
+	// The newest JPEG of the stage with a sequence above `after`, waiting
+	// up to timeout; null on timeout or once stopped.
+	std::shared_ptr<const EncodedFrame> waitNewer(PreviewStage stage, uint64_t after,
+						      std::chrono::milliseconds timeout);
+	PreviewEncoderStats stats() const;
+
+private:
+	struct Slot {
+		std::mutex mutex;       // between offer() and the worker only
+		bool fresh = false;
+		StageKind kind = StageKind::Colour;
+		RgbImage rgb;
+		Gray16Image depth;
+		Gray8Image gray;
+		uint64_t captureNs = 0;
+		std::atomic<int> watchers{ 0 };
+		std::atomic<uint64_t> lastOfferNs{ 0 };
+		// The published JPEG, guarded by outMutex.
+		std::mutex outMutex;
+		std::condition_variable newFrame;
+		std::shared_ptr<EncodedFrame> latest;
+		uint64_t sequence = 0;
+	};
+	struct Work {
+		StageKind kind = StageKind::Colour;
+		RgbImage rgb;
+		Gray16Image depth;
+		Gray8Image gray;
+		uint64_t captureNs = 0;
+	};
+
+	void run();
+	bool take(Slot &slot, Work &work);
+	void encode(Slot &slot, const Work &work, class JpegEncoder &jpeg);
+
+	std::array<Slot, kPreviewStageCount> slots_;
+	std::thread thread_;
+	std::mutex wakeMutex_;
+	std::condition_variable wake_;
+	std::atomic<bool> pending_{ false };
+	std::atomic<bool> stopping_{ false };
+	int quality_ = 80;
+	uint64_t periodNs_ = 0;
+	std::atomic<uint64_t> encoded_{ 0 }, skipped_{ 0 }, encodeNs_{ 0 }, failed_{ 0 };
+};
+
+} // namespace depthkey

@@ -1,0 +1,80 @@
+// The live preview's HTTP server, on libmicrohttpd (a thread per connection,
+// its own threads; nothing runs on the daemon's event loop):
+//
+//   /                    the page (hal/preview/preview_page.hpp)
+//   /stream/STAGE.mjpg   multipart/x-mixed-replace MJPEG, as uStreamer serves it
+//   /snapshot/STAGE.jpg  the next JPEG of the stage
+//   /status.json         the status (hal/preview/preview_status.hpp)
+//   /metrics             the same in Prometheus' text format
+//
+// A stream's thread sends the newest JPEG whenever its socket takes more,
+// so a slow client skips frames and nobody waits for it. At most maxClients
+// streams run at once (more get 503); connections idle for 10 s are closed.
+// With a password file every request needs HTTP basic authentication.
+#pragma once
+
+#include "config/listen_address.hpp"
+#include "hal/preview/password_file.hpp"
+#include "hal/preview/preview_encoder.hpp"
+#include "hal/preview/preview_status.hpp"
+
+#include <atomic>
+#include <memory>
+#include <mutex>
+#include <set>
+#include <string>
+
+struct MHD_Daemon;
+struct MHD_Connection;
+
+namespace depthkey {
+
+struct PreviewServerOptions {
+	ListenAddress address;
+	std::string passwordFile; // "" = no authentication (loopback only)
+	int maxClients = 8;
+};
+
+class PreviewServer
+{
+public:
+	PreviewServer() = default;
+	~PreviewServer() { stop(); }
+	PreviewServer(const PreviewServer &) = delete;
+	PreviewServer &operator=(const PreviewServer &) = delete;
+
+	// Binds and starts serving the encoder's stages. Refuses an address off
+	// loopback without a password file. Returns 0 or a negative errno with
+	// error saying what and where.
+	int start(const PreviewServerOptions &options, PreviewEncoder &encoder, std::string &error);
+	void stop();
+	bool running() const { return daemon_ != nullptr; }
+	int port() const { return port_; } // the bound port (options may ask for 0)
+
+	// A copy for the HTTP threads; called once a second by the daemon.
+	void setStatus(const PreviewStatus &status);
+	int streams() const { return streams_.load(); }
+
+	// Used by the C callbacks of libmicrohttpd.
+	int handle(MHD_Connection *connection, const char *url, const char *method);
+
+private:
+	bool authorised(MHD_Connection *connection);
+	PreviewStatus status();
+
+	MHD_Daemon *daemon_ = nullptr;
+	PreviewEncoder *encoder_ = nullptr;
+	PasswordFile passwords_;
+	bool needAuth_ = false;
+	int port_ = 0;
+	int maxClients_ = 8;
+	std::atomic<int> streams_{ 0 };
+	std::mutex statusMutex_;
+	PreviewStatus status_;
+	// "user:password" pairs verified already: a hash costs milliseconds and
+	// the page asks every second. Bounded; cleared on restart.
+	std::mutex authMutex_;
+	std::set<std::string> verified_;
+};
+
+} // namespace depthkey

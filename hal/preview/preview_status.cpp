@@ -1,0 +1,122 @@
+#include "hal/preview/preview_status.hpp"
+
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+namespace depthkey {
+
+std::string previewStatusJson(const PreviewStatus &s)
+{
+	nlohmann::json devices = nlohmann::json::array();
+	for (const PreviewDevice &d : s.devices)
+		devices.push_back({ { "role", d.role },
+				    { "name", d.name },
+				    { "state", d.state },
+				    { "fps", d.fps },
+				    { "frames", d.frames },
+				    { "dropped", d.dropped },
+				    { "faults", d.faults },
+				    { "reconnects", d.reconnects } });
+	nlohmann::json j = {
+		{ "uptime_s", s.uptimeS },
+		{ "devices", devices },
+		{ "output", { { "fps", s.outputFps }, { "frames", s.published } } },
+		{ "pairing", { { "paired", s.paired }, { "unpaired", s.unpaired } } },
+		{ "calibration", { { "calibrated", s.calibrated }, { "file", s.calibrationFile } } },
+		{ "depth_latency_ms", s.depthLatencyMs },
+		{ "readers", { { "composite", s.readersComposite }, { "lecturer", s.readersLecturer } } },
+		{ "preview",
+		  { { "clients", s.previewClients },
+		    { "encoded", s.previewEncoded },
+		    { "skipped", s.previewSkipped },
+		    { "encode_ms", s.previewEncodeMs } } },
+	};
+	// Names come from config and devices: replace anything not UTF-8.
+	return j.dump(1, '\t', false, nlohmann::json::error_handler_t::replace) + "\n";
+}
+
+namespace {
+
+// A label value per the exposition format: \, " and newline escaped.
+std::string labelValue(const std::string &text)
+{
+	std::string out;
+	for (char c : text) {
+		if (c == '\\' || c == '"')
+			out += '\\';
+		if (c == '\n') {
+			out += "\\n";
+			continue;
+		}
+		out += c;
+	}
+	return out;
+}
+
+class Exposition
+{
+public:
+	void family(const char *name, const char *type, const char *help)
+	{
+		text_ += std::string("# HELP ") + name + " " + help + "\n# TYPE " + name + " " + type + "\n";
+	}
+	void sample(const char *name, const std::string &labels, double value)
+	{
+		char number[64];
+		std::snprintf(number, sizeof(number), "%.17g", value);
+		text_ += name;
+		if (!labels.empty())
+			text_ += "{" + labels + "}";
+		text_ += std::string(" ") + number + "\n";
+	}
+	std::string text_;
+};
+
+} // namespace
+
+std::string previewStatusMetrics(const PreviewStatus &s)
+{
+	Exposition e;
+	auto perDevice = [&](const char *name, const char *type, const char *help, auto value) {
+		e.family(name, type, help);
+		for (const PreviewDevice &d : s.devices)
+			e.sample(name, "device=\"" + labelValue(d.role) + "\",name=\"" + labelValue(d.name) + "\"",
+				 static_cast<double>(value(d)));
+	};
+	perDevice("depthkey_device_frames_total", "counter", "Frames a camera delivered.",
+		  [](const PreviewDevice &d) { return d.frames; });
+	perDevice("depthkey_device_dropped_frames_total", "counter", "Bad frames refused.",
+		  [](const PreviewDevice &d) { return d.dropped; });
+	perDevice("depthkey_device_faults_total", "counter", "Times a camera was lost.",
+		  [](const PreviewDevice &d) { return d.faults; });
+	perDevice("depthkey_device_reconnects_total", "counter", "Times a lost camera streamed again.",
+		  [](const PreviewDevice &d) { return d.reconnects; });
+	perDevice("depthkey_device_fps", "gauge", "Frames per second over the last second.",
+		  [](const PreviewDevice &d) { return d.fps; });
+	perDevice("depthkey_device_up", "gauge", "1 while the camera streams.",
+		  [](const PreviewDevice &d) { return d.state == "streaming" ? 1 : 0; });
+	e.family("depthkey_output_frames_total", "counter", "Frames published to shared memory.");
+	e.sample("depthkey_output_frames_total", "", static_cast<double>(s.published));
+	e.family("depthkey_output_fps", "gauge", "Frames published per second.");
+	e.sample("depthkey_output_fps", "", s.outputFps);
+	e.family("depthkey_paired_frames_total", "counter", "Colour frames keyed with a depth frame.");
+	e.sample("depthkey_paired_frames_total", "", static_cast<double>(s.paired));
+	e.family("depthkey_unpaired_frames_total", "counter", "Colour frames without a depth frame near in time.");
+	e.sample("depthkey_unpaired_frames_total", "", static_cast<double>(s.unpaired));
+	e.family("depthkey_depth_latency_seconds", "gauge", "Depth frame arrival after its capture time.");
+	e.sample("depthkey_depth_latency_seconds", "", s.depthLatencyMs / 1000.0);
+	e.family("depthkey_calibrated", "gauge", "1 when a calibration fitting the cameras is loaded.");
+	e.sample("depthkey_calibrated", "", s.calibrated ? 1 : 0);
+	e.family("depthkey_readers", "gauge", "Readers of a shared-memory stream (heartbeats).");
+	e.sample("depthkey_readers", "stream=\"composite\"", s.readersComposite);
+	e.sample("depthkey_readers", "stream=\"lecturer\"", s.readersLecturer);
+	e.family("depthkey_preview_clients", "gauge", "Preview streams being sent.");
+	e.sample("depthkey_preview_clients", "", s.previewClients);
+	e.family("depthkey_preview_jpegs_total", "counter", "Preview JPEGs encoded.");
+	e.sample("depthkey_preview_jpegs_total", "", static_cast<double>(s.previewEncoded));
+	e.family("depthkey_uptime_seconds", "gauge", "Seconds since depthkeyd started.");
+	e.sample("depthkey_uptime_seconds", "", s.uptimeS);
+	return e.text_;
+}
+
+} // namespace depthkey

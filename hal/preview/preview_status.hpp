@@ -1,0 +1,43 @@
+// What the preview page, /status.json and /metrics report. The daemon fills
+// it on its status tick (once a second) and hands a copy to the server; the
+// server formats it on its own threads.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace depthkey {
+
+struct PreviewDevice {
+	std::string role;        // "colour" or "depth"
+	std::string name;        // backend name, e.g. "sim-colour", "sr2"
+	std::string state;       // "streaming", "lost", ...
+	double fps = 0;
+	uint64_t frames = 0;     // delivered
+	uint64_t dropped = 0;    // bad frames refused
+	uint64_t faults = 0;     // times it was lost
+	uint64_t reconnects = 0; // times it streamed again after being lost
+};
+
+struct PreviewStatus {
+	double uptimeS = 0;
+	std::vector<PreviewDevice> devices;
+	double outputFps = 0;
+	uint64_t published = 0;          // frames published to shared memory
+	uint64_t paired = 0, unpaired = 0;
+	bool calibrated = false;
+	std::string calibrationFile;
+	double depthLatencyMs = 0;       // arrival after the depth frame's capture time
+	int readersComposite = 0, readersLecturer = 0;
+	// Filled in by the server when it formats.
+	int previewClients = 0;
+	uint64_t previewEncoded = 0, previewSkipped = 0;
+	double previewEncodeMs = 0;      // mean thread time per JPEG
+};
+
+std::string previewStatusJson(const PreviewStatus &status);
+// Prometheus' text exposition format (version 0.0.4).
+std::string previewStatusMetrics(const PreviewStatus &status);
+
+} // namespace depthkey

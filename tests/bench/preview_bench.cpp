@@ -1,0 +1,71 @@
+// What the live preview costs: one JPEG of a 640x480 stage on the preview's
+// worker thread (drawn and encoded as the page gets it), the event loop's
+// copy of a watched stage, and the per-frame check when nobody watches (the
+// daemon's frame cost without a client).
+#include "daemon/preview_feed.hpp"
+#include "hal/preview/jpeg_encoder.hpp"
+#include "hal/preview/stage_picture.hpp"
+#include "hal/sim/lecture_simulator.hpp"
+
+#include <benchmark/benchmark.h>
+
+using namespace depthkey;
+
+namespace {
+
+ColourFrame simulatedColour()
+{
+	LectureSimulator sim;
+	sim.configure(SimSettings{}, 640, 480);
+	ColourFrame frame;
+	sim.renderColour(3.0, frame, nullptr);
+	return frame;
+}
+
+// range(0): 0 = the colour/composite picture (4:2:0), 1 = the alpha matte (grey).
+void BM_PreviewJpeg640x480(benchmark::State &state)
+{
+	const ColourFrame frame = simulatedColour();
+	Gray8Image alpha(640, 480, 0);
+	for (int y = 120; y < 420; y++)
+		for (int x = 250; x < 390; x++)
+			alpha.at(x, y) = 255;
+	const bool grey = state.range(0) != 0;
+	StageImage stage{ "", grey ? StageKind::Mask : StageKind::Colour, grey ? nullptr : &frame.rgb, nullptr,
+			  grey ? &alpha : nullptr };
+	JpegEncoder jpeg;
+	std::vector<uint8_t> out;
+	for (auto _ : state) {
+		cv::Mat picture = drawStagePicture(stage);
+		jpeg.encode(picture.data, picture.cols, picture.rows, static_cast<int>(picture.step),
+			    grey ? JpegPixels::Gray : JpegPixels::Bgr, 80, out);
+		benchmark::DoNotOptimize(out.data());
+	}
+	state.counters["jpeg_bytes"] = static_cast<double>(out.size());
+}
+BENCHMARK(BM_PreviewJpeg640x480)->Arg(0)->Arg(1)->ArgName("grey")->Unit(benchmark::kMillisecond);
+
+// The event loop's side per frame: range(0) = 0 nobody watches (five atomic
+// loads), 1 the composite is watched (one 640x480 copy into its slot).
+void BM_PreviewOffer(benchmark::State &state)
+{
+	PreviewEncoder encoder;
+	encoder.start(80, 1000000); // no frame cap: every offer copies
+	if (state.range(0))
+		encoder.watch(PreviewStage::Composite);
+	const ColourFrame frame = simulatedColour();
+	StageImage stage{ "", StageKind::Colour, &frame.rgb };
+	uint64_t now = 1'000'000'000u;
+	for (auto _ : state) {
+		now += 40'000'000u;
+		for (size_t s = 0; s < kPreviewStageCount; s++)
+			if (encoder.wanted(static_cast<PreviewStage>(s), now))
+				encoder.offer(static_cast<PreviewStage>(s), stage, now, now);
+	}
+	if (state.range(0))
+		encoder.unwatch(PreviewStage::Composite);
+	encoder.stop();
+}
+BENCHMARK(BM_PreviewOffer)->Arg(0)->Arg(1)->ArgName("watched")->Unit(benchmark::kMicrosecond);
+
+} // namespace

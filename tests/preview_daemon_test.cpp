@@ -1,0 +1,226 @@
+// The preview page of the real depthkeyd, fetched with curl: the page, three
+// decodable JPEGs of a stream, the status fields, /metrics; clients that stop
+// reading do not slow the frame rate; a wrong or missing password is
+// refused; a password file others can read or an address off loopback
+// without one is refused clearly while the daemon runs on. The server binds
+// an ephemeral port (listen = "127.0.0.1:0"), read from the daemon's log.
+#include "hal/depthkey_shm.h"
+#include "hal/v4l2/mjpeg_decoder.hpp"
+#include "tests/daemon_process.hpp"
+#include "tests/preview_test_util.hpp"
+
+#include <gtest/gtest.h>
+
+#include <arpa/inet.h>
+#include <crypt.h>
+#include <netinet/in.h>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <thread>
+
+using namespace std::chrono_literals;
+using depthkey::test::curlGet;
+using depthkey::test::DaemonProcess;
+using depthkey::test::mjpegParts;
+
+namespace {
+
+class PreviewDaemon : public ::testing::Test
+{
+protected:
+	void SetUp() override { prefix_ = "/depthkey-pv-" + std::to_string(getpid()); }
+	void TearDown() override
+	{
+		shm_unlink((prefix_ + ".composite").c_str());
+		shm_unlink((prefix_ + ".lecturer").c_str());
+	}
+
+	std::string config(const std::string &preview) const
+	{
+		return "[colour]\nwidth = 320\nheight = 240\n[output]\ncomposite_name = \"" + prefix_ +
+		       ".composite\"\nlecturer_name = \"" + prefix_ + ".lecturer\"\n[preview]\n" + preview;
+	}
+
+	// Starts the daemon and returns the preview's base URL ("" on failure).
+	std::string start(const std::string &preview)
+	{
+		const std::string path = daemon_.writeFile("depthkey.toml", config(preview));
+		if (!daemon_.start({ "--config", path }) || !daemon_.waitForNotify("READY=1", 10s))
+			return "";
+		std::smatch m;
+		const std::string log = daemon_.log();
+		if (!std::regex_search(log, m, std::regex("preview page at (http://127\\.0\\.0\\.1:[0-9]+)/")))
+			return "";
+		return m[1];
+	}
+
+	uint64_t latestFrame()
+	{
+		dk_shm_reader r;
+		uint64_t frame = 0;
+		if (dk_shm_open((prefix_ + ".composite").c_str(), &r) == 0) {
+			dk_shm_latest(&r, &frame);
+			dk_shm_close(&r);
+		}
+		return frame;
+	}
+
+	DaemonProcess daemon_;
+	std::string prefix_;
+};
+
+// Asks for a stream and never reads it.
+int stalledClient(const std::string &url, const std::string &path)
+{
+	int port = std::stoi(url.substr(url.rfind(':') + 1));
+	int fd = socket(AF_INET, SOCK_STREAM, 0);
+	int small = 4096;
+	setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &small, sizeof(small));
+	sockaddr_in a{};
+	a.sin_family = AF_INET;
+	a.sin_port = htons(static_cast<uint16_t>(port));
+	inet_pton(AF_INET, "127.0.0.1", &a.sin_addr);
+	if (connect(fd, reinterpret_cast<sockaddr *>(&a), sizeof(a)) != 0)
+		return -1;
+	const std::string request = "GET " + path + " HTTP/1.1\r\nHost: x\r\n\r\n";
+	send(fd, request.data(), request.size(), 0);
+	return fd;
+}
+
+} // namespace
+
+TEST_F(PreviewDaemon, PageStreamStatusAndMetrics)
+{
+	const std::string url = start("listen = \"127.0.0.1:0\"\n");
+	ASSERT_FALSE(url.empty()) << daemon_.log();
+
+	depthkey::test::HttpReply page = curlGet(url + "/");
+	EXPECT_EQ(page.code, 200);
+	EXPECT_NE(page.body.find("<title>depthkey preview</title>"), std::string::npos);
+	EXPECT_NE(page.body.find("src=\"/stream/composite.mjpg\""), std::string::npos);
+
+	depthkey::test::HttpReply stream = curlGet(url + "/stream/composite.mjpg", "--max-time 2");
+	EXPECT_EQ(stream.code, 200);
+	std::vector<std::string> parts = mjpegParts(stream.body);
+	ASSERT_GE(parts.size(), 3u);
+	depthkey::MjpegDecoder decoder;
+	for (size_t i = 0; i < 3; i++) {
+		depthkey::RgbImage rgb;
+		EXPECT_EQ(decoder.decode(reinterpret_cast<const uint8_t *>(parts[i].data()), parts[i].size(), 320, 240,
+					 rgb),
+			  0)
+			<< "part " << i << ": " << decoder.lastError();
+	}
+	// Depth is the ToF image, enlarged 4x to be seen.
+	std::vector<std::string> depth = mjpegParts(curlGet(url + "/stream/depth.mjpg", "--max-time 1.5").body);
+	ASSERT_GE(depth.size(), 1u);
+	depthkey::RgbImage rgb;
+	EXPECT_EQ(decoder.decode(reinterpret_cast<const uint8_t *>(depth[0].data()), depth[0].size(), 640, 496, rgb), 0)
+		<< decoder.lastError();
+
+	std::this_thread::sleep_for(1200ms); // one status tick after the streams
+	depthkey::test::HttpReply status = curlGet(url + "/status.json");
+	ASSERT_EQ(status.code, 200);
+	EXPECT_EQ(status.contentType, "application/json");
+	nlohmann::json j = nlohmann::json::parse(status.body);
+	ASSERT_EQ(j["devices"].size(), 2u);
+	EXPECT_EQ(j["devices"][0]["role"], "colour");
+	EXPECT_EQ(j["devices"][0]["name"], "sim-colour");
+	EXPECT_EQ(j["devices"][0]["state"], "streaming");
+	EXPECT_GT(j["devices"][0]["fps"].get<double>(), 10.0);
+	EXPECT_EQ(j["devices"][1]["name"], "sim-depth");
+	EXPECT_GT(j["devices"][1]["frames"].get<int>(), 0);
+	EXPECT_GT(j["output"]["frames"].get<int>(), 25);
+	EXPECT_GT(j["pairing"]["paired"].get<int>(), 0);
+	EXPECT_EQ(j["calibration"]["calibrated"], false);
+	EXPECT_GT(j["depth_latency_ms"].get<double>(), 0.0);
+	EXPECT_EQ(j["readers"]["composite"], 0);
+	EXPECT_GT(j["preview"]["encoded"].get<int>(), 3);
+
+	depthkey::test::HttpReply metrics = curlGet(url + "/metrics");
+	EXPECT_EQ(metrics.code, 200);
+	EXPECT_EQ(metrics.contentType, "text/plain; version=0.0.4; charset=utf-8");
+	EXPECT_TRUE(std::regex_search(metrics.body,
+				      std::regex("\ndepthkey_device_frames_total\\{device=\"colour\",name=\"sim-colour\"\\} [1-9]")))
+		<< metrics.body;
+	EXPECT_NE(metrics.body.find("# TYPE depthkey_device_reconnects_total counter"), std::string::npos);
+	EXPECT_NE(metrics.body.find("depthkey_readers{stream=\"lecturer\"} 0"), std::string::npos);
+}
+
+TEST_F(PreviewDaemon, ClientsThatStopReadingDoNotSlowTheFrameRate)
+{
+	const std::string url = start("listen = \"127.0.0.1:0\"\n");
+	ASSERT_FALSE(url.empty()) << daemon_.log();
+	// The rate is compared with the daemon's own just before, so that a
+	// machine busy with other work does not decide the test.
+	auto publishedFps = [this] {
+		const uint64_t before = latestFrame();
+		const auto t0 = std::chrono::steady_clock::now();
+		std::this_thread::sleep_for(3s);
+		const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+		return static_cast<double>(latestFrame() - before) / seconds;
+	};
+	const double alone = publishedFps();
+	std::vector<int> stalled;
+	for (const char *stage : { "composite", "colour", "alpha" })
+		stalled.push_back(stalledClient(url, std::string("/stream/") + stage + ".mjpg"));
+	std::this_thread::sleep_for(1500ms); // their socket buffers are full by now
+	const double fps = publishedFps();
+	EXPECT_GE(fps, 0.8 * alone) << "alone " << alone << " fps, with three clients that stopped reading " << fps;
+	EXPECT_GT(alone, 5.0) << "the daemon hardly ran";
+	// The stalled clients are still connected and a new one is served.
+	EXPECT_EQ(mjpegParts(curlGet(url + "/stream/composite.mjpg", "--max-time 1").body).empty(), false);
+	for (int fd : stalled)
+		close(fd);
+}
+
+TEST_F(PreviewDaemon, WrongOrMissingPasswordIsRefused)
+{
+	char salt[CRYPT_GENSALT_OUTPUT_SIZE];
+	ASSERT_NE(crypt_gensalt_rn("$y$", 0, nullptr, 0, salt, sizeof(salt)), nullptr);
+	crypt_data data{};
+	const std::string file = daemon_.writeFile("preview.passwd", std::string("tech:") + crypt_r("chalk", salt, &data) + "\n");
+	chmod(file.c_str(), 0600);
+	const std::string url = start("listen = \"127.0.0.1:0\"\npassword_file = \"" + file + "\"\n");
+	ASSERT_FALSE(url.empty()) << daemon_.log();
+	EXPECT_NE(daemon_.log().find("(basic authentication)"), std::string::npos);
+	EXPECT_EQ(curlGet(url + "/").code, 401);
+	EXPECT_EQ(curlGet(url + "/stream/composite.mjpg", "--max-time 1").code, 401);
+	EXPECT_EQ(curlGet(url + "/status.json", "-u tech:board").code, 401);
+	EXPECT_EQ(curlGet(url + "/metrics", "-u admin:chalk").code, 401);
+	EXPECT_EQ(curlGet(url + "/status.json", "-u tech:chalk").code, 200);
+}
+
+TEST_F(PreviewDaemon, APasswordFileOthersCanReadIsRefusedAndTheDaemonRunsOn)
+{
+	const std::string file = daemon_.writeFile("preview.passwd", "tech:$y$j9T$abc$def\n");
+	chmod(file.c_str(), 0644);
+	const std::string path = daemon_.writeFile(
+		"depthkey.toml", config("listen = \"127.0.0.1:0\"\npassword_file = \"" + file + "\"\n"));
+	ASSERT_TRUE(daemon_.start({ "--config", path }));
+	ASSERT_TRUE(daemon_.waitForNotify("READY=1", 10s)) << daemon_.log();
+	EXPECT_NE(daemon_.log().find("preview server not started: " + file +
+				     ": mode 0644 lets other users read or change the password hashes; chmod 600 it"),
+		  std::string::npos)
+		<< daemon_.log();
+	EXPECT_EQ(daemon_.log().find("preview page at"), std::string::npos);
+	const uint64_t before = latestFrame();
+	std::this_thread::sleep_for(500ms);
+	EXPECT_GT(latestFrame(), before) << "frames go on without the preview";
+}
+
+TEST_F(PreviewDaemon, AnAddressOffLoopbackWithoutPasswordIsAConfigError)
+{
+	const std::string path = daemon_.writeFile("depthkey.toml", config("listen = \"0.0.0.0:8080\"\n"));
+	ASSERT_TRUE(daemon_.start({ "--check-config", path }));
+	int status = daemon_.waitExit(5s);
+	ASSERT_TRUE(WIFEXITED(status));
+	EXPECT_EQ(WEXITSTATUS(status), 1);
+	EXPECT_NE(daemon_.log().find("preview.listen: '0.0.0.0:8080' is reachable from the network: set "
+				     "preview.password_file"),
+		  std::string::npos)
+		<< daemon_.log();
+}

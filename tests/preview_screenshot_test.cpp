@@ -1,0 +1,86 @@
+// The preview page as a browser shows it: headless Chromium (Debian's
+// chromium package) screenshots the page of a running depthkeyd, and the
+// picture must show the stage images, not empty boxes or broken-image icons.
+// Skipped, and reported so, where chromium is not installed.
+#include "tests/daemon_process.hpp"
+#include "tests/shell_command.hpp"
+
+#include <gtest/gtest.h>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <regex>
+#include <sys/mman.h>
+
+using namespace std::chrono_literals;
+using depthkey::test::DaemonProcess;
+
+namespace {
+
+// The page lays the five stages out in a grid of 4:3 boxes; at 1280 pixels
+// wide that is three columns of about 410 pixels from x = 12, rows from
+// y = 40. The inner part of each box is sampled.
+cv::Rect stageBox(int index)
+{
+	const int width = 411, height = 308, gapX = 421, gapY = 342;
+	const int x = 12 + (index % 3) * gapX, y = 40 + (index / 3) * gapY;
+	return cv::Rect(x + width / 5, y + height / 5, width * 3 / 5, height * 3 / 5);
+}
+
+} // namespace
+
+TEST(PreviewScreenshot, ChromiumShowsTheStageImages)
+{
+	int status = 0;
+	depthkey::test::run("command -v chromium", status);
+	if (status != 0)
+		GTEST_SKIP() << "chromium is not installed: the screenshot test is skipped";
+
+	DaemonProcess daemon;
+	const std::string prefix = "/depthkey-shot-" + std::to_string(getpid());
+	const std::string config = daemon.writeFile(
+		"depthkey.toml", "[output]\ncomposite_name = \"" + prefix + ".composite\"\nlecturer_name = \"" + prefix +
+					 ".lecturer\"\n[preview]\nlisten = \"127.0.0.1:0\"\n");
+	ASSERT_TRUE(daemon.start({ "--config", config }));
+	ASSERT_TRUE(daemon.waitForNotify("READY=1", 10s)) << daemon.log();
+	std::smatch m;
+	const std::string log = daemon.log();
+	ASSERT_TRUE(std::regex_search(log, m, std::regex("preview page at (http://127\\.0\\.0\\.1:[0-9]+/)"))) << log;
+
+	const std::string shot = daemon.dir() + "/page.png";
+	// --timeout: the streams never finish loading; take the picture after 8 s.
+	std::string out = depthkey::test::run("timeout 60 chromium --headless=new --no-sandbox --disable-gpu "
+					      "--disable-background-networking --disable-component-update --no-first-run "
+					      "--hide-scrollbars --window-size=1280,1100 --timeout=8000 --screenshot=" +
+						      shot + " " + std::string(m[1]),
+					      status);
+	shm_unlink((prefix + ".composite").c_str());
+	shm_unlink((prefix + ".lecturer").c_str());
+	ASSERT_EQ(status, 0) << out;
+	cv::Mat page = cv::imread(shot, cv::IMREAD_COLOR);
+	ASSERT_FALSE(page.empty()) << out;
+	ASSERT_EQ(page.cols, 1280);
+
+	// Every box but the alpha matte (black while nobody is keyed) shows a
+	// picture: not the black of a box without one (nor of a broken-image
+	// icon). Colour and depth always have texture (board, desk, noise); the
+	// composite and seeds may be flat while the lecturer is out of view.
+	const char *names[] = { "composite", "colour", "depth", "seeds" };
+	for (int i = 0; i < 4; i++) {
+		cv::Mat box = page(stageBox(i));
+		cv::Scalar mean, deviation;
+		cv::meanStdDev(box, mean, deviation);
+		EXPECT_GT(mean[0] + mean[1] + mean[2], 60.0) << names[i] << " shows no picture in " << shot;
+		if (i == 1 || i == 2) {
+			EXPECT_GT(deviation[0] + deviation[1] + deviation[2], 30.0)
+				<< names[i] << " looks flat in " << shot << " (mean " << mean << ")";
+		}
+	}
+	// And the status table was filled in from /status.json: its first row
+	// names the colour camera (dark page, light text: bright pixels below
+	// the grid).
+	cv::Mat table = page(cv::Rect(12, 740, 600, 200));
+	cv::Mat bright;
+	cv::inRange(table, cv::Scalar(150, 150, 150), cv::Scalar(255, 255, 255), bright);
+	EXPECT_GT(cv::countNonZero(bright), 500) << "no status text under the images in " << shot;
+}

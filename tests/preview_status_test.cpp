@@ -1,0 +1,85 @@
+// /status.json and /metrics from one PreviewStatus: JSON that parses back to
+// the same figures, and Prometheus text with HELP/TYPE per family and
+// escaped labels.
+#include "hal/preview/preview_status.hpp"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+using namespace depthkey;
+
+namespace {
+
+PreviewStatus sample()
+{
+	PreviewStatus s;
+	s.uptimeS = 12.5;
+	s.devices = { { "colour", "sim-colour", "streaming", 25.0, 300, 1, 0, 0 },
+		      { "depth", "sr2 \"usb\"\\1", "lost", 0.0, 90, 4, 2, 1 } };
+	s.outputFps = 24.5;
+	s.published = 299;
+	s.paired = 280;
+	s.unpaired = 19;
+	s.calibrated = true;
+	s.calibrationFile = "/var/lib/depthkey/calibration.toml";
+	s.depthLatencyMs = 40;
+	s.readersComposite = 1;
+	s.previewClients = 2;
+	return s;
+}
+
+} // namespace
+
+TEST(PreviewStatus, JsonCarriesEveryFigure)
+{
+	nlohmann::json j = nlohmann::json::parse(previewStatusJson(sample()));
+	ASSERT_EQ(j["devices"].size(), 2u);
+	EXPECT_EQ(j["devices"][0]["name"], "sim-colour");
+	EXPECT_EQ(j["devices"][0]["fps"], 25.0);
+	EXPECT_EQ(j["devices"][1]["name"], "sr2 \"usb\"\\1");
+	EXPECT_EQ(j["devices"][1]["state"], "lost");
+	EXPECT_EQ(j["devices"][1]["faults"], 2);
+	EXPECT_EQ(j["devices"][1]["reconnects"], 1);
+	EXPECT_EQ(j["devices"][1]["dropped"], 4);
+	EXPECT_EQ(j["output"]["frames"], 299);
+	EXPECT_EQ(j["pairing"]["paired"], 280);
+	EXPECT_EQ(j["pairing"]["unpaired"], 19);
+	EXPECT_EQ(j["calibration"]["calibrated"], true);
+	EXPECT_EQ(j["depth_latency_ms"], 40.0);
+	EXPECT_EQ(j["readers"]["composite"], 1);
+	EXPECT_EQ(j["readers"]["lecturer"], 0);
+	EXPECT_EQ(j["preview"]["clients"], 2);
+}
+
+TEST(PreviewStatus, MetricsAreInTheExpositionFormat)
+{
+	const std::string text = previewStatusMetrics(sample());
+	EXPECT_NE(text.find("# TYPE depthkey_device_frames_total counter\n"), std::string::npos);
+	EXPECT_NE(text.find("depthkey_device_frames_total{device=\"colour\",name=\"sim-colour\"} 300\n"),
+		  std::string::npos);
+	EXPECT_NE(text.find("depthkey_device_faults_total{device=\"depth\",name=\"sr2 \\\"usb\\\"\\\\1\"} 2\n"),
+		  std::string::npos)
+		<< text;
+	EXPECT_NE(text.find("depthkey_device_up{device=\"depth\",name=\"sr2 \\\"usb\\\"\\\\1\"} 0\n"), std::string::npos);
+	EXPECT_NE(text.find("# TYPE depthkey_output_fps gauge\ndepthkey_output_fps 24.5\n"), std::string::npos);
+	EXPECT_NE(text.find("depthkey_readers{stream=\"composite\"} 1\n"), std::string::npos);
+	EXPECT_NE(text.find("depthkey_depth_latency_seconds 0.040000000000000001\n"), std::string::npos);
+
+	// Every sample line belongs to a family declared before it, once.
+	std::istringstream lines(text);
+	std::string line, family;
+	std::set<std::string> declared;
+	while (std::getline(lines, line)) {
+		ASSERT_FALSE(line.empty());
+		if (line.rfind("# TYPE ", 0) == 0) {
+			family = line.substr(7, line.find(' ', 7) - 7);
+			EXPECT_TRUE(declared.insert(family).second) << family << " declared twice";
+		} else if (line[0] != '#') {
+			EXPECT_EQ(line.rfind(family, 0), 0u) << line << " outside " << family;
+		}
+	}
+	EXPECT_GE(declared.size(), 15u);
+}

@@ -1,0 +1,65 @@
+// Helpers for the preview server tests: curl as the client, and the JPEG
+// parts of a multipart MJPEG stream.
+#pragma once
+
+#include "tests/shell_command.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+namespace depthkey::test {
+
+struct HttpReply {
+	int code = 0;            // HTTP status, 0 when curl failed
+	std::string contentType;
+	std::string body;
+};
+
+// curl URL with extra options (e.g. "-u tech:secret", "--max-time 2");
+// a stream cut by --max-time still returns what arrived.
+inline HttpReply curlGet(const std::string &url, const std::string &options = "")
+{
+	static int counter = 0;
+	const std::string file = "/tmp/depthkey-curl-" + std::to_string(getpid()) + "-" + std::to_string(counter++);
+	int status;
+	std::string out = run("curl -s -o " + file + " -w '%{http_code} %{content_type}' " + options + " '" + url + "'",
+			      status);
+	HttpReply reply;
+	std::istringstream head(out);
+	head >> reply.code;
+	std::getline(head >> std::ws, reply.contentType);
+	std::ifstream in(file, std::ios::binary);
+	std::stringstream body;
+	body << in.rdbuf();
+	reply.body = body.str();
+	unlink(file.c_str());
+	return reply;
+}
+
+// The whole JPEG parts of a multipart stream (Content-Length framed, as
+// uStreamer sends them); a part cut short at the end is left out.
+inline std::vector<std::string> mjpegParts(const std::string &stream)
+{
+	std::vector<std::string> parts;
+	size_t at = 0;
+	const std::string key = "Content-Length: ";
+	while ((at = stream.find(key, at)) != std::string::npos) {
+		size_t end = stream.find("\r\n", at);
+		size_t body = stream.find("\r\n\r\n", at);
+		if (end == std::string::npos || body == std::string::npos)
+			break;
+		size_t length = std::stoul(stream.substr(at + key.size(), end - at - key.size()));
+		body += 4;
+		if (body + length > stream.size())
+			break;
+		parts.push_back(stream.substr(body, length));
+		at = body + length;
+	}
+	return parts;
+}
+
+} // namespace depthkey::test
