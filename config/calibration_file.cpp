@@ -282,18 +282,16 @@ CalibrationResult parseCalibration(std::string_view text, const std::string &sou
 	int end = lastLine(text);
 	for (auto &[key, message] : missing.items)
 		result.errors.push_back({ sourceName, end, 1, key, message });
+	capErrors(result.errors, 0, sourceName);
 	return result;
 }
 
 CalibrationResult loadCalibration(const std::string &path)
 {
-	std::string text;
-	const char *step;
-	if (int ret = readTextFile(path, text, step); ret < 0) {
+	std::string text, why;
+	if (readTextFile(path, kMaxConfigFileBytes, text, why) < 0) {
 		CalibrationResult result;
-		result.errors.push_back({ path, 0, 0, "",
-					  std::string("cannot ") + step + " calibration file: " +
-						  std::strerror(-ret) });
+		result.errors.push_back({ path, 0, 0, "", "cannot read calibration file: " + why });
 		return result;
 	}
 	return parseCalibration(text, path);
