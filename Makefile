@@ -36,7 +36,7 @@ endif
 BIN := $(BUILD)/bin
 OBJ := $(BUILD)/obj
 
-PKGS := libsystemd tomlplusplus libusb-1.0 libgpiodcxx libturbojpeg eigen3
+PKGS := libsystemd tomlplusplus libusb-1.0 libgpiodcxx libturbojpeg libpng eigen3
 OPENCV_LIBS := -lopencv_calib3d -lopencv_features2d -lopencv_imgcodecs -lopencv_imgproc -lopencv_core
 
 # Recursive (=) so pkg-config runs only when a recipe needs it, i.e. after `deps`.

@@ -1,8 +1,11 @@
 #include "hal/recording/sequence_reader.hpp"
 
+#include "config/frame_limits.hpp"
+#include "config/text_file.hpp"
+#include "hal/image_file_reader.hpp"
+
 #include <cerrno>
 #include <cstring>
-#include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
@@ -40,13 +43,15 @@ template<> struct PixelType<uint8_t> { static constexpr int cv = CV_8UC1; static
 int SequenceReader::readIndex(Stream stream, bool required)
 {
 	std::string path = dir_ + "/" + kStreams[stream] + ".txt";
-	std::ifstream in(path);
-	if (!in) {
-		if (!required)
-			return 0;
-		error_ = path + ": cannot open";
-		return -ENOENT;
+	std::string text, why;
+	int ret = readTextFile(path, kMaxIndexFileBytes, text, why);
+	if (ret == -ENOENT && !required)
+		return 0;
+	if (ret < 0) {
+		error_ = path + ": cannot read: " + why;
+		return ret;
 	}
+	std::istringstream in(text);
 	std::string line;
 	int lineNumber = 0;
 	while (std::getline(in, line)) {
@@ -118,23 +123,13 @@ int SequenceReader::readImage(Stream stream, size_t i, Image<Pixel> &out)
 		return -ERANGE;
 	}
 	std::string path = dir_ + "/" + index[i].file;
-	// Checked first: OpenCV would only log a warning of its own.
-	if (access(path.c_str(), R_OK) < 0) {
-		int err = errno;
-		error_ = path + ": cannot open: " + std::strerror(err);
-		return -err;
-	}
+	// Bounded by the largest frame the config allows: a PNG claiming
+	// 20000x20000 pixels is refused before anything is allocated for it.
 	cv::Mat mat;
-	try {
-		mat = cv::imread(path, cv::IMREAD_UNCHANGED);
-	} catch (const cv::Exception &e) {
-		error_ = path + ": " + e.what();
-		return -EIO;
-	}
-	if (mat.empty()) {
-		error_ = path + ": missing or not an image";
-		return -EIO;
-	}
+	if (int ret = decodeImageFile(path, { kMaxFrameWidth, kMaxFrameHeight }, cv::IMREAD_UNCHANGED,
+				      mat, error_);
+	    ret < 0)
+		return ret;
 	if (mat.type() != PixelType<Pixel>::cv) {
 		error_ = path + ": is not " + PixelType<Pixel>::name;
 		return -EINVAL;
