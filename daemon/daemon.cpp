@@ -176,6 +176,8 @@ void Daemon::onDeviceStatus(const std::string &device, const DeviceStatus &statu
 
 void Daemon::onDepthFrame(const DepthFrame &frame)
 {
+	depthWidth_ = frame.depthMm.width();
+	depthHeight_ = frame.depthMm.height();
 	pairer_.addDepth(frame); // same-size copy: no allocation after the first
 	recorder_.recordDepth(frame);
 	depthFrames_++;
@@ -185,6 +187,8 @@ void Daemon::onColourFrame(const ColourFrame &frame)
 {
 	colourFrames_++;
 	haveColour_ = true;
+	colourWidth_ = frame.rgb.width();
+	colourHeight_ = frame.rgb.height();
 	recorder_.recordColour(frame);
 	lastColourNs_ = frame.timestampNs;
 	uint32_t flags = DK_SHM_FLAG_COLOUR_OK;
@@ -297,9 +301,12 @@ void Daemon::onStatusTick()
 		      static_cast<unsigned long long>(ds.droppedFrames),
 		      static_cast<unsigned long long>(ps.paired),
 		      static_cast<unsigned long long>(ps.unpaired), rate(published_, publishedAtStatus_),
-		      summary().calibrated ? "calibrated" : "not calibrated (identity mapping)");
+		      summary().calibrated ? "calibrated"
+		      : calibrated_	   ? "calibration for other frame sizes (identity mapping)"
+					   : "not calibrated (identity mapping)");
 	statusAtUs_ = now;
 	notifier_.status(text);
+	checkCalibrationFits();
 	checkRecording();
 	// In a terminal there is no STATUS= to look at: say it every few seconds.
 	if (!underSystemd_ && ++statusTicks_ % kTerminalStatusEvery == 0)
@@ -358,7 +365,15 @@ void Daemon::apply(const Settings &next)
 			   previous.colour.height != next.colour.height;
 	if (!(previous.output == next.output) || sizeChanged) {
 		sink_->close();
-		openOutput();
+		// An [output] that cannot be opened (a group we may not chgrp to,
+		// a name another user holds) must not cost the recorder its stream.
+		if (openOutput() < 0 && !(previous.output == next.output)) {
+			logger().error("output settings not applied: " + sink_->describeError() +
+					       "; keeping the previous [output]",
+				       { { "DEVICE", "shm" }, { "CONFIG_FILE", configPath_ } });
+			settings_.output = previous.output;
+			openOutput();
+		}
 	}
 	if (!(previous.colour == next.colour) || !(previous.depth == next.depth) ||
 	    !(previous.sim == next.sim)) {

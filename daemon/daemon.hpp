@@ -66,6 +66,7 @@ private:
 	void stopCameras();
 	void apply(const Settings &settings);
 	void configurePipeline();
+	void checkCalibrationFits();
 	void publish(uint64_t captureNs, uint32_t flags);
 	void publishNoSignal(uint64_t nowNs);
 	bool depthFresh(uint64_t nowNs) const;
@@ -96,6 +97,7 @@ private:
 	Pipeline pipeline_;
 	MappingModel mapping_;     // the last good calibration, or identity
 	bool calibrated_ = false;
+	int colourWidth_ = 0, colourHeight_ = 0, depthWidth_ = 0, depthHeight_ = 0; // last frames
 	PipelineOutput output_;
 	FramePairer pairer_;
 	ColourFrame colourLatest_;
