@@ -73,7 +73,7 @@ int Daemon::start(const Settings &settings)
 	loop_.addSignal(SIGUSR1, [this] { writeSnapshot(); }, sigusr1_);
 
 	startedUs_ = statusAtUs_ = loop_.nowUs();
-	configurePipeline();
+	configurePipeline(loadPipelineFiles(settings_));
 	configurePairing();
 	underSystemd_ = std::getenv("NOTIFY_SOCKET") != nullptr;
 
@@ -330,32 +330,63 @@ void Daemon::onWatchdogTick()
 	notifier_.watchdog();
 }
 
+// Reading and parsing (the config, then the calibration and board image it
+// names) run on reloadJob_'s thread: a hostile 1 MiB file takes longer to
+// parse than several frame periods (background_job.hpp). The loop thread
+// only applies the result. A SIGHUP during a reload is folded into one more
+// reload after it.
 void Daemon::reload()
 {
+	if (reloadJob_.running()) {
+		reloadAgain_ = true;
+		return;
+	}
 	notifier_.reloading();
-	ConfigResult result = loadConfig(configPath_);
+	auto next = std::make_shared<PendingReload>();
+	int ret = reloadJob_.start(
+		loop_,
+		[next, path = configPath_, overrides = overrides_] {
+			next->config = loadConfig(path);
+			if (next->config.ok()) {
+				overrides.applyTo(next->config.settings);
+				next->files = loadPipelineFiles(next->config.settings);
+			}
+		},
+		[this, next] { finishReload(*next); });
+	if (ret < 0) {
+		logger().error("config reload failed: cannot start a worker: " + errnoText(ret),
+			       { { "CONFIG_FILE", configPath_ } });
+		notifier_.reloaded();
+	}
+}
+
+void Daemon::finishReload(const PendingReload &next)
+{
+	const ConfigResult &result = next.config;
 	if (!result.ok()) {
 		for (const ConfigError &e : result.errors)
 			logger().error("config reload refused: " + e.toString(),
 				       { { "CONFIG_FILE", e.file }, { "CONFIG_LINE", std::to_string(e.line) } });
 		logger().warning("keeping the previous configuration", { { "CONFIG_FILE", configPath_ } });
-		notifier_.reloaded();
-		return;
+	} else {
+		apply(result.settings, next.files);
+		logger().info("configuration reloaded", { { "CONFIG_FILE", configPath_ } });
 	}
-	overrides_.applyTo(result.settings);
-	apply(result.settings);
 	notifier_.reloaded();
-	logger().info("configuration reloaded", { { "CONFIG_FILE", configPath_ } });
+	if (reloadAgain_) {
+		reloadAgain_ = false;
+		reload();
+	}
 }
 
-void Daemon::apply(const Settings &next)
+void Daemon::apply(const Settings &next, const PipelineFiles &files)
 {
 	Settings previous = settings_;
 	settings_ = next;
 	LogLevel level;
 	if (parseLogLevel(next.daemon.logLevel, level))
 		logger().setLevel(level);
-	configurePipeline();
+	configurePipeline(files);
 	configurePairing();
 	if (previous.daemon.recordDir != next.daemon.recordDir ||
 	    previous.daemon.recordCompression != next.daemon.recordCompression)

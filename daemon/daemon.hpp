@@ -5,9 +5,12 @@
 
 #include "algo/frame_pairer.hpp"
 #include "algo/pipeline.hpp"
+#include "config/config_loader.hpp"
 #include "config/settings.hpp"
+#include "daemon/background_job.hpp"
 #include "daemon/device_factory.hpp"
 #include "daemon/frame_recorder.hpp"
+#include "daemon/pipeline_setup.hpp"
 #include "daemon/service_notifier.hpp"
 #include "daemon/test_fault.hpp"
 #include "hal/camera.hpp"
@@ -52,7 +55,13 @@ private:
 	void onFrameTick();
 	void onStatusTick();
 	void onWatchdogTick();
+	// What a reload's worker read, for the loop thread to apply.
+	struct PendingReload {
+		ConfigResult config;
+		PipelineFiles files;
+	};
 	void reload();
+	void finishReload(const PendingReload &next);
 	void writeSnapshot();
 	int writeStages(const std::string &dir, const std::string &prefix, const DepthFrame *depth);
 	void maybeWritePreview(uint64_t frameNumber, const DepthFrame &depth);
@@ -64,8 +73,8 @@ private:
 	int openOutput();
 	void startCameras();
 	void stopCameras();
-	void apply(const Settings &settings);
-	void configurePipeline();
+	void apply(const Settings &settings, const PipelineFiles &files);
+	void configurePipeline(const PipelineFiles &files);
 	void checkCalibrationFits();
 	void publish(uint64_t captureNs, uint32_t flags);
 	void publishNoSignal(uint64_t nowNs);
@@ -88,6 +97,8 @@ private:
 
 	EventSource sigterm_, sigint_, sighup_, sigusr1_, sigusr2_;
 	EventSource frameTick_, statusTick_, watchdogTick_;
+	BackgroundJob reloadJob_;
+	bool reloadAgain_ = false;
 
 	FrameRecorder recorder_;
 	uint64_t recorderDropsLogged_ = 0;

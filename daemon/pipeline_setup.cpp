@@ -101,9 +101,9 @@ void configurePipeline(Pipeline &pipeline, const Settings &settings, const Mappi
 	pipeline.configure(settings, mapping);
 }
 
-void Daemon::configurePipeline()
+// files were read for settings_ (on the reload worker, or at start).
+void Daemon::configurePipeline(const PipelineFiles &files)
 {
-	PipelineFiles files = loadPipelineFiles(settings_);
 	const std::string &path = settings_.mapping.calibrationFile;
 	if (path.empty()) {
 		calibrated_ = false;
