@@ -62,6 +62,13 @@ int decodeImageFile(const std::string &path, const ImageLimits &limits, int cvFl
 		error = path + ": cannot read: " + why;
 		return ret;
 	}
+	return decodeImageBytes(bytes, path, limits, cvFlags, out, error);
+}
+
+int decodeImageBytes(const std::string &bytes, const std::string &path, const ImageLimits &limits,
+		     int cvFlags, cv::Mat &out, std::string &error)
+{
+	out.release();
 	const auto *data = reinterpret_cast<const unsigned char *>(bytes.data());
 	int width = 0, height = 0;
 	if (!imageHeaderSize(data, bytes.size(), width, height)) {
@@ -75,7 +82,7 @@ int decodeImageFile(const std::string &path, const ImageLimits &limits, int cvFl
 		return -EFBIG;
 	}
 	try {
-		cv::Mat raw(1, static_cast<int>(bytes.size()), CV_8UC1, bytes.data());
+		cv::Mat raw(1, static_cast<int>(bytes.size()), CV_8UC1, const_cast<char *>(bytes.data()));
 		out = cv::imdecode(raw, cvFlags);
 	} catch (const cv::Exception &e) {
 		out.release();

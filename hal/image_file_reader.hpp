@@ -21,6 +21,10 @@ struct ImageLimits {
 int decodeImageFile(const std::string &path, const ImageLimits &limits, int cvFlags, cv::Mat &out,
 		    std::string &error);
 
+// The same for a file's bytes already in memory; name is what errors say.
+int decodeImageBytes(const std::string &bytes, const std::string &name, const ImageLimits &limits,
+		     int cvFlags, cv::Mat &out, std::string &error);
+
 // The header's dimensions of a PNG or JPEG in memory; false when it is
 // neither (or the header is corrupt). For decodeImageFile and the fuzzers.
 bool imageHeaderSize(const unsigned char *data, size_t size, int &width, int &height);

@@ -40,6 +40,36 @@ template<> struct PixelType<uint8_t> { static constexpr int cv = CV_8UC1; static
 
 } // namespace
 
+int parseSequenceIndex(std::string_view text, const std::string &path,
+		       std::vector<SequenceEntry> &index, std::string &error)
+{
+	std::istringstream in{ std::string(text) };
+	std::string line;
+	int lineNumber = 0;
+	while (std::getline(in, line)) {
+		lineNumber++;
+		if (line.empty() || line[0] == '#')
+			continue;
+		std::istringstream fields(line);
+		std::string stamp, file;
+		SequenceEntry entry;
+		if (!(fields >> stamp >> file) || !parseTimestamp(stamp, entry.timestampNs)) {
+			error = path + ":" + std::to_string(lineNumber) + ": expected \"<seconds> <file>\"";
+			return -EINVAL;
+		}
+		if (!index.empty() && entry.timestampNs < index.back().timestampNs) {
+			error = path + ":" + std::to_string(lineNumber) + ": timestamp goes backwards";
+			return -EINVAL;
+		}
+		entry.file = file;
+		entry.sequence = sequenceFromName(file);
+		if (entry.sequence == 0)
+			entry.sequence = index.size() + 1;
+		index.push_back(entry);
+	}
+	return 0;
+}
+
 int SequenceReader::readIndex(Stream stream, bool required)
 {
 	std::string path = dir_ + "/" + kStreams[stream] + ".txt";
@@ -51,32 +81,7 @@ int SequenceReader::readIndex(Stream stream, bool required)
 		error_ = path + ": cannot read: " + why;
 		return ret;
 	}
-	std::istringstream in(text);
-	std::string line;
-	int lineNumber = 0;
-	while (std::getline(in, line)) {
-		lineNumber++;
-		if (line.empty() || line[0] == '#')
-			continue;
-		std::istringstream fields(line);
-		std::string stamp, file;
-		SequenceEntry entry;
-		if (!(fields >> stamp >> file) || !parseTimestamp(stamp, entry.timestampNs)) {
-			error_ = path + ":" + std::to_string(lineNumber) + ": expected \"<seconds> <file>\"";
-			return -EINVAL;
-		}
-		auto &index = index_[stream];
-		if (!index.empty() && entry.timestampNs < index.back().timestampNs) {
-			error_ = path + ":" + std::to_string(lineNumber) + ": timestamp goes backwards";
-			return -EINVAL;
-		}
-		entry.file = file;
-		entry.sequence = sequenceFromName(file);
-		if (entry.sequence == 0)
-			entry.sequence = index.size() + 1;
-		index.push_back(entry);
-	}
-	return 0;
+	return parseSequenceIndex(text, path, index_[stream], error_);
 }
 
 int SequenceReader::checkMatches(Stream stream, Stream owner)
