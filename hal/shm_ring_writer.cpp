@@ -161,16 +161,24 @@ int ShmRingWriter::createFresh(const std::string &name, unsigned int gid, const 
 	if (fd < 0)
 		return fail(-errno, "create",
 			    errno == EEXIST ? "created by someone else meanwhile: try again" : nullptr);
+	static constexpr const char *kChgrp = "chgrp to";
 	const char *step = nullptr;
+	struct stat st{};
+	// fchown only when the new object is not in the group yet: the packaged
+	// service's seccomp filter (~@privileged) refuses fchown even to our own
+	// group, and a fresh object already has our egid.
 	if (flock(fd, LOCK_EX | LOCK_NB) < 0)
 		step = "lock";
-	else if (fchown(fd, static_cast<uid_t>(-1), gid) < 0) {
-		step = "chgrp to";
-		detail_ = group.empty() ? std::to_string(gid) : group;
-	} else if (fchmod(fd, kMode) < 0)
+	else if (fstat(fd, &st) < 0)
+		step = "fstat";
+	else if (st.st_gid != gid && fchown(fd, static_cast<uid_t>(-1), gid) < 0)
+		step = kChgrp;
+	else if (fchmod(fd, kMode) < 0)
 		step = "chmod 0640";
 	if (step) {
-		int err = -errno;
+		int err = -errno; // before anything else may change errno
+		if (step == kChgrp)
+			detail_ = group.empty() ? std::to_string(gid) : group;
 		::close(fd);
 		shm_unlink(name.c_str());
 		return fail(err, step);
