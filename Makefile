@@ -12,6 +12,7 @@
 #   make install DESTDIR=... PREFIX=...
 #   make clean
 #   make SAN=1 ... build with AddressSanitizer + UndefinedBehaviorSanitizer (in build/san/)
+#   make SAN=thread ... build with ThreadSanitizer (in build/tsan/)
 #   make fuzz [FUZZ_SECONDS=N] [FUZZ_TARGETS="config image ..."]
 #                   build the libFuzzer harnesses (tests/fuzz/) with clang, ASan and
 #                   UBSan into build/fuzz/ and run each N seconds (default 30)
@@ -32,6 +33,12 @@ BUILDROOT ?= build
 ifeq ($(SAN),1)
 BUILD := $(BUILDROOT)/san
 SANFLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+else ifeq ($(SAN),thread)
+# ThreadSanitizer: every part with a thread (the recorder's worker, the
+# reload worker). halt_on_error: a race fails the test run.
+BUILD := $(BUILDROOT)/tsan
+SANFLAGS := -fsanitize=thread -fno-omit-frame-pointer
+export TSAN_OPTIONS ?= halt_on_error=1 second_deadlock_stack=1
 else
 BUILD := $(BUILDROOT)
 SANFLAGS :=
@@ -99,7 +106,7 @@ $(SIM_CALIBRATION): $(BIN)/depthkey-calibrate
 # when the VM cannot start).
 test: deps
 	@$(MAKE) --no-print-directory -j$(JOBS) check $(HIL_TOOLS)
-ifneq ($(SAN),1)
+ifeq ($(SAN),0)
 	@$(MAKE) --no-print-directory package-test
 endif
 	@tests/hil/run.sh $(BIN)
