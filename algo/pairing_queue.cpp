@@ -43,10 +43,7 @@ void PairingQueue::addColour(const ColourFrame &frame, uint64_t nowNs)
 
 bool PairingQueue::due(const Slot &slot, uint64_t nowNs) const
 {
-	if (count_ == slotCount_ || nowNs >= slot.deadlineNs)
-		return true;
-	int64_t newestNs;
-	return pairer_.newestNs(newestNs) && newestNs > static_cast<int64_t>(slot.frame.timestampNs);
+	return count_ == slotCount_ || nowNs >= slot.deadlineNs;
 }
 
 bool PairingQueue::next(uint64_t nowNs, Keying &out)

@@ -6,12 +6,16 @@
 // latency lets each colour frame be keyed with the depth frame captured just
 // before it and the one just after it (FramePairer::bracket).
 //
-// A held frame is due when a depth frame with a corrected time after its
-// capture has arrived, when it has waited delay_ms since it arrived, or
-// when the ring is full (a colour camera faster than configured). Frames
-// leave in arrival order with their own capture timestamps. The queue waits
-// on nothing but time: without a depth camera every frame leaves after the
-// delay, unpaired. delay 0 keys every frame as it arrives (lowest latency).
+// A held frame is due when it has waited delay_ms since it arrived, or when
+// the ring is full (a colour camera faster than configured); it is then
+// keyed with the depth frames around its capture that have come by then. A
+// constant delay, rather than leaving as soon as the later depth frame is
+// in, keeps the output as even as the input: a recorder or a virtual webcam
+// sees 25 frames a second, not a burst of three each time a depth frame
+// arrives. Frames leave in arrival order with their own capture
+// timestamps. The queue waits on nothing but time: without a depth camera
+// every frame leaves after the delay, unpaired. delay 0 keys every frame as
+// it arrives (lowest latency).
 //
 // The ring's frames are allocated once at their size; pushing a frame of the
 // same size copies into storage that is already there. Pure: times are

@@ -254,6 +254,7 @@ CalibrationResult parseCalibration(std::string_view text, const std::string &sou
 	int end = lastLineOf(text);
 	for (auto &[key, message] : missing.items)
 		result.errors.push_back({ sourceName, end, 1, key, message });
+	capErrors(result.errors, 0, sourceName);
 	return result;
 }
 

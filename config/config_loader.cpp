@@ -1,12 +1,15 @@
 // The depthkey config schema, one function per section, and file loading.
 #include "config/config_loader.hpp"
 
+#include <cerrno>
 #include <cstring>
+#include <grp.h>
 #include <limits>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include "config/listen_address.hpp"
+#include "config/frame_limits.hpp"
 #include "config/text_file.hpp"
 #include "config/toml_binder.hpp"
 
@@ -88,7 +91,11 @@ std::string checkShmName(std::string_view name)
 	return "";
 }
 
-// "" (the daemon's own group) or a plain group name, as useradd accepts.
+// "" (the daemon's own group) or a plain group name, as useradd accepts,
+// of a group this system has: a misspelt group would otherwise pass
+// --check-config and only fail when the output is opened (on a reload,
+// after the old output was dropped). Whether the daemon's user may chgrp to
+// it is checked at open, and a reload that cannot open keeps the old output.
 std::string checkGroupName(std::string_view group)
 {
 	if (group.empty())
@@ -97,7 +104,22 @@ std::string checkGroupName(std::string_view group)
 		     group.find_first_not_of("abcdefghijklmnopqrstuvwxyz"
 					     "ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_.-") ==
 			     std::string_view::npos;
-	return plain ? "" : "is not a group name";
+	if (!plain)
+		return "is not a group name";
+	// ShmRingWriter takes an all-digit name as a gid, so does the check.
+	if (group.find_first_not_of("0123456789") == std::string_view::npos)
+		return "";
+	std::string name(group);
+	std::vector<char> buffer(1024);
+	struct group entry{};
+	struct group *found = nullptr;
+	int ret;
+	while ((ret = getgrnam_r(name.c_str(), &entry, buffer.data(), buffer.size(), &found)) == ERANGE &&
+	       buffer.size() < (1u << 20))
+		buffer.resize(buffer.size() * 2);
+	if (ret)
+		return std::string("cannot be looked up: ") + std::strerror(ret);
+	return found ? "" : "is not a group on this system (see getent group)";
 }
 
 void bindDaemon(TomlSection &sec, DaemonSettings &s)
@@ -112,8 +134,8 @@ void bindColour(TomlSection &sec, ColourCameraSettings &s)
 {
 	sec.string("backend", s.backend, kColourBackends);
 	sec.string("device", s.device, checkVideoDevice);
-	sec.integer("width", s.width, 16, 1920);
-	sec.integer("height", s.height, 16, 1080);
+	sec.integer("width", s.width, 16, kMaxFrameWidth);
+	sec.integer("height", s.height, 16, kMaxFrameHeight);
 	sec.integer("fps", s.fps, 1, 60);
 	sec.string("pixel_format", s.pixelFormat, kColourFormats);
 	sec.integer("timeout_ms", s.timeoutMs, 100, 10000);
@@ -153,8 +175,8 @@ void bindDepth(TomlSection &sec, DepthCameraSettings &s)
 			    "intensity_low must be less than intensity_high");
 	sec.tables("sr2_register", [&](TomlSection &element, size_t) { bindSr2Register(element, s); });
 	sec.string("device", s.device, checkVideoDevice);
-	sec.integer("width", s.width, 16, 1920);
-	sec.integer("height", s.height, 16, 1080);
+	sec.integer("width", s.width, 16, kMaxFrameWidth);
+	sec.integer("height", s.height, 16, kMaxFrameHeight);
 	sec.string("pixel_format", s.pixelFormat, kDepthFormats);
 	sec.number("scale_mm", s.scaleMm, 0.01, 100.0);
 }
@@ -417,13 +439,10 @@ ConfigResult parseConfig(std::string_view text, const std::string &sourceName)
 
 ConfigResult loadConfig(const std::string &path)
 {
-	std::string text;
-	const char *step;
-	if (int ret = readTextFile(path, text, step); ret < 0) {
+	std::string text, why;
+	if (readTextFile(path, kMaxConfigFileBytes, text, why) < 0) {
 		ConfigResult result;
-		result.errors.push_back({ path, 0, 0, "",
-					  std::string("cannot ") + step + " config file: " +
-						  std::strerror(-ret) });
+		result.errors.push_back({ path, 0, 0, "", "cannot read config file: " + why });
 		return result;
 	}
 	return parseConfig(text, path);

@@ -35,9 +35,10 @@ int lastLineOf(std::string_view text)
 
 bool readToolFile(const std::string &path, const char *what, std::string &text, ConfigError &error)
 {
-	const char *step;
-	if (int ret = readTextFile(path, text, step); ret < 0) {
-		error = { path, 0, 0, "", std::string("cannot ") + step + " " + what + " file: " + std::strerror(-ret) };
+	// Regular files only, size-capped before reading (config/text_file.hpp).
+	std::string why;
+	if (readTextFile(path, kMaxConfigFileBytes, text, why) < 0) {
+		error = { path, 0, 0, "", std::string("cannot read ") + what + " file: " + why };
 		return false;
 	}
 	return true;

@@ -89,15 +89,13 @@ TomlBindResult bindToml(std::string_view text, const std::string &file,
 		return result;
 	}
 
-	TomlSection section(root, "", file, result);
+	size_t omitted = 0;
+	TomlSection section(root, "", file, result, omitted);
 	schema(section);
 	section.reportUnknown();
 
 	// Tables iterate in key order; a technician reads the file top down.
-	std::stable_sort(result.errors.begin(), result.errors.end(),
-			 [](const ConfigError &a, const ConfigError &b) {
-				 return std::pair(a.line, a.column) < std::pair(b.line, b.column);
-			 });
+	capErrors(result.errors, omitted, file);
 	return result;
 }
 
@@ -121,6 +119,16 @@ void TomlSection::error(const toml::source_region &where, std::string_view key,
 	result_.errors.push_back({ file_, static_cast<int>(where.begin.line),
 				   static_cast<int>(where.begin.column), dotted(key),
 				   std::move(message) });
+	// Keep memory bounded however many errors the file has: now and then
+	// only the earliest are kept (capErrors() sorts them into file order).
+	constexpr size_t kTrimAt = 16 * kMaxReportedErrors;
+	if (result_.errors.size() >= kTrimAt) {
+		size_t before = result_.errors.size();
+		capErrors(result_.errors, 0, file_);
+		if (!result_.errors.empty() && result_.errors.back().omitted)
+			result_.errors.pop_back();
+		omitted_ += before - result_.errors.size();
+	}
 }
 
 std::string TomlSection::dotted(std::string_view key) const
@@ -341,11 +349,11 @@ bool TomlSection::table(std::string_view key, const TomlSchema &schema)
 	if (!table)
 		return wrongType(key, *node, "a table ([" + dotted(key) + "])");
 
-	size_t before = result_.errors.size();
-	TomlSection section(*table, dotted(key), file_, result_);
+	size_t before = errorCount();
+	TomlSection section(*table, dotted(key), file_, result_, omitted_);
 	schema(section);
 	section.reportUnknown();
-	return result_.errors.size() == before;
+	return errorCount() == before;
 }
 
 bool TomlSection::tables(std::string_view key,
@@ -358,7 +366,7 @@ bool TomlSection::tables(std::string_view key,
 	if (!array)
 		return wrongType(key, *node, "an array of tables ([[" + dotted(key) + "]])");
 
-	size_t before = result_.errors.size();
+	size_t before = errorCount();
 	for (size_t i = 0; i < array->size(); i++) {
 		const toml::node &element = *array->get(i);
 		std::string name = std::string(key) + '[' + std::to_string(i) + ']';
@@ -367,11 +375,11 @@ bool TomlSection::tables(std::string_view key,
 			wrongType(name, element, "a table");
 			continue;
 		}
-		TomlSection section(*table, dotted(name), file_, result_);
+		TomlSection section(*table, dotted(name), file_, result_, omitted_);
 		schema(section, i);
 		section.reportUnknown();
 	}
-	return result_.errors.size() == before;
+	return errorCount() == before;
 }
 
 void TomlSection::require(bool ok, std::string_view key, std::string_view message)

@@ -42,7 +42,9 @@ using TomlSchema = std::function<void(TomlSection &root)>;
 using StringCheck = std::function<std::string(std::string_view value)>;
 
 struct TomlBindResult {
-	std::vector<ConfigError> errors;        // in file order
+	// In file order, at most kMaxReportedErrors of them plus a closing
+	// "and N more errors" entry (config_error.hpp).
+	std::vector<ConfigError> errors;
 	std::vector<std::string> absent;        // dotted keys bound but not in the file (defaults apply)
 };
 
@@ -107,8 +109,9 @@ private:
 				       const TomlSchema &);
 
 	TomlSection(const toml::table &table, std::string path,
-		    const std::string &file, TomlBindResult &result)
-		: table_(table), path_(std::move(path)), file_(file), result_(result)
+		    const std::string &file, TomlBindResult &result, size_t &omitted)
+		: table_(table), path_(std::move(path)), file_(file), result_(result),
+		  omitted_(omitted)
 	{
 	}
 
@@ -123,11 +126,13 @@ private:
 		   std::string message);
 	std::string dotted(std::string_view key) const;
 	void reportUnknown();
+	size_t errorCount() const { return result_.errors.size() + omitted_; }
 
 	const toml::table &table_;
 	std::string path_;
 	const std::string &file_;
 	TomlBindResult &result_;
+	size_t &omitted_;       // errors dropped while binding (bounded memory)
 	std::vector<std::string> known_;
 };
 

@@ -80,7 +80,7 @@ int Daemon::start(const Settings &settings)
 	loop_.addSignal(SIGUSR1, [this] { writeSnapshot(); }, sigusr1_);
 
 	startedUs_ = statusAtUs_ = loop_.nowUs();
-	configurePipeline();
+	configurePipeline(loadPipelineFiles(settings_));
 	configurePairing();
 	underSystemd_ = std::getenv("NOTIFY_SOCKET") != nullptr;
 
@@ -230,6 +230,8 @@ void Daemon::onDeviceStatus(const std::string &device, const DeviceStatus &statu
 
 void Daemon::onDepthFrame(const DepthFrame &frame)
 {
+	depthWidth_ = frame.depthMm.width();
+	depthHeight_ = frame.depthMm.height();
 	queue_.addDepth(frame); // same-size copy: no allocation after the first
 	latency_.addDepth(frame, frame.timestampNs);
 	recorder_.recordDepth(frame);
@@ -243,6 +245,8 @@ void Daemon::onColourFrame(const ColourFrame &frame)
 {
 	colourFrames_++;
 	haveColour_ = true;
+	colourWidth_ = frame.rgb.width();
+	colourHeight_ = frame.rgb.height();
 	recorder_.recordColour(frame);
 	lastColourNs_ = frame.timestampNs;
 	latency_.addColour(frame.rgb, frame.timestampNs);
@@ -425,10 +429,13 @@ void Daemon::onStatusTick()
 		      static_cast<unsigned long long>(ds.droppedFrames),
 		      static_cast<unsigned long long>(ps.paired),
 		      static_cast<unsigned long long>(ps.unpaired), offset, outputFps, readers_.total(),
-		      summary().calibrated ? "calibrated" : "not calibrated (identity mapping)",
+		      summary().calibrated ? "calibrated"
+		      : calibrated_	   ? "calibration for other frame sizes (identity mapping)"
+					   : "not calibrated (identity mapping)",
 		      board_.statusText().c_str());
 	statusAtUs_ = now;
 	notifier_.status(text);
+	checkCalibrationFits();
 	checkRecording();
 	// In a terminal there is no STATUS= to look at: say it every few seconds.
 	if (!underSystemd_ && ++statusTicks_ % kTerminalStatusEvery == 0)
@@ -452,32 +459,63 @@ void Daemon::onWatchdogTick()
 	notifier_.watchdog();
 }
 
+// Reading and parsing (the config, then the calibration and board image it
+// names) run on reloadJob_'s thread: a hostile 1 MiB file takes longer to
+// parse than several frame periods (background_job.hpp). The loop thread
+// only applies the result. A SIGHUP during a reload is folded into one more
+// reload after it.
 void Daemon::reload()
 {
+	if (reloadJob_.running()) {
+		reloadAgain_ = true;
+		return;
+	}
 	notifier_.reloading();
-	ConfigResult result = loadConfig(configPath_);
+	auto next = std::make_shared<PendingReload>();
+	int ret = reloadJob_.start(
+		loop_,
+		[next, path = configPath_, overrides = overrides_] {
+			next->config = loadConfig(path);
+			if (next->config.ok()) {
+				overrides.applyTo(next->config.settings);
+				next->files = loadPipelineFiles(next->config.settings);
+			}
+		},
+		[this, next] { finishReload(*next); });
+	if (ret < 0) {
+		logger().error("config reload failed: cannot start a worker: " + errnoText(ret),
+			       { { "CONFIG_FILE", configPath_ } });
+		notifier_.reloaded();
+	}
+}
+
+void Daemon::finishReload(const PendingReload &next)
+{
+	const ConfigResult &result = next.config;
 	if (!result.ok()) {
 		for (const ConfigError &e : result.errors)
 			logger().error("config reload refused: " + e.toString(),
 				       { { "CONFIG_FILE", e.file }, { "CONFIG_LINE", std::to_string(e.line) } });
 		logger().warning("keeping the previous configuration", { { "CONFIG_FILE", configPath_ } });
-		notifier_.reloaded();
-		return;
+	} else {
+		apply(result.settings, next.files);
+		logger().info("configuration reloaded", { { "CONFIG_FILE", configPath_ } });
 	}
-	overrides_.applyTo(result.settings);
-	apply(result.settings);
 	notifier_.reloaded();
-	logger().info("configuration reloaded", { { "CONFIG_FILE", configPath_ } });
+	if (reloadAgain_) {
+		reloadAgain_ = false;
+		reload();
+	}
 }
 
-void Daemon::apply(const Settings &next)
+void Daemon::apply(const Settings &next, const PipelineFiles &files)
 {
 	Settings previous = settings_;
 	settings_ = next;
 	LogLevel level;
 	if (parseLogLevel(next.daemon.logLevel, level))
 		logger().setLevel(level);
-	configurePipeline();
+	configurePipeline(files);
 	board_.apply(next);
 	configurePairing();
 	if (previous.daemon.recordDir != next.daemon.recordDir ||
@@ -488,7 +526,15 @@ void Daemon::apply(const Settings &next)
 			   previous.colour.height != next.colour.height;
 	if (!(previous.output == next.output) || sizeChanged) {
 		sink_->close();
-		openOutput();
+		// An [output] that cannot be opened (a group we may not chgrp to,
+		// a name another user holds) must not cost the recorder its stream.
+		if (openOutput() < 0 && !(previous.output == next.output)) {
+			logger().error("output settings not applied: " + sink_->describeError() +
+					       "; keeping the previous [output]",
+				       { { "DEVICE", "shm" }, { "CONFIG_FILE", configPath_ } });
+			settings_.output = previous.output;
+			openOutput();
+		}
 	}
 	if (!(previous.colour == next.colour) || !(previous.depth == next.depth) ||
 	    !(previous.sim == next.sim)) {

@@ -7,10 +7,13 @@
 #include "algo/pairing_queue.hpp"
 #include "algo/pipeline.hpp"
 #include "daemon/board_output.hpp"
+#include "config/config_loader.hpp"
 #include "config/settings.hpp"
+#include "daemon/background_job.hpp"
 #include "daemon/device_factory.hpp"
 #include "daemon/frame_recorder.hpp"
 #include "daemon/preview_feed.hpp"
+#include "daemon/pipeline_setup.hpp"
 #include "daemon/service_notifier.hpp"
 #include "daemon/test_fault.hpp"
 #include "hal/camera.hpp"
@@ -61,7 +64,13 @@ private:
 	void onStatusTick();
 	void onWatchdogTick();
 	void onReaderTick();
+	// What a reload's worker read, for the loop thread to apply.
+	struct PendingReload {
+		ConfigResult config;
+		PipelineFiles files;
+	};
 	void reload();
+	void finishReload(const PendingReload &next);
 	void writeSnapshot();
 	int writeStages(const std::string &dir, const std::string &prefix, const DepthFrame *depth);
 	void maybeWritePreview(uint64_t frameNumber, const DepthFrame &depth);
@@ -73,8 +82,9 @@ private:
 	int openOutput();
 	void startCameras();
 	void stopCameras();
-	void apply(const Settings &settings);
-	void configurePipeline();
+	void apply(const Settings &settings, const PipelineFiles &files);
+	void configurePipeline(const PipelineFiles &files);
+	void checkCalibrationFits();
 	void publish(uint64_t captureNs, uint32_t flags);
 	void publishNoSignal(uint64_t nowNs);
 	bool depthFresh(uint64_t nowNs) const;
@@ -102,6 +112,8 @@ private:
 	EventSource sigterm_, sigint_, sighup_, sigusr1_, sigusr2_;
 	EventSource keyTimer_;
 	EventSource frameTick_, statusTick_, watchdogTick_, readerTick_;
+	BackgroundJob reloadJob_;
+	bool reloadAgain_ = false;
 	ReaderCounts readers_; // recorders reading the output, sampled every 250 ms
 
 	// The live preview page and what only it reports.
@@ -122,6 +134,7 @@ private:
 	BoardOutput board_;        // the board's picture, H and board-geometry composite
 	MappingModel mapping_;     // the last good calibration, or identity
 	bool calibrated_ = false;
+	int colourWidth_ = 0, colourHeight_ = 0, depthWidth_ = 0, depthHeight_ = 0; // last frames
 	PipelineOutput output_;
 	PairingQueue queue_;       // colour frames waiting for depth from both sides
 	LatencyEstimator latency_; // the depth camera's offset, measured

@@ -24,6 +24,47 @@ std::string moreErrors(size_t count)
 
 } // namespace
 
+std::string calibrationSizes(const MappingModel &m)
+{
+	return "colour " + std::to_string(m.colourWidth) + "x" + std::to_string(m.colourHeight) +
+	       " and depth " + std::to_string(m.tofWidth) + "x" + std::to_string(m.tofHeight);
+}
+
+std::string calibrationMismatch(const MappingModel &m, int colourWidth, int colourHeight,
+				int depthWidth, int depthHeight)
+{
+	if (m.colourWidth == colourWidth && m.colourHeight == colourHeight &&
+	    m.tofWidth == depthWidth && m.tofHeight == depthHeight)
+		return "";
+	MappingModel frames;
+	frames.colourWidth = colourWidth;
+	frames.colourHeight = colourHeight;
+	frames.tofWidth = depthWidth;
+	frames.tofHeight = depthHeight;
+	return "the calibration was fitted for " + calibrationSizes(m) + " but the cameras deliver " +
+	       calibrationSizes(frames) +
+	       ": depth is mapped by plain scaling; calibrate again for these sizes "
+	       "(or set the cameras' width and height back)";
+}
+
+// On the status tick, once frames of both cameras have arrived: the
+// pipeline falls back to plain scaling for frame sizes the calibration was
+// not fitted for; the journal says so and why, once.
+void Daemon::checkCalibrationFits()
+{
+	if (!calibrated_ || colourWidth_ == 0 || depthWidth_ == 0)
+		return;
+	std::string why = calibrationMismatch(mapping_, colourWidth_, colourHeight_, depthWidth_,
+					      depthHeight_);
+	const std::string &path = settings_.mapping.calibrationFile;
+	if (!why.empty())
+		logger().errorOnce("calibration_size", path + ": " + why,
+				   { { "DEVICE", "calibration" }, { "CALIBRATION_FILE", path } });
+	else
+		logger().clearError("calibration_size", "calibration fits the frame sizes again",
+				    { { "DEVICE", "calibration" }, { "CALIBRATION_FILE", path } });
+}
+
 // SR-2 resolution; the pipeline rescales identity to whatever sizes arrive.
 MappingModel identityMapping(const Settings &settings)
 {
@@ -43,7 +84,7 @@ PipelineFiles loadPipelineFiles(const Settings &settings)
 			files.mapping = result.calibration.mapping;
 			files.calibrated = true;
 		} else {
-			files.calibrationError = result.errors.front().toString() + moreErrors(result.errors.size());
+			files.calibrationError = result.errors.front().toString() + moreErrors(countErrors(result.errors));
 		}
 	}
 	// The daemon's board comes from its board source (daemon/board_output.hpp);
@@ -62,9 +103,9 @@ void configurePipeline(Pipeline &pipeline, const Settings &settings, const Mappi
 	pipeline.configure(settings, mapping);
 }
 
-void Daemon::configurePipeline()
+// files were read for settings_ (on the reload worker, or at start).
+void Daemon::configurePipeline(const PipelineFiles &files)
 {
-	PipelineFiles files = loadPipelineFiles(settings_);
 	const std::string &path = settings_.mapping.calibrationFile;
 	if (path.empty()) {
 		calibrated_ = false;
@@ -85,7 +126,8 @@ void Daemon::configurePipeline()
 		mapping_ = files.mapping;
 		calibrated_ = true;
 		logger().clearError("calibration",
-				    std::string("calibration loaded, model ") + mappingKindName(mapping_.kind),
+				    std::string("calibration loaded, model ") + mappingKindName(mapping_.kind) +
+					    ", fitted for " + calibrationSizes(mapping_),
 				    { { "DEVICE", "calibration" }, { "CALIBRATION_FILE", path } });
 	}
 

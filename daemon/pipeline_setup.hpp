@@ -13,6 +13,13 @@
 
 namespace depthkey {
 
+// "colour 640x480 and depth 176x144": what a calibration was fitted for.
+std::string calibrationSizes(const MappingModel &mapping);
+// "" when mapping fits these frame sizes, else a sentence saying what was
+// fitted, what arrives, and what to do.
+std::string calibrationMismatch(const MappingModel &mapping, int colourWidth, int colourHeight,
+				int depthWidth, int depthHeight);
+
 // Plain scaling of depth onto colour: the mapping without a calibration.
 MappingModel identityMapping(const Settings &settings);
 

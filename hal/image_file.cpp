@@ -2,7 +2,9 @@
 
 #include <cerrno>
 #include <cstring>
-#include <sys/stat.h>
+
+#include "config/frame_limits.hpp"
+#include "hal/image_file_reader.hpp"
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -11,25 +13,12 @@ namespace depthkey {
 
 namespace {
 
-// imread says nothing about why it failed: tell a missing file from one
-// that is not an image.
+// Board images and stills: bounded like every file read (image_file_reader).
 int readMat(const std::string &path, int flags, cv::Mat &mat, std::string &error)
 {
-	struct stat st;
-	if (::stat(path.c_str(), &st) < 0) {
-		int err = errno;
-		error = path + ": " + std::strerror(err);
-		return -err;
-	}
-	try {
-		mat = cv::imread(path, flags);
-	} catch (const cv::Exception &e) {
-		mat.release();
-	}
-	if (mat.empty()) {
-		error = path + ": not an image file OpenCV can read";
-		return -EINVAL;
-	}
+	int ret = decodeImageFile(path, { kMaxBoardImageSide, kMaxBoardImageSide }, flags, mat, error);
+	if (ret < 0)
+		return ret;
 	if (mat.depth() != CV_8U) {
 		error = path + ": must have 8 bits per channel";
 		return -EINVAL;

@@ -4,7 +4,6 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <sstream>
 #include <sys/stat.h>
 
@@ -12,6 +11,9 @@
 #include <opencv2/imgproc.hpp>
 
 #include "config/atomic_file.hpp"
+#include "config/frame_limits.hpp"
+#include "config/text_file.hpp"
+#include "hal/image_file_reader.hpp"
 
 namespace depthkey {
 
@@ -21,11 +23,12 @@ int readIndex(const std::string &dir, const char *name, std::vector<std::string>
 	      std::vector<double> *stamps, std::string &error)
 {
 	std::string path = dir + "/" + name;
-	std::ifstream in(path);
-	if (!in) {
-		error = "cannot open " + path + ": " + std::strerror(errno);
-		return errno ? -errno : -ENOENT;
+	std::string text, why;
+	if (int ret = readTextFile(path, kMaxIndexFileBytes, text, why); ret < 0) {
+		error = "cannot read " + path + ": " + why;
+		return ret;
 	}
+	std::istringstream in(text);
 	std::string line;
 	for (int number = 1; std::getline(in, line); number++) {
 		if (line.empty() || line[0] == '#')
@@ -52,11 +55,15 @@ void copyMat(const cv::Mat &m, Image<T> &out)
 		std::memcpy(out.row(y), m.ptr(y), sizeof(T) * static_cast<size_t>(m.cols));
 }
 
+constexpr ImageLimits kFrameLimits{ kMaxFrameWidth, kMaxFrameHeight };
+
 int readGray16(const std::string &path, Gray16Image &out, std::string &error)
 {
-	cv::Mat m = cv::imread(path, cv::IMREAD_UNCHANGED);
-	if (m.empty() || m.type() != CV_16UC1) {
-		error = path + (m.empty() ? ": cannot read the image" : ": not a 16-bit grey PNG");
+	cv::Mat m;
+	if (int ret = decodeImageFile(path, kFrameLimits, cv::IMREAD_UNCHANGED, m, error); ret < 0)
+		return ret;
+	if (m.type() != CV_16UC1) {
+		error = path + ": not a 16-bit grey PNG";
 		return -EINVAL;
 	}
 	copyMat(m, out);
@@ -74,7 +81,7 @@ int writePng(const std::string &path, const cv::Mat &m, std::string &error)
 
 } // namespace
 
-int SequenceReader::open(const std::string &dir, std::string &error)
+int SequenceFolderReader::open(const std::string &dir, std::string &error)
 {
 	dir_ = dir;
 	rgb_.clear();
@@ -96,13 +103,11 @@ int SequenceReader::open(const std::string &dir, std::string &error)
 	return 0;
 }
 
-int SequenceReader::read(size_t index, ColourFrame &colour, DepthFrame &depth, std::string &error) const
+int SequenceFolderReader::read(size_t index, ColourFrame &colour, DepthFrame &depth, std::string &error) const
 {
-	cv::Mat bgr = cv::imread(rgb_[index], cv::IMREAD_COLOR);
-	if (bgr.empty()) {
-		error = rgb_[index] + ": cannot read the image";
-		return -EINVAL;
-	}
+	cv::Mat bgr;
+	if (int ret = decodeImageFile(rgb_[index], kFrameLimits, cv::IMREAD_COLOR, bgr, error); ret < 0)
+		return ret;
 	cv::Mat rgb;
 	cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
 	copyMat(rgb, colour.rgb);
@@ -120,7 +125,7 @@ int SequenceReader::read(size_t index, ColourFrame &colour, DepthFrame &depth, s
 	return 0;
 }
 
-int SequenceWriter::open(const std::string &dir, std::string &error)
+int SequenceFolderWriter::open(const std::string &dir, std::string &error)
 {
 	dir_ = dir;
 	count_ = 0;
@@ -137,7 +142,7 @@ int SequenceWriter::open(const std::string &dir, std::string &error)
 	return 0;
 }
 
-int SequenceWriter::write(double timestampS, const ColourFrame &colour, const DepthFrame &depth,
+int SequenceFolderWriter::write(double timestampS, const ColourFrame &colour, const DepthFrame &depth,
 			  std::string &error)
 {
 	char name[32], stamp[32];

@@ -5,7 +5,11 @@
 // of the TUM RGB-D benchmark. Frame i of each index belongs together.
 //
 // Only what depthkey-calibrate needs: reading frame pairs in order and
-// writing them (--record). The replay backend reads the same folders.
+// writing them (--record). The replay backend reads the same folders with
+// hal/recording/sequence_reader.hpp; the classes have distinct names, since
+// two classes of one name in one program break the one-definition rule
+// (their inline members get merged: a double free in a test binary using
+// both).
 #pragma once
 
 #include <string>
@@ -15,7 +19,7 @@
 
 namespace depthkey {
 
-class SequenceReader
+class SequenceFolderReader
 {
 public:
 	// Reads the three index files. Returns 0 or a negative errno with error
@@ -31,7 +35,7 @@ private:
 	std::vector<double> stamps_;
 };
 
-class SequenceWriter
+class SequenceFolderWriter
 {
 public:
 	// Creates dir and its sub-folders (dir may exist, empty or not).

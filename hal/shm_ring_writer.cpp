@@ -113,6 +113,89 @@ int ShmRingWriter::resolveGroup(const std::string &group, unsigned int *gid)
 	return 0;
 }
 
+// An object left by an earlier writer (this process before a reload, a
+// crashed daemon, or anyone who created the name first) is never reused: its
+// owner, mode or group could be anybody's. Ours and unlocked, it is marked
+// stale for readers still mapping it (a new generation, offline: they get
+// -ESTALE and re-open by name) and unlinked. Another user's is refused.
+int ShmRingWriter::retireStale(const std::string &name)
+{
+	int fd = shm_open(name.c_str(), O_RDWR | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0);
+	if (fd < 0 && errno == ENOENT)
+		return 0;
+	if (fd < 0 && errno == EACCES)
+		return fail(-EPERM, "refusing an object created by another user",
+			    "it is not ours and we may not even open it: remove it from /dev/shm");
+	if (fd < 0)
+		return fail(-errno, "open the existing object");
+
+	struct stat st{};
+	if (fstat(fd, &st) < 0) {
+		int err = -errno;
+		::close(fd);
+		return fail(err, "fstat the existing object");
+	}
+	if (st.st_uid != geteuid()) {
+		::close(fd);
+		detail_ = "uid " + std::to_string(st.st_uid);
+		return fail(-EPERM, "refusing an object owned by",
+			    "another user could read and change the frames: remove it from /dev/shm");
+	}
+	// A running writer (another depthkeyd) holds the lock; a crash frees it.
+	if (flock(fd, LOCK_EX | LOCK_NB) < 0) {
+		int err = errno == EWOULDBLOCK ? -EBUSY : -errno;
+		::close(fd);
+		return fail(err, "lock", err == -EBUSY ? "another writer has it open" : nullptr);
+	}
+	if (static_cast<uint64_t>(st.st_size) >= sizeof(dk_shm_header)) {
+		void *map = mmap(nullptr, sizeof(dk_shm_header), PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
+		if (map != MAP_FAILED) {
+			auto *h = static_cast<dk_shm_header *>(map);
+			__atomic_store_n(&h->online, 0, __ATOMIC_RELAXED);
+			uint64_t previous = __atomic_load_n(&h->generation, __ATOMIC_RELAXED);
+			__atomic_store_n(&h->generation, newGeneration(previous), __ATOMIC_RELEASE);
+			munmap(map, sizeof(dk_shm_header));
+		}
+	}
+	int ret = shm_unlink(name.c_str()) < 0 && errno != ENOENT ? -errno : 0;
+	::close(fd);
+	return ret ? fail(ret, "unlink the stale object") : 0;
+}
+
+// O_EXCL: the object is ours from its first byte. Created 0600, then group
+// and mode are applied through the fd, so nobody outside the group can open
+// it in between, and the umask cannot narrow the mode.
+int ShmRingWriter::createFresh(const std::string &name, unsigned int gid, const std::string &group)
+{
+	int fd = shm_open(name.c_str(), O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+	if (fd < 0)
+		return fail(-errno, "create",
+			    errno == EEXIST ? "created by someone else meanwhile: try again" : nullptr);
+	static constexpr const char *kChgrp = "chgrp to";
+	const char *step = nullptr;
+	struct stat st{};
+	// fchown only when the new object is not in the group yet: the packaged
+	// service's seccomp filter (~@privileged) refuses fchown even to our own
+	// group, and a fresh object already has our egid.
+	if (flock(fd, LOCK_EX | LOCK_NB) < 0)
+		step = "lock";
+	else if (fstat(fd, &st) < 0)
+		step = "fstat";
+	else if (st.st_gid != gid && fchown(fd, static_cast<uid_t>(-1), gid) < 0)
+		step = kChgrp;
+	else if (fchmod(fd, kMode) < 0)
+		step = "chmod 0660";
+	if (step) {
+		int err = -errno; // before anything else may change errno
+		if (step == kChgrp)
+			detail_ = group.empty() ? std::to_string(gid) : group;
+		::close(fd);
+		shm_unlink(name.c_str());
+		return fail(err, step);
+	}
+	return fd;
+}
+
 int ShmRingWriter::open(const std::string &name, int width, int height, uint32_t fourcc,
 			int slots, const std::string &group)
 {
@@ -146,40 +229,24 @@ int ShmRingWriter::open(const std::string &name, int width, int height, uint32_t
 	const uint64_t dataOffset = readerOffset + roundUp(sizeof(dk_shm_reader_table), align);
 	const uint64_t needed = dataOffset + slotSize * slots;
 
-	int fd = shm_open(name.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, kMode);
+	int ret = retireStale(name);
+	if (ret)
+		return ret;
+	int fd = createFresh(name, group.empty() ? getegid() : gid, group);
 	if (fd < 0)
-		return fail(-errno, "shm_open");
-
-	// A second writer on the same object would interleave frames and
-	// generations; the lock dies with the process, so a crash frees it.
-	if (flock(fd, LOCK_EX | LOCK_NB) < 0) {
-		int err = errno == EWOULDBLOCK ? -EBUSY : -errno;
-		::close(fd);
-		return fail(err, "lock", err == -EBUSY ? "another writer has it open" : nullptr);
-	}
-
-	struct stat st{};
-	const char *step = nullptr;
-	if (fchmod(fd, kMode) < 0) // the umask may have narrowed the mode
-		step = "chmod 0660";
-	else if (!group.empty() && fchown(fd, static_cast<uid_t>(-1), gid) < 0) {
-		step = "chgrp to";
-		detail_ = group;
-	} else if (fstat(fd, &st) < 0)
-		step = "fstat";
-	else if (static_cast<uint64_t>(st.st_size) < needed &&
-		 ftruncate(fd, static_cast<off_t>(needed)) < 0)
-		step = "grow";
-	if (step) {
+		return fd;
+	if (ftruncate(fd, static_cast<off_t>(needed)) < 0) {
 		int err = -errno;
 		::close(fd);
-		return fail(err, step);
+		shm_unlink(name.c_str());
+		return fail(err, "size");
 	}
 
 	void *map = mmap(nullptr, needed, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
 	if (map == MAP_FAILED) {
 		int err = -errno;
 		::close(fd);
+		shm_unlink(name.c_str());
 		return fail(err, "mmap");
 	}
 

@@ -25,9 +25,12 @@ public:
 	ShmRingWriter(const ShmRingWriter &) = delete;
 	ShmRingWriter &operator=(const ShmRingWriter &) = delete;
 
-	// Creates or reuses the object `name` ("/depthkey.composite") with mode
-	// 0660 (the group writes only its presence heartbeats), owned by `group` unless it is empty. An existing object is grown
-	// if needed but never shrunk, so readers still mapping it cannot fault.
+	// Creates the object `name` ("/depthkey.composite") afresh and
+	// exclusively (O_EXCL), with mode 0660 (the group writes only its
+	// presence heartbeats) and group `group` ("" = our own egid) set through
+	// its fd. A stale object of ours is retired first (readers mapping it get
+	// -ESTALE; their mapping stays valid); one owned by another user is
+	// refused with -EPERM, one held by a running writer with -EBUSY.
 	// fourcc is DK_SHM_FORMAT_RGB24 or DK_SHM_FORMAT_RGBA32, slots 2..8.
 	// Re-opening an open writer closes it first. Returns 0 or a negative
 	// errno; describeError() then says what failed.
@@ -40,7 +43,8 @@ public:
 	int write(const uint8_t *pixels, int srcStride, uint64_t captureNs, uint32_t flags);
 
 	// Marks the stream offline and unmaps. The object stays, holding the last
-	// frames; the next open() (this process or a restarted one) reuses it.
+	// frames, until the next open() (this process or a restarted one)
+	// replaces it.
 	void close();
 
 	// Closes, then removes the object's name (clean shutdown, tests).
@@ -72,6 +76,8 @@ public:
 private:
 	int fail(int error, const char *step, const char *reason = nullptr);
 	int resolveGroup(const std::string &group, unsigned int *gid);
+	int retireStale(const std::string &name);
+	int createFresh(const std::string &name, unsigned int gid, const std::string &group);
 	void writeHeader(uint64_t slotSize, uint64_t readerOffset, uint64_t dataOffset);
 	void clearReaders();
 

@@ -181,6 +181,7 @@ TEST(BoardOutput, TheDaemonPublishesTheBoardGeometryStreams)
 {
 	Fixture f;
 	f.settings.colour.fps = 50;
+	f.settings.pairing.delayMs = 0; // each frame out as it comes: the test reads it at once
 	FakeCamera<ColourFrame> *colour = nullptr, *boardSource = nullptr;
 	FakeCamera<DepthFrame> *depth = nullptr;
 	FakeFrameSink *sink = nullptr;

@@ -394,7 +394,7 @@ TEST(ConfigLoader, MissingFileNamesThePath)
 	ASSERT_EQ(result.errors.size(), 1u);
 	EXPECT_EQ(result.errors[0].file, path);
 	EXPECT_EQ(result.errors[0].toString(),
-		  path + ": cannot open config file: No such file or directory");
+		  path + ": cannot read config file: No such file or directory");
 	EXPECT_EQ(result.settings, Settings{});
 }
 
@@ -402,7 +402,7 @@ TEST(ConfigLoader, DirectoryIsNotAConfigFile)
 {
 	ConfigResult result = loadConfig("/");
 	ASSERT_EQ(result.errors.size(), 1u);
-	EXPECT_EQ(result.errors[0].toString(), "/: cannot read config file: Is a directory");
+	EXPECT_EQ(result.errors[0].toString(), "/: cannot read config file: not a regular file (a directory)");
 }
 
 // The binder's nesting, for the sections still to come (calibration tables,

@@ -96,6 +96,7 @@ TEST(DaemonDegraded, PublishesOfflineFramesWhileACameraIsLostAndRecovers)
 	settings.preview.listen = "127.0.0.1:0"; // never the shared 8080 of parallel runs
 	settings.colour.fps = 50;
 	settings.board.backend = "colour"; // the composite below is over board.colour
+	settings.pairing.delayMs = 0;      // each frame out as it comes: the steps below read it
 	Daemon daemon("unused.toml", {}, h.factory());
 	ASSERT_EQ(daemon.start(settings), 0);
 	ASSERT_NE(h.colour, nullptr);

@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <string>
 
 using depthkey::test::lastLine;
@@ -56,4 +58,34 @@ TEST(EvalTool, BadArgumentsAndMissingTruthAreClearErrors)
 	out = run(eval + " --sequence /nonexistent/seq", status);
 	EXPECT_EQ(status, 1);
 	EXPECT_NE(out.find("/nonexistent/seq"), std::string::npos) << out;
+}
+
+// Issue 14, case O: one mis-sized frame was scored 0, and eval exited 0
+// without a word. Now it names the frame and both sizes, and fails.
+TEST(EvalTool, MisSizedFrameIsAnError)
+{
+	std::string eval = depthkey::test::binDir() + "/depthkey-eval --config " + depthkey::test::sourceDir() +
+			   "/config/depthkey.toml";
+	std::string dir = std::filesystem::temp_directory_path() / ("depthkey-eval-size-" + std::to_string(getpid()));
+	int status;
+	std::string out = run(eval + " --sim 2 --frames 6 --method depth-only --save-sequence " + dir, status);
+	ASSERT_EQ(status, 0) << out;
+	std::string victim;
+	for (const auto &entry : std::filesystem::directory_iterator(dir + "/rgb"))
+		if (victim.empty() || entry.path().string() > victim)
+			victim = entry.path().string(); // the last frame
+	cv::Mat frame = cv::imread(victim, cv::IMREAD_COLOR), half;
+	ASSERT_FALSE(frame.empty()) << victim;
+	cv::resize(frame, half, cv::Size(frame.cols / 2, frame.rows / 2));
+	ASSERT_TRUE(cv::imwrite(victim, half));
+
+	out = run(eval + " --sequence " + dir + " --method depth-only", status);
+	EXPECT_EQ(status, 1) << out;
+	std::string name = victim.substr(dir.size() + 1);
+	std::string expected = name + " is " + std::to_string(half.cols) + "x" + std::to_string(half.rows) +
+			       ", but the sequence's frames are " + std::to_string(frame.cols) + "x" +
+			       std::to_string(frame.rows);
+	EXPECT_NE(out.find(expected), std::string::npos) << out;
+	EXPECT_EQ(out.find("summary method="), std::string::npos) << out;
+	std::filesystem::remove_all(dir);
 }

@@ -31,7 +31,7 @@ ColourFrame colourAt(uint64_t ms, uint64_t sequence)
 
 } // namespace
 
-TEST(PairingQueue, WaitsForDepthCapturedAfterTheColourFrame)
+TEST(PairingQueue, KeysWithDepthFromBothSidesAfterAConstantDelay)
 {
 	PairingQueue q;
 	q.configure(-40 * kMs, 150 * kMs, 150 * kMs, PairingQueue::slotsFor(150 * kMs, 25));
@@ -39,20 +39,22 @@ TEST(PairingQueue, WaitsForDepthCapturedAfterTheColourFrame)
 	q.addColour(colourAt(1020, 1), 1020 * kMs);
 	q.addColour(colourAt(1060, 2), 1060 * kMs);
 	PairingQueue::Keying k;
-	EXPECT_FALSE(q.next(1100 * kMs, k)); // no depth after 1020 yet, delay not over
+	EXPECT_FALSE(q.next(1100 * kMs, k));
 	q.addDepth(depthStamped(1140));        // captured 1100: after both
-	ASSERT_TRUE(q.next(1140 * kMs, k));
+	EXPECT_FALSE(q.next(1140 * kMs, k));   // in, but the frame leaves at its time
+	ASSERT_TRUE(q.next(1170 * kMs, k));
 	EXPECT_EQ(k.colour->sequence, 1u);
 	EXPECT_EQ(k.colour->timestampNs, 1020 * kMs);
 	ASSERT_TRUE(k.depth.before && k.depth.after);
 	EXPECT_EQ(k.depth.before->depthMm.at(0, 0), 1040);
 	EXPECT_EQ(k.depth.after->depthMm.at(0, 0), 1140);
 	q.pop();
-	ASSERT_TRUE(q.next(1140 * kMs, k));
+	EXPECT_FALSE(q.next(1170 * kMs, k));   // 40 ms later, as it came
+	ASSERT_TRUE(q.next(1210 * kMs, k));
 	EXPECT_EQ(k.colour->sequence, 2u);
 	q.pop();
 	EXPECT_EQ(q.held(), 0u);
-	EXPECT_FALSE(q.next(1140 * kMs, k));
+	EXPECT_FALSE(q.next(1210 * kMs, k));
 }
 
 TEST(PairingQueue, WithoutDepthFramesLeaveAfterTheDelayUnpaired)

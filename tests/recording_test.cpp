@@ -172,7 +172,7 @@ TEST(Recording, ReaderErrorsNameTheFileAndLine)
 	EXPECT_NE(reader.describeError().find(dir + "/rgb/000001.png"), std::string::npos);
 	mkdir((dir + "/rgb").c_str(), 0755);
 	std::ofstream(dir + "/rgb/000001.png") << "not a png";
-	EXPECT_EQ(reader.readColour(0, c), -EIO);
+	EXPECT_EQ(reader.readColour(0, c), -EINVAL);
 	EXPECT_NE(reader.describeError().find("000001.png"), std::string::npos);
 
 	std::ofstream(dir + "/mask.txt") << "2.0 mask/000001.png\n";

@@ -9,6 +9,8 @@
 #include "tests/test_paths.hpp"
 
 #include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include <cstdio>
 #include <cstdlib>
@@ -200,14 +202,10 @@ int runTool(const std::string &args)
 
 int writeRgbPng(const std::string &path, const RgbImage &image)
 {
-	// Binary PPM: any image file OpenCV reads will do for the tool's input.
-	std::FILE *f = std::fopen(path.c_str(), "wb");
-	if (!f)
-		return -1;
-	std::fprintf(f, "P6\n%d %d\n255\n", image.width(), image.height());
-	std::fwrite(image.data(), 3, image.size(), f);
-	std::fclose(f);
-	return 0;
+	// The tool reads PNG and JPEG (hal/image_file_reader.hpp).
+	cv::Mat rgb(image.height(), image.width(), CV_8UC3, const_cast<Rgb8 *>(image.data())), bgr;
+	cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
+	return cv::imwrite(path, bgr) ? 0 : -1;
 }
 
 } // namespace
@@ -217,9 +215,9 @@ TEST(DepthkeySiox, SegmentsASyntheticImageAndWritesMaskAndAlpha)
 	TempDir dir;
 	SyntheticStill s = makeStill(320, 240, 10, 2);
 	std::string error;
-	ASSERT_EQ(writeRgbPng(dir.path + "/image.ppm", s.image), 0);
+	ASSERT_EQ(writeRgbPng(dir.path + "/image.png", s.image), 0);
 	ASSERT_EQ(writeGray8Png(dir.path + "/trimap.png", s.trimap, error), 0) << error;
-	ASSERT_EQ(runTool(dir.path + "/image.ppm " + dir.path + "/trimap.png " + dir.path + "/mask.png --alpha " +
+	ASSERT_EQ(runTool(dir.path + "/image.png " + dir.path + "/trimap.png " + dir.path + "/mask.png --alpha " +
 			  dir.path + "/alpha.png"),
 		  0);
 	Gray8Image mask, alpha;
@@ -240,17 +238,17 @@ TEST(DepthkeySiox, FailsClearlyOnBadInput)
 	TempDir dir;
 	SyntheticStill s = makeStill(64, 48, 6, 1);
 	std::string error;
-	writeRgbPng(dir.path + "/image.ppm", s.image);
+	writeRgbPng(dir.path + "/image.png", s.image);
 	writeGray8Png(dir.path + "/trimap.png", s.trimap, error);
 	Gray8Image small(10, 10);
 	writeGray8Png(dir.path + "/small.png", small, error);
 	writeRgbPng(dir.path + "/colour-trimap.ppm", s.image);
 	EXPECT_EQ(runTool(""), 1);
 	EXPECT_EQ(runTool(dir.path + "/missing.png " + dir.path + "/trimap.png " + dir.path + "/m.png"), 1);
-	EXPECT_EQ(runTool(dir.path + "/image.ppm " + dir.path + "/small.png " + dir.path + "/m.png"), 1);
-	EXPECT_EQ(runTool(dir.path + "/image.ppm " + dir.path + "/colour-trimap.ppm " + dir.path + "/m.png"), 1);
-	EXPECT_EQ(runTool(dir.path + "/image.ppm " + dir.path + "/trimap.png " + dir.path + "/m.png --smoothing 9"), 1);
-	EXPECT_EQ(runTool(dir.path + "/image.ppm " + dir.path + "/trimap.png /nonexistent-dir/m.png"), 1);
+	EXPECT_EQ(runTool(dir.path + "/image.png " + dir.path + "/small.png " + dir.path + "/m.png"), 1);
+	EXPECT_EQ(runTool(dir.path + "/image.png " + dir.path + "/colour-trimap.ppm " + dir.path + "/m.png"), 1);
+	EXPECT_EQ(runTool(dir.path + "/image.png " + dir.path + "/trimap.png " + dir.path + "/m.png --smoothing 9"), 1);
+	EXPECT_EQ(runTool(dir.path + "/image.png " + dir.path + "/trimap.png /nonexistent-dir/m.png"), 1);
 }
 
 TEST(StillSiox, ALargeLecturerRegionCutOffByBoardColouredClothesStays)

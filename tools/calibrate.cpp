@@ -251,7 +251,7 @@ public:
 
 private:
 	const Options *options_ = nullptr;
-	SequenceReader sequence_;
+	SequenceFolderReader sequence_;
 	CameraRig rig_;
 	sim::PatternRenderer renderer_;
 	std::vector<PatternStep> plan_;
@@ -274,7 +274,7 @@ int main(int argc, char **argv)
 		std::fprintf(stderr, "depthkey-calibrate: %s\n", error.c_str());
 		return 1;
 	}
-	SequenceWriter recorder;
+	SequenceFolderWriter recorder;
 	if (!o.record.empty() && recorder.open(o.record, error) < 0) {
 		std::fprintf(stderr, "depthkey-calibrate: %s\n", error.c_str());
 		return 1;

@@ -175,12 +175,16 @@ public:
 			return 0;
 		int ret = 0;
 		for (; d_ < dep.size() && dep[d_].timestampNs <= rgb[i_].timestampNs && ret >= 0; ++d_)
-			if ((ret = reader_.readDepth(d_, depth_)) >= 0)
+			if ((ret = reader_.readDepth(d_, depth_)) >= 0 &&
+			    (ret = sameSize(depthSize_, depth_.depthMm, dep[d_].file)) >= 0)
 				onDepth(depth_);
-		if (ret >= 0 && (ret = reader_.readColour(i_, colour)) >= 0)
-			ret = reader_.readMask(i_, truth);
+		if (ret >= 0 && (ret = reader_.readColour(i_, colour)) >= 0 &&
+		    (ret = sameSize(colourSize_, colour.rgb, rgb[i_].file)) >= 0 &&
+		    (ret = reader_.readMask(i_, truth)) >= 0)
+			ret = sameSize(colourSize_, truth, "the mask of " + rgb[i_].file);
 		if (ret < 0) {
-			std::fprintf(stderr, "depthkey-eval: %s\n", reader_.describeError().c_str());
+			if (ret != -EDOM)
+				std::fprintf(stderr, "depthkey-eval: %s\n", reader_.describeError().c_str());
 			return ret;
 		}
 		++i_;
@@ -188,6 +192,21 @@ public:
 	}
 
 private:
+	// Every frame of a stream, and every mask, must have the first frame's
+	// size: a mis-sized one would be scored 0 (or keyed wrongly) unnoticed.
+	template<typename Image>
+	int sameSize(std::pair<int, int> &size, const Image &image, const std::string &what)
+	{
+		if (size.first == 0)
+			size = { image.width(), image.height() };
+		if (size == std::pair(image.width(), image.height()))
+			return 0;
+		std::fprintf(stderr, "depthkey-eval: %s: %s is %dx%d, but the sequence's frames are %dx%d\n",
+			     reader_.dir().c_str(), what.c_str(), image.width(), image.height(), size.first,
+			     size.second);
+		return -EDOM;
+	}
+	std::pair<int, int> colourSize_{ 0, 0 }, depthSize_{ 0, 0 };
 	SequenceReader reader_;
 	DepthFrame depth_;
 	size_t i_ = 0, d_ = 0;

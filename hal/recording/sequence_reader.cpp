@@ -1,8 +1,11 @@
 #include "hal/recording/sequence_reader.hpp"
 
+#include "config/frame_limits.hpp"
+#include "config/text_file.hpp"
+#include "hal/image_file_reader.hpp"
+
 #include <cerrno>
 #include <cstring>
-#include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
@@ -37,16 +40,10 @@ template<> struct PixelType<uint8_t> { static constexpr int cv = CV_8UC1; static
 
 } // namespace
 
-int SequenceReader::readIndex(Stream stream, bool required)
+int parseSequenceIndex(std::string_view text, const std::string &path,
+		       std::vector<SequenceEntry> &index, std::string &error)
 {
-	std::string path = dir_ + "/" + kStreams[stream] + ".txt";
-	std::ifstream in(path);
-	if (!in) {
-		if (!required)
-			return 0;
-		error_ = path + ": cannot open";
-		return -ENOENT;
-	}
+	std::istringstream in{ std::string(text) };
 	std::string line;
 	int lineNumber = 0;
 	while (std::getline(in, line)) {
@@ -57,12 +54,11 @@ int SequenceReader::readIndex(Stream stream, bool required)
 		std::string stamp, file;
 		SequenceEntry entry;
 		if (!(fields >> stamp >> file) || !parseTimestamp(stamp, entry.timestampNs)) {
-			error_ = path + ":" + std::to_string(lineNumber) + ": expected \"<seconds> <file>\"";
+			error = path + ":" + std::to_string(lineNumber) + ": expected \"<seconds> <file>\"";
 			return -EINVAL;
 		}
-		auto &index = index_[stream];
 		if (!index.empty() && entry.timestampNs < index.back().timestampNs) {
-			error_ = path + ":" + std::to_string(lineNumber) + ": timestamp goes backwards";
+			error = path + ":" + std::to_string(lineNumber) + ": timestamp goes backwards";
 			return -EINVAL;
 		}
 		entry.file = file;
@@ -72,6 +68,20 @@ int SequenceReader::readIndex(Stream stream, bool required)
 		index.push_back(entry);
 	}
 	return 0;
+}
+
+int SequenceReader::readIndex(Stream stream, bool required)
+{
+	std::string path = dir_ + "/" + kStreams[stream] + ".txt";
+	std::string text, why;
+	int ret = readTextFile(path, kMaxIndexFileBytes, text, why);
+	if (ret == -ENOENT && !required)
+		return 0;
+	if (ret < 0) {
+		error_ = path + ": cannot read: " + why;
+		return ret;
+	}
+	return parseSequenceIndex(text, path, index_[stream], error_);
 }
 
 int SequenceReader::checkMatches(Stream stream, Stream owner)
@@ -118,23 +128,13 @@ int SequenceReader::readImage(Stream stream, size_t i, Image<Pixel> &out)
 		return -ERANGE;
 	}
 	std::string path = dir_ + "/" + index[i].file;
-	// Checked first: OpenCV would only log a warning of its own.
-	if (access(path.c_str(), R_OK) < 0) {
-		int err = errno;
-		error_ = path + ": cannot open: " + std::strerror(err);
-		return -err;
-	}
+	// Bounded by the largest frame the config allows: a PNG claiming
+	// 20000x20000 pixels is refused before anything is allocated for it.
 	cv::Mat mat;
-	try {
-		mat = cv::imread(path, cv::IMREAD_UNCHANGED);
-	} catch (const cv::Exception &e) {
-		error_ = path + ": " + e.what();
-		return -EIO;
-	}
-	if (mat.empty()) {
-		error_ = path + ": missing or not an image";
-		return -EIO;
-	}
+	if (int ret = decodeImageFile(path, { kMaxFrameWidth, kMaxFrameHeight }, cv::IMREAD_UNCHANGED,
+				      mat, error_);
+	    ret < 0)
+		return ret;
 	if (mat.type() != PixelType<Pixel>::cv) {
 		error_ = path + ": is not " + PixelType<Pixel>::name;
 		return -EINVAL;

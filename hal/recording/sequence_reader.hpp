@@ -7,6 +7,7 @@
 #include "hal/recording/sequence_format.hpp"
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace depthkey {
@@ -16,6 +17,11 @@ struct SequenceEntry {
 	uint64_t sequence = 0;  // from the file name, else the line's position
 	std::string file;       // relative to the folder
 };
+
+// One index file's text (path names it in errors), appended to index.
+// Pure, for the reader and its fuzzer (tests/fuzz/). Negative errno.
+int parseSequenceIndex(std::string_view text, const std::string &path,
+		       std::vector<SequenceEntry> &index, std::string &error);
 
 class SequenceReader
 {

@@ -14,6 +14,8 @@
 #     --smp N         guest CPUs (default 2)
 #     --append ARGS   extra kernel command line
 #
+# The source tree is shared into the guest explicitly (see below), so a
+# checkout anywhere works, also under /tmp.
 # Exit status: the command's own; 124 if the timeout hit; 125 if QEMU did not
 # start or the guest never ran the command (with the reason on stderr).
 # The guest's console (the command's output) goes to stdout and to
@@ -69,6 +71,21 @@ rm -f "$results/exit-status"
 	printf 'exec'; printf ' %q' "$@"; echo
 } >"$results/job.sh"
 
+# The checkout (and the VM cache, when VM_CACHE lies outside it) is shared
+# explicitly, wherever it lies: the guest mounts fresh tmpfs on /tmp, /run and
+# /dev/shm, which would hide a clone under /tmp (the host root's view of it).
+# The guest gets each as an overlay at the same path, writable and
+# discarded like the rest of its root.
+trees=("$VM_TREE")
+case "$VM_CACHE/" in "$VM_TREE"/*) ;; *) trees+=("$(cd "$VM_CACHE" && pwd)") ;; esac
+tree_list=""
+tree_args=()
+for i in "${!trees[@]}"; do
+	case "${trees[$i]}" in *[[:space:],]*) vm_die "cannot share ${trees[$i]}: its path has a space or comma" ;; esac
+	tree_list="$tree_list${tree_list:+,}${trees[$i]}"
+	tree_args+=(-virtfs "local,path=${trees[$i]},mount_tag=tree$i,security_model=none,readonly=on,multidevs=remap")
+done
+
 layer_args=()
 for i in "${!layers[@]}"; do
 	layer_args+=(-virtfs "local,path=${layers[$i]},mount_tag=layer$i,security_model=none,readonly=on,multidevs=remap")
@@ -81,10 +98,10 @@ timeout --foreground -k 10 "$timeout" qemu-system-x86_64 \
 	-accel tcg -M pc -cpu "${VM_CPU:-max}" -smp "$smp" -m "$mem" \
 	-nodefaults -no-reboot -display none -monitor none -serial stdio \
 	-kernel "$kdir/vmlinux" -initrd "$kdir/initramfs.cpio.gz" \
-	-append "console=ttyS0 quiet loglevel=3 panic=-1 vm.results=$results vm.cache=$VM_CACHE vm.layers=${#layers[@]} $append" \
+	-append "console=ttyS0 quiet loglevel=3 panic=-1 vm.results=$results vm.cache=$VM_CACHE vm.layers=${#layers[@]} vm.trees=$tree_list $append" \
 	-virtfs "local,path=/,mount_tag=hostroot,security_model=none,readonly=on,multidevs=remap" \
 	-virtfs "local,path=$results,mount_tag=results,security_model=none,multidevs=remap" \
-	"${layer_args[@]+"${layer_args[@]}"}" \
+	"${tree_args[@]}" "${layer_args[@]+"${layer_args[@]}"}" \
 	</dev/null 2>"$results/qemu.stderr" | tee "$results/console.log"
 qemu_rc=${PIPESTATUS[0]}
 set -e

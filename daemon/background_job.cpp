@@ -1,0 +1,62 @@
+#include "daemon/background_job.hpp"
+
+#include <cerrno>
+#include <sys/epoll.h>
+#include <sys/eventfd.h>
+#include <system_error>
+#include <unistd.h>
+
+namespace depthkey {
+
+BackgroundJob::~BackgroundJob()
+{
+	if (thread_.joinable())
+		thread_.join();
+	source_.reset();
+	if (eventFd_ >= 0)
+		::close(eventFd_);
+}
+
+int BackgroundJob::start(EventLoop &loop, std::function<void()> work, std::function<void()> done)
+{
+	if (running_)
+		return -EBUSY;
+	if (eventFd_ < 0) {
+		eventFd_ = eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
+		if (eventFd_ < 0)
+			return -errno;
+	}
+	if (!source_.active()) {
+		int ret = loop.addIo(eventFd_, EPOLLIN, [this](uint32_t) { finish(); }, source_);
+		if (ret < 0)
+			return ret;
+	}
+	done_ = std::move(done);
+	try {
+		// The eventfd write is the release: done() sees all work() wrote.
+		thread_ = std::thread([this, work = std::move(work)] {
+			work();
+			uint64_t one = 1;
+			(void)!::write(eventFd_, &one, sizeof(one));
+		});
+	} catch (const std::system_error &e) {
+		return -(e.code().value() ? e.code().value() : EAGAIN);
+	}
+	running_ = true;
+	return 0;
+}
+
+void BackgroundJob::finish()
+{
+	uint64_t count;
+	if (::read(eventFd_, &count, sizeof(count)) < 0)
+		return; // spurious wake-up: the worker has not written yet
+	thread_.join();
+	running_ = false;
+	auto done = std::move(done_);
+	done_ = nullptr;
+	if (done)
+		done();
+}
+
+} // namespace depthkey

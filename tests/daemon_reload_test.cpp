@@ -1,0 +1,223 @@
+// Issue 14's reload cases against the real depthkeyd: a config that becomes
+// a symlink to /dev/zero (C) or a FIFO (D), an unknown output.group (I), a
+// config with thousands of errors (L), an [output] that cannot be opened,
+// and a calibration for other frame sizes (N). Each time the daemon keeps
+// publishing on its last good state and the log says why.
+#include "config/calibration_file.hpp"
+#include "hal/depthkey_shm.h"
+#include "hal/shm_ring_writer.hpp"
+#include "tests/daemon_process.hpp"
+#include "tests/sample_calibration.hpp"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <csignal>
+#include <functional>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <thread>
+
+using namespace std::chrono_literals;
+using depthkey::test::DaemonProcess;
+
+namespace {
+
+std::string configText(const std::string &prefix, const std::string &extra = "")
+{
+	return "[colour]\nwidth = 160\nheight = 120\nfps = 25\n"
+	       "[output]\ncomposite_name = \"" + prefix + ".composite\"\n"
+	       "lecturer_name = \"" + prefix + ".lecturer\"\n" + extra;
+}
+
+// The newest frame number of an object, 0 when there is none (yet).
+uint64_t latestFrame(const std::string &name)
+{
+	dk_shm_reader reader{};
+	if (dk_shm_open(name.c_str(), &reader) != 0)
+		return 0;
+	uint64_t frame = 0;
+	if (dk_shm_latest(&reader, &frame) != 0)
+		frame = 0;
+	dk_shm_close(&reader);
+	return frame;
+}
+
+size_t count(const std::string &text, const std::string &what)
+{
+	size_t n = 0;
+	for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1))
+		n++;
+	return n;
+}
+
+} // namespace
+
+class DaemonReload : public testing::Test
+{
+protected:
+	void SetUp() override
+	{
+		prefix_ = "/depthkey-rl-" + std::to_string(getpid());
+		config_ = daemon_.writeFile("depthkey.toml", configText(prefix_));
+	}
+	void TearDown() override
+	{
+		daemon_.signal(SIGTERM);
+		daemon_.waitExit(5s);
+		shm_unlink((prefix_ + ".composite").c_str());
+		shm_unlink((prefix_ + ".lecturer").c_str());
+	}
+	void startDaemon()
+	{
+		ASSERT_TRUE(daemon_.start({ "--config", config_ }));
+		ASSERT_TRUE(daemon_.waitForNotify("READY=1", 10s)) << daemon_.log();
+	}
+	// SIGHUP, then: did the daemon stay up and keep publishing frames?
+	void reloadAndExpectFrames(const std::string &why)
+	{
+		uint64_t before = latestFrame(prefix_ + ".composite");
+		ASSERT_EQ(daemon_.signal(SIGHUP), 0);
+		ASSERT_TRUE(daemon_.waitForNotify("RELOADING=1", 5s)) << why;
+		std::this_thread::sleep_for(400ms);
+		EXPECT_TRUE(daemon_.running()) << why;
+		// 25 fps: ten frames in 400 ms, unless the loop stalled.
+		EXPECT_GT(latestFrame(prefix_ + ".composite"), before + 3) << why << "\n" << daemon_.log();
+	}
+	void replaceConfig(const std::function<int(const char *)> &make)
+	{
+		unlink(config_.c_str());
+		ASSERT_EQ(make(config_.c_str()), 0);
+	}
+
+	DaemonProcess daemon_;
+	std::string prefix_;
+	std::string config_;
+};
+
+TEST_F(DaemonReload, ConfigBecomingADeviceOrAFifoIsRefused)
+{
+	startDaemon();
+	replaceConfig([](const char *path) { return symlink("/dev/zero", path); });
+	reloadAndExpectFrames("symlink to /dev/zero");
+	EXPECT_NE(daemon_.log().find("not a regular file (a character device)"), std::string::npos)
+		<< daemon_.log();
+
+	replaceConfig([](const char *path) { return mkfifo(path, 0600); });
+	reloadAndExpectFrames("FIFO");
+	EXPECT_NE(daemon_.log().find("not a regular file (a FIFO)"), std::string::npos) << daemon_.log();
+	EXPECT_NE(daemon_.log().find("keeping the previous configuration"), std::string::npos);
+}
+
+TEST_F(DaemonReload, UnknownGroupKeepsTheOutput)
+{
+	startDaemon();
+	daemon_.writeFile("depthkey.toml", configText(prefix_, "group = \"nosuchgroup\"\n"));
+	reloadAndExpectFrames("output.group = nosuchgroup");
+	EXPECT_NE(daemon_.log().find("output.group: \"nosuchgroup\" is not a group"), std::string::npos)
+		<< daemon_.log();
+}
+
+TEST_F(DaemonReload, ThousandsOfErrorsGiveTwentyOneLines)
+{
+	startDaemon();
+	std::string junk = "[segmentation]\n";
+	for (int i = 0; i < 20000; i++)
+		junk += "k" + std::to_string(i) + " = 1\n";
+	daemon_.writeFile("depthkey.toml", junk);
+	reloadAndExpectFrames("20000 errors");
+	std::string log = daemon_.log();
+	EXPECT_EQ(count(log, "config reload refused"), 21u) << log.substr(0, 4000);
+	EXPECT_NE(log.find("and 19980 more errors"), std::string::npos);
+}
+
+// An [output] that cannot be opened (here: another writer holds the new
+// name) must not cost the recorder the stream it has.
+TEST_F(DaemonReload, OutputThatCannotOpenKeepsThePrevious)
+{
+	startDaemon();
+	depthkey::ShmRingWriter squatter;
+	const std::string taken = prefix_ + ".taken";
+	ASSERT_EQ(squatter.open(taken, 8, 8, DK_SHM_FORMAT_RGB24, 2, ""), 0);
+	daemon_.writeFile("depthkey.toml",
+			  "[colour]\nwidth = 160\nheight = 120\nfps = 25\n[output]\ncomposite_name = \"" + taken +
+				  "\"\nlecturer_name = \"" + prefix_ + ".lecturer\"\n");
+	reloadAndExpectFrames("composite_name held by another writer");
+	EXPECT_NE(daemon_.log().find("keeping the previous [output]"), std::string::npos) << daemon_.log();
+	EXPECT_EQ(squatter.frameCount(), 0u);
+	squatter.unlink();
+}
+
+// Case N: a calibration fitted for other image sizes: "calibration loaded",
+// then "not calibrated", and nothing said why.
+TEST_F(DaemonReload, CalibrationForOtherSizesSaysWhy)
+{
+	std::string calibration = daemon_.dir() + "/calibration.toml";
+	std::string error;
+	ASSERT_EQ(depthkey::writeCalibration(calibration, depthkey::test::sampleCalibration(), error), 0)
+		<< error;
+	config_ = daemon_.writeFile("depthkey.toml",
+				    configText(prefix_, "[mapping]\ncalibration_file = \"" + calibration + "\"\n"));
+	startDaemon();
+	ASSERT_TRUE(daemon_.waitForNotify("calibration for other frame sizes", 5s));
+	std::this_thread::sleep_for(1500ms); // the journal line comes with the status
+	std::string log = daemon_.log();
+	EXPECT_NE(log.find("fitted for colour 640x480 and depth 160x124"), std::string::npos) << log;
+	EXPECT_NE(log.find("the cameras deliver colour 160x120"), std::string::npos) << log;
+	EXPECT_EQ(count(log, "but the cameras deliver"), 1u) << log; // once, not every second
+}
+
+// Case B through the command line: --check-config on a FIFO returns at once.
+TEST_F(DaemonReload, CheckConfigOnAFifoReturnsAtOnce)
+{
+	std::string fifo = daemon_.dir() + "/fifo.toml";
+	ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+	ASSERT_TRUE(daemon_.start({ "--check-config", fifo }));
+	int status = daemon_.waitExit(5s);
+	ASSERT_NE(status, -1) << "--check-config blocked on a FIFO";
+	EXPECT_EQ(WEXITSTATUS(status), 1);
+	EXPECT_NE(daemon_.log().find("not a regular file (a FIFO)"), std::string::npos) << daemon_.log();
+}
+
+// Case M: a 50 MB config on SIGHUP gave 1.2 s without frames. The cap
+// makes it 1 MiB at most, whose parse still takes several frame periods
+// (make bench: BM_ReloadParse1MiB_*), so the parse runs off the loop: the
+// frames must keep coming while a worst-case 1 MiB config is parsed.
+TEST_F(DaemonReload, ParsingALargeConfigDoesNotStallFrames)
+{
+	startDaemon();
+	std::string junk = "[segmentation]\n";
+	// Below the 1 MiB cap with room for the test's own [preview] section.
+	for (int i = 0; junk.size() < (1u << 20) - 1024; i++)
+		junk += "key" + std::to_string(i) + " = 1\n";
+	daemon_.writeFile("depthkey.toml", junk);
+
+	std::atomic<bool> stop{ false };
+	std::atomic<int64_t> worstGapMs{ 0 };
+	std::thread watcher([&] {
+		uint64_t last = latestFrame(prefix_ + ".composite");
+		auto lastChange = std::chrono::steady_clock::now();
+		while (!stop) {
+			uint64_t now = latestFrame(prefix_ + ".composite");
+			auto t = std::chrono::steady_clock::now();
+			if (now != last) {
+				last = now;
+				lastChange = t;
+			}
+			int64_t gap = std::chrono::duration_cast<std::chrono::milliseconds>(t - lastChange).count();
+			if (gap > worstGapMs)
+				worstGapMs = gap;
+			std::this_thread::sleep_for(2ms);
+		}
+	});
+	for (int i = 0; i < 3; i++) {
+		ASSERT_EQ(daemon_.signal(SIGHUP), 0);
+		std::this_thread::sleep_for(700ms);
+	}
+	stop = true;
+	watcher.join();
+	EXPECT_TRUE(daemon_.running());
+	EXPECT_NE(daemon_.log().find("more errors"), std::string::npos) << daemon_.log().substr(0, 2000);
+	// 40 ms a frame; a parse on the loop would leave a gap of 100-300 ms.
+	EXPECT_LT(worstGapMs.load(), 100) << "frames stalled during a reload";
+}

@@ -1,0 +1,29 @@
+#!/bin/sh
+# Runs each libFuzzer harness for SECONDS on its seed corpus (tests/fuzz/corpus/NAME)
+# plus what earlier runs found (FUZZ_DIR/corpus/NAME), and prints one line a
+# harness: "fuzz: NAME: EXECS execs in S s, CRASHES crashes". A crash leaves its
+# input in FUZZ_DIR/crashes/ and fails the run.
+#   tests/fuzz/run.sh FUZZ_DIR SECONDS NAME...    (`make fuzz` calls it)
+set -u
+dir=$1 seconds=$2
+shift 2
+failed=0
+for name in "$@"; do
+	bin=$dir/bin/${name}_fuzz
+	corpus=$dir/corpus/$name
+	mkdir -p "$corpus" "$dir/crashes" "$dir/logs"
+	log=$dir/logs/$name.log
+	# -rss_limit_mb: the box has 1-2 GB; an input that needs more is a bug too.
+	ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+		"$bin" -max_total_time="$seconds" -print_final_stats=1 -rss_limit_mb=1024 -timeout=10 \
+		-artifact_prefix="$dir/crashes/$name-" "$corpus" "tests/fuzz/corpus/$name" >"$log" 2>&1
+	rc=$?
+	execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -n 1)
+	crashes=$(ls "$dir/crashes" 2>/dev/null | grep -c "^$name-")
+	echo "fuzz: $name: ${execs:-0} execs in $seconds s, $crashes crashes (exit $rc, log $log)"
+	if [ "$rc" -ne 0 ] || [ "$crashes" -ne 0 ]; then
+		grep -m 5 -E 'ERROR|runtime error|SUMMARY' "$log" | sed "s/^/fuzz: $name: /"
+		failed=1
+	fi
+done
+exit "$failed"
