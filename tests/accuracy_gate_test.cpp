@@ -1,22 +1,21 @@
-// Issue 4's accuracy gate, run the way a developer runs it: depthkey-calibrate
-// fits the simulator's rig, depthkey-eval scores the pipeline and the
-// depth-only baseline on 300 frames of the simulated lecture with every
-// artefact on (seed 1: ToF noise up to 30 cm at the edge, halo, motion blur,
-// free-running cameras with 40 ms depth latency, lens distortion, parallax,
-// colour noise, a desk and monitor in the lecturer's depth range, changing
-// board and light).
-//
+// Issue 11's accuracy gate, run the way a developer runs it: depthkey-calibrate
+// fits the simulator's rig, depthkey-eval scores the pipeline on 300 frames
+// of the simulated lecture, shipped defaults, calibrated:
+//   - seeds 1, 2 and 3 with every artefact on (ToF noise up to 30 cm at the
+//     edge, halo, motion blur, free-running cameras with 40 ms depth
+//     latency, lens distortion, parallax, colour noise, a desk and monitor
+//     in the lecturer's depth range, changing board and light);
+//   - seed 1 with a clean depth camera (no latency, jitter, halo, noise or
+//     blur; depth at 25 fps).
 // What is asserted:
-//   - the pipeline is clearly better than depth-only (IoU at least twice,
-//     boundary F at least four times the baseline's);
-//   - it does not fall below what it scores today (IoU 0.867, BF 0.527 on
-//     this machine; the simulator and the pipeline are deterministic
-//     integer code, so the same on any machine): a regression floor.
-// The issue's target (IoU >= 0.97, BF >= 0.90) is printed, not asserted: it
-// is not met, and the bound printed by depthkey-eval (every band pixel
-// decided right, the depth seeds as they are: IoU 0.915, BF 0.728) shows
-// that with seeds that are never contradicted it cannot be on this
-// simulator (README, "Segmentation accuracy").
+//   - the pipeline is clearly better than depth-only on seed 1 (IoU at
+//     least twice, boundary F at least four times the baseline's);
+//   - a regression floor at what it scores today (the simulator and the
+//     pipeline are deterministic integer code, so the same on any machine),
+//     a little below, per run and for the mean.
+// The issue's targets (mean IoU >= 0.97 and BF >= 0.90, every seed IoU >=
+// 0.95; clean IoU >= 0.98 and BF >= 0.93) are printed, not asserted: they
+// are not met yet (README, "Segmentation accuracy").
 #include "tests/shell_command.hpp"
 #include "tests/test_paths.hpp"
 
@@ -50,7 +49,7 @@ Scores evaluate(const std::string &eval, const std::string &method)
 
 } // namespace
 
-TEST(AccuracyGate, PipelineOnTheSimulatedLectureWithEveryArtefact)
+TEST(AccuracyGate, PipelineOnTheSimulatedLecture)
 {
 	namespace fs = std::filesystem;
 	const fs::path dir = fs::temp_directory_path() / ("depthkey-gate-" + std::to_string(getpid()));
@@ -59,20 +58,51 @@ TEST(AccuracyGate, PipelineOnTheSimulatedLectureWithEveryArtefact)
 	int status;
 	std::string fit = run(bin + "/depthkey-calibrate --sim --output " + (dir / "calibration.toml").string(), status);
 	ASSERT_EQ(status, 0) << fit;
+	const std::string mapping = "[mapping]\ncalibration_file = \"" + (dir / "calibration.toml").string() + "\"\n";
 	{
 		// The shipped defaults, calibrated.
 		std::ofstream config(dir / "gate.toml");
-		config << "[mapping]\ncalibration_file = \"" << (dir / "calibration.toml").string() << "\"\n";
+		config << mapping;
+		// The same with a clean depth camera at 25 fps.
+		std::ofstream clean(dir / "clean.toml");
+		clean << mapping << "[depth]\nfps = 25\n[sim]\ndepth_latency_ms = 0.0\ndepth_jitter_ms = 0.0\n"
+		      << "colour_jitter_ms = 0.0\nhalo_width_px = 0\ndepth_noise = false\nmotion_blur = false\n";
 	}
-	const std::string eval = bin + "/depthkey-eval --config " + (dir / "gate.toml").string() + " --sim 1 --frames 300";
-	const Scores pipeline = evaluate(eval, "pipeline");
-	const Scores depthOnly = evaluate(eval, "depth-only");
+	auto eval = [&](const char *config, int seed) {
+		return bin + "/depthkey-eval --config " + (dir / config).string() + " --sim " + std::to_string(seed) +
+		       " --frames 300";
+	};
+	const Scores depthOnly = evaluate(eval("gate.toml", 1), "depth-only");
+	Scores seeds[3], mean;
+	for (int s = 0; s < 3; ++s) {
+		seeds[s] = evaluate(eval("gate.toml", s + 1), "pipeline");
+		mean.iou += seeds[s].iou / 3;
+		mean.bf += seeds[s].bf / 3;
+	}
+	const Scores clean = evaluate(eval("clean.toml", 1), "pipeline");
 	fs::remove_all(dir);
 
-	EXPECT_GE(pipeline.iou, 2.0 * depthOnly.iou);
-	EXPECT_GE(pipeline.bf, 4.0 * depthOnly.bf);
-	EXPECT_GE(pipeline.iou, 0.86);
-	EXPECT_GE(pipeline.bf, 0.52);
-	std::printf("issue 4 target IoU >= 0.97, BF >= 0.90: %s (IoU %.3f, BF %.3f)\n",
-		    pipeline.iou >= 0.97 && pipeline.bf >= 0.90 ? "met" : "NOT met", pipeline.iou, pipeline.bf);
+	EXPECT_GE(seeds[0].iou, 2.0 * depthOnly.iou);
+	EXPECT_GE(seeds[0].bf, 4.0 * depthOnly.bf);
+	// Floors: today's figures (0.940/0.756, 0.907/0.672, 0.905/0.577; clean
+	// 0.960/0.836) less 0.005 (IoU) and 0.01 (BF).
+	const Scores floors[3] = { { 0.935, 0.746 }, { 0.902, 0.662 }, { 0.900, 0.567 } };
+	for (int s = 0; s < 3; ++s) {
+		EXPECT_GE(seeds[s].iou, floors[s].iou) << "seed " << s + 1;
+		EXPECT_GE(seeds[s].bf, floors[s].bf) << "seed " << s + 1;
+	}
+	EXPECT_GE(clean.iou, 0.955);
+	EXPECT_GE(clean.bf, 0.826);
+
+	std::printf("%-30s %s\n", "run", "IoU    BF");
+	for (int s = 0; s < 3; ++s)
+		std::printf("seed %d, all artefacts           %.3f  %.3f\n", s + 1, seeds[s].iou, seeds[s].bf);
+	std::printf("mean of seeds 1-3              %.3f  %.3f\n", mean.iou, mean.bf);
+	std::printf("seed 1, clean depth at 25 fps  %.3f  %.3f\n", clean.iou, clean.bf);
+	const bool seedsMet = mean.iou >= 0.97 && mean.bf >= 0.90 && seeds[0].iou >= 0.95 && seeds[1].iou >= 0.95 &&
+			      seeds[2].iou >= 0.95;
+	std::printf("issue 11 target mean IoU >= 0.97, BF >= 0.90, every seed IoU >= 0.95: %s\n",
+		    seedsMet ? "met" : "NOT met");
+	std::printf("issue 11 target clean depth IoU >= 0.98, BF >= 0.93: %s\n",
+		    clean.iou >= 0.98 && clean.bf >= 0.93 ? "met" : "NOT met");
 }
