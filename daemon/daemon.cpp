@@ -248,7 +248,7 @@ void Daemon::onColourFrame(const ColourFrame &frame)
 	colourWidth_ = frame.rgb.width();
 	colourHeight_ = frame.rgb.height();
 	recorder_.recordColour(frame);
-	lastColourNs_ = frame.timestampNs;
+	lastColourNs_ = loop_.nowUs() * 1000u; // when it came: a late camera clock must not look stale
 	latency_.addColour(frame.rgb, frame.timestampNs);
 	queue_.addColour(frame, loop_.nowUs() * 1000u);
 	keyDueFrames();
@@ -339,7 +339,9 @@ void Daemon::onFrameTick()
 {
 	uint64_t nowNs = loop_.nowUs() * 1000u;
 	uint64_t periodNs = 1'000'000'000u / settings_.colour.fps;
-	if (haveColour_ && lastColourNs_ + kColourStalePeriods * periodNs > nowNs)
+	// Frames still held for pairing (pairing.delay_ms) are on their way out:
+	// a NO SIGNAL frame now would come between them, out of order.
+	if (haveColour_ && (queue_.held() > 0 || lastColourNs_ + kColourStalePeriods * periodNs > nowNs))
 		return;
 	publishNoSignal(nowNs);
 }

@@ -142,7 +142,7 @@ private:
 	double latencyLoggedMs_ = 1e9;
 	ColourFrame colourLatest_;
 	bool haveColour_ = false;
-	uint64_t lastColourNs_ = 0;
+	uint64_t lastColourNs_ = 0;   // arrival (loop clock) of the last colour frame
 	RgbImage noSignal_;
 	std::string noSignalText_;
 
