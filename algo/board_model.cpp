@@ -21,12 +21,6 @@ void BoardModel::learn(const RgbImage &colour, const Gray8Image &trimap)
 		model_.resize(w, h);
 		reset();
 	}
-	// m += (c - m) / 4, rounded to nearest (an arithmetic shift of d + 2
-	// floors; the mean settles within 2 levels of a steady colour, below the
-	// sensor noise).
-	auto step = [](uint8_t mean, uint8_t value) {
-		return uint8_t(mean + ((int(value) - int(mean) + (1 << (kRateShift - 1))) >> kRateShift));
-	};
 	uint64_t colourSum[3] = {}, modelSum[3] = {};
 	for (int y = phase_; y < h; y += kRowStride) {
 		const Rgb8 *c = colour.row(y);
@@ -45,8 +39,7 @@ void BoardModel::learn(const RgbImage &colour, const Gray8Image &trimap)
 			modelSum[0] += m[x].r;
 			modelSum[1] += m[x].g;
 			modelSum[2] += m[x].b;
-			m[x] = { step(m[x].r, c[x].r), step(m[x].g, c[x].g), step(m[x].b, c[x].b),
-				 uint8_t(std::min(255, m[x].a + 1)) };
+			update(m[x], c[x]);
 		}
 	}
 	// The gain of the light against the model as it was before this update
@@ -58,6 +51,9 @@ void BoardModel::learn(const RgbImage &colour, const Gray8Image &trimap)
 	phase_ = (phase_ + 1) % kRowStride;
 }
 
+// m += (c - m) / 4, rounded to nearest (an arithmetic shift of d + 2 floors;
+// the mean settles within 2 levels of a steady colour, below the sensor
+// noise); a pixel never seen takes the colour as it is.
 void BoardModel::update(Rgba8 &m, Rgb8 c)
 {
 	auto step = [](uint8_t mean, uint8_t value) {
