@@ -218,6 +218,15 @@ TEST_F(DaemonReload, ParsingALargeConfigDoesNotStallFrames)
 	watcher.join();
 	EXPECT_TRUE(daemon_.running());
 	EXPECT_NE(daemon_.log().find("more errors"), std::string::npos) << daemon_.log().substr(0, 2000);
-	// 40 ms a frame; a parse on the loop would leave a gap of 100-300 ms.
-	EXPECT_LT(worstGapMs.load(), 100) << "frames stalled during a reload";
+	// 40 ms a frame; a parse on the loop would leave a gap of 100-300 ms
+	// (BM_ReloadParse1MiB_*: up to ~270 ms without sanitizers). Under ASan
+	// the daemon's own frame work is 2-3 times slower and the parsing worker
+	// takes the second of two cores: a 165 ms gap was seen with the parse
+	// off the loop, while the same parse on the loop costs 500 ms or more.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+	constexpr int64_t kMaxGapMs = 250;
+#else
+	constexpr int64_t kMaxGapMs = 100;
+#endif
+	EXPECT_LT(worstGapMs.load(), kMaxGapMs) << "frames stalled during a reload";
 }

@@ -3,13 +3,13 @@
 // picture must show the stage images, not empty boxes or broken-image icons.
 // Skipped, and reported so, where chromium is not installed.
 #include "tests/daemon_process.hpp"
+#include "tests/preview_test_util.hpp"
 #include "tests/shell_command.hpp"
 
 #include <gtest/gtest.h>
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
-#include <regex>
 #include <sys/mman.h>
 
 using namespace std::chrono_literals;
@@ -43,16 +43,15 @@ TEST(PreviewScreenshot, ChromiumShowsTheStageImages)
 					 ".lecturer\"\n[preview]\nlisten = \"127.0.0.1:0\"\n");
 	ASSERT_TRUE(daemon.start({ "--config", config }));
 	ASSERT_TRUE(daemon.waitForNotify("READY=1", 10s)) << daemon.log();
-	std::smatch m;
-	const std::string log = daemon.log();
-	ASSERT_TRUE(std::regex_search(log, m, std::regex("preview page at (http://127\\.0\\.0\\.1:[0-9]+/)"))) << log;
+	const std::string url = depthkey::test::previewUrlFromLog(daemon.log());
+	ASSERT_FALSE(url.empty()) << daemon.log();
 
 	const std::string shot = daemon.dir() + "/page.png";
 	// --timeout: the streams never finish loading; take the picture after 8 s.
 	std::string out = depthkey::test::run("timeout 60 chromium --headless=new --no-sandbox --disable-gpu "
 					      "--disable-background-networking --disable-component-update --no-first-run "
 					      "--hide-scrollbars --window-size=1280,1100 --timeout=8000 --screenshot=" +
-						      shot + " " + std::string(m[1]),
+						      shot + " " + url + "/",
 					      status);
 	shm_unlink((prefix + ".composite").c_str());
 	shm_unlink((prefix + ".lecturer").c_str());

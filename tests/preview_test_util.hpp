@@ -40,6 +40,24 @@ inline HttpReply curlGet(const std::string &url, const std::string &options = ""
 	return reply;
 }
 
+// The preview's base URL ("http://127.0.0.1:PORT", no slash) from the
+// daemon's "preview page at http://127.0.0.1:PORT/" log line, "" if absent.
+// (No std::regex: gcc 12 warns inside <regex> under -fsanitize, and the
+// build treats warnings as errors.)
+inline std::string previewUrlFromLog(const std::string &log)
+{
+	const std::string key = "preview page at http://127.0.0.1:";
+	const size_t at = log.find(key);
+	if (at == std::string::npos)
+		return "";
+	size_t end = at + key.size();
+	while (end < log.size() && log[end] >= '0' && log[end] <= '9')
+		end++;
+	if (end == at + key.size() || end >= log.size() || log[end] != '/')
+		return "";
+	return log.substr(at + 16, end - at - 16);
+}
+
 // The whole JPEG parts of a multipart stream (Content-Length framed, as
 // uStreamer sends them); a part cut short at the end is left out.
 inline std::vector<std::string> mjpegParts(const std::string &stream)
