@@ -244,7 +244,7 @@ FUZZ_CXX ?= clang++
 FUZZ_DIR := $(BUILDROOT)/fuzz
 FUZZ_ALL := $(patsubst tests/fuzz/%_fuzz.cpp,%,$(wildcard tests/fuzz/*_fuzz.cpp))
 FUZZ_TARGETS ?= $(FUZZ_ALL)
-FUZZ_LIB_SRCS := $(wildcard config/*.cpp) algo/mapping_model.cpp hal/sr2/sr2_frame_parser.cpp \
+FUZZ_LIB_SRCS := $(wildcard config/*.cpp) algo/mapping_model.cpp algo/homography.cpp algo/radial_lens.cpp hal/sr2/sr2_frame_parser.cpp \
 	hal/recording/sequence_reader.cpp hal/recording/sequence_format.cpp hal/image_file_reader.cpp \
 	hal/v4l2/yuv_to_rgb.cpp hal/v4l2/mjpeg_decoder.cpp hal/v4l2/depth16_to_frame.cpp
 # toml++ 3.3.0 reaches __builtin_unreachable() in its own inline code, a
