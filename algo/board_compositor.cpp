@@ -9,7 +9,7 @@
 namespace depthkey {
 
 bool BoardCompositor::configure(const Homography &colourToOutput, int colourWidth, int colourHeight,
-				int outputWidth, int outputHeight)
+				int outputWidth, int outputHeight, const RadialLens &lens)
 {
 	clear();
 	Homography outputToColour;
@@ -17,6 +17,7 @@ bool BoardCompositor::configure(const Homography &colourToOutput, int colourWidt
 	    !colourToOutput.inverse(outputToColour))
 		return false;
 	colourToOutput_ = colourToOutput;
+	lens_ = lens;
 	colourWidth_ = colourWidth;
 	colourHeight_ = colourHeight;
 	const size_t n = size_t(outputWidth) * outputHeight;
@@ -30,8 +31,9 @@ bool BoardCompositor::configure(const Homography &colourToOutput, int colourWidt
 	for (int y = 0; y < outputHeight; ++y)
 		for (int x = 0; x < outputWidth; ++x) {
 			size_t k = size_t(y) * outputWidth + x;
-			double sx, sy;
-			bool seen = outputToColour.apply(x, y, sx, sy) && sx >= -0.5 && sx <= colourWidth - 0.5 &&
+			double ix, iy, sx = -1, sy = -1;
+			bool seen = outputToColour.apply(x, y, ix, iy) && lens.distort(ix, iy, sx, sy) &&
+				    std::isfinite(sx) && std::isfinite(sy) && sx >= -0.5 && sx <= colourWidth - 0.5 &&
 				    sy >= -0.5 && sy <= colourHeight - 0.5;
 			if (!seen) {
 				index_[k] = kOutsideView;
@@ -108,25 +110,31 @@ void BoardCompositor::clear()
 
 // The board pixels whose bilinear footprint can touch the colour ROI: the
 // ROI grown by one pixel (a sample up to a pixel outside reads its edge),
-// mapped corner by corner. H maps straight edges to straight edges, so the
-// quadrilateral lies within the corners' bounding box.
+// mapped along its border. H maps straight edges to straight edges, so
+// with a pinhole the corners bound it; a lens bends the edges, so then
+// points along them are mapped too and a pixel of margin added.
 Roi BoardCompositor::boardRoiOf(const Roi &colourRoi) const
 {
 	if (colourRoi.empty())
 		return {};
 	const double x0 = colourRoi.x0 - 1.5, x1 = colourRoi.x1 + 0.5;
 	const double y0 = colourRoi.y0 - 1.5, y1 = colourRoi.y1 + 0.5;
-	const double cx[4] = { x0, x1, x1, x0 }, cy[4] = { y0, y0, y1, y1 };
+	const int steps = lens_.isPinhole() ? 1 : 16;
+	const double margin = lens_.isPinhole() ? 0 : 1;
 	double minU = 1e18, maxU = -1e18, minV = 1e18, maxV = -1e18;
-	for (int i = 0; i < 4; ++i) {
-		double u, v;
-		if (!colourToOutput_.apply(cx[i], cy[i], u, v))
-			return { 0, 0, outputWidth_, outputHeight_ }; // beyond the horizon: all of it
-		minU = std::min(minU, u);
-		maxU = std::max(maxU, u);
-		minV = std::min(minV, v);
-		maxV = std::max(maxV, v);
-	}
+	for (int edge = 0; edge < 4; ++edge)
+		for (int i = 0; i < steps; ++i) {
+			const double t = double(i) / steps;
+			const double cx[4] = { x0 + t * (x1 - x0), x1, x1 - t * (x1 - x0), x0 };
+			const double cy[4] = { y0, y0 + t * (y1 - y0), y1, y1 - t * (y1 - y0) };
+			double ix, iy, u, v;
+			if (!lens_.undistort(cx[edge], cy[edge], ix, iy) || !colourToOutput_.apply(ix, iy, u, v))
+				return { 0, 0, outputWidth_, outputHeight_ }; // beyond the horizon: all of it
+			minU = std::min(minU, u - margin);
+			maxU = std::max(maxU, u + margin);
+			minV = std::min(minV, v - margin);
+			maxV = std::max(maxV, v + margin);
+		}
 	auto clampTo = [](double v, int hi) { return int(std::clamp(v, 0.0, double(hi))); };
 	Roi r{ clampTo(std::floor(minU), outputWidth_), clampTo(std::floor(minV), outputHeight_),
 	       clampTo(std::ceil(maxU) + 1, outputWidth_), clampTo(std::ceil(maxV) + 1, outputHeight_) };

@@ -23,6 +23,8 @@
 #include "algo/kernel_path.hpp"
 #include "algo/trimap.hpp"
 
+#include "algo/radial_lens.hpp"
+
 #include <cstdint>
 #include <vector>
 
@@ -31,11 +33,13 @@ namespace depthkey {
 class BoardCompositor
 {
 public:
-	// colourToOutput maps colour pixels to pixels of the output (the board
-	// picture at its output size). Allocates the map; false when H is
-	// singular or a size is empty (the compositor is then unconfigured).
+	// colourToOutput maps ideal (undistorted by lens) colour pixels to
+	// pixels of the output (the board picture at its output size); the lens
+	// is folded into the per-pixel map, so it costs nothing per frame.
+	// Allocates the map; false when H is singular or a size is empty (the
+	// compositor is then unconfigured).
 	bool configure(const Homography &colourToOutput, int colourWidth, int colourHeight, int outputWidth,
-		       int outputHeight);
+		       int outputHeight, const RadialLens &lens = RadialLens{});
 	void clear();
 	bool configured() const { return outputWidth_ > 0; }
 	int outputWidth() const { return outputWidth_; }
@@ -64,6 +68,7 @@ private:
 	Roi boardRoiOf(const Roi &colourRoi) const;
 
 	Homography colourToOutput_;
+	RadialLens lens_;
 	int colourWidth_ = 0, colourHeight_ = 0, outputWidth_ = 0, outputHeight_ = 0;
 	static constexpr int kBoardTile = 16, kColourTile = 8;
 	struct TileSources {

@@ -15,6 +15,9 @@ namespace {
 
 constexpr double kMaxCoefficient = 1e7;    // a corrupt file, not a camera
 constexpr double kMaxResidualPx = 1e4;
+// A webcam's radial terms at a focal length of one image width are a few
+// hundredths; beyond 1 it is a fisheye or a corrupt file.
+constexpr double kMaxLensTerm = 1.0;
 
 void bindBoard(TomlSection &sec, BoardCalibration &c)
 {
@@ -29,6 +32,17 @@ void bindBoard(TomlSection &sec, BoardCalibration &c)
 	sec.integer("points", c.points, 4, 10000);
 	sec.number("rms_px", c.rmsPx, 0.0, kMaxResidualPx);
 	sec.number("max_px", c.maxPx, 0.0, kMaxResidualPx);
+	bool lensOk = sec.number("lens_k1", c.lensK1, -kMaxLensTerm, kMaxLensTerm);
+	lensOk = sec.number("lens_k2", c.lensK2, -kMaxLensTerm, kMaxLensTerm) && lensOk;
+	if (lensOk && c.colourWidth > 1 && c.colourHeight > 1) {
+		// Every pixel of the colour image must undistort: the lens may
+		// not fold back inside the picture.
+		double ix, iy;
+		const RadialLens lens = c.lens();
+		sec.require(lens.undistort(0, 0, ix, iy) && lens.undistort(c.colourWidth - 1, 0, ix, iy) &&
+				    lens.undistort(0, c.colourHeight - 1, ix, iy),
+			    "lens_k1", "the lens terms fold the image's corners back (not a camera's lens)");
+	}
 	std::vector<double> h;
 	if (!sec.numbers("homography", h, 9, 9, -kMaxCoefficient, kMaxCoefficient) || h.size() != 9)
 		return;
@@ -99,6 +113,9 @@ std::string formatBoardCalibration(const BoardCalibration &c)
 	h += "]";
 	char stats[128];
 	std::snprintf(stats, sizeof(stats), "points = %d\nrms_px = %.4f\nmax_px = %.4f\n", c.points, c.rmsPx, c.maxPx);
+	const std::string lens = "# The colour lens's radial terms, about the image centre at a focal length\n"
+				 "# of one image width; the homography maps the undistorted pixels.\n"
+				 "lens_k1 = " + formatExact(c.lensK1) + "\nlens_k2 = " + formatExact(c.lensK2) + "\n";
 	return "# depthkey board calibration, written by depthkey-calibrate --board: the\n"
 	       "# homography from colour-camera pixels to board pixels (row-major 3x3).\n"
 	       "# Do not edit; calibrate again instead. Residuals are in board pixels.\n"
@@ -109,7 +126,7 @@ std::string formatBoardCalibration(const BoardCalibration &c)
 	       "colour_height = " + std::to_string(c.colourHeight) + "\n"
 	       "board_width = " + std::to_string(c.boardWidth) + "\n"
 	       "board_height = " + std::to_string(c.boardHeight) + "\n"
-	       "homography = " + h + "\n" + stats +
+	       "homography = " + h + "\n" + lens + stats +
 	       "\n# Written last, so that a file cut short is refused.\n[end]\ncomplete = true\n";
 }
 

@@ -9,13 +9,15 @@
 // a technician redoes one without rewriting, or risking, the other; and a
 // box whose depth calibration is fine keeps it while the board is redone.
 //
-// TOML, every key required, nothing unknown allowed; a corrupt, partial or
+// TOML, every key required but the lens's (lens_k1, lens_k2: absent in the
+// first files, which were fitted as a pinhole), nothing unknown allowed; a corrupt, partial or
 // impossible file (a singular H) is refused with FILE:LINE:COLUMN: KEY:
 // MESSAGE, and the daemon keeps its last good H. Written atomically, and
 // only what the reader accepts.
 #pragma once
 
 #include "algo/homography.hpp"
+#include "algo/radial_lens.hpp"
 #include "config/config_error.hpp"
 
 #include <string>
@@ -27,12 +29,15 @@ namespace depthkey {
 constexpr int kBoardCalibrationFormat = 1;
 
 struct BoardCalibration {
-	Homography colourToBoard;
+	Homography colourToBoard;              // ideal (undistorted) colour px -> board px
+	double lensK1 = 0, lensK2 = 0;         // the colour lens (algo/radial_lens.hpp)
 	int colourWidth = 0, colourHeight = 0; // the colour image H was fitted in
 	int boardWidth = 0, boardHeight = 0;   // the board picture's pixels
 	std::string date;                      // UTC, "2024-05-01T12:00:00Z"
 	int points = 0;                        // circles fitted on
 	double rmsPx = 0, maxPx = 0;           // reprojection error, board px
+
+	RadialLens lens() const { return RadialLens::forImage(colourWidth, colourHeight, lensK1, lensK2); }
 };
 
 struct BoardCalibrationResult {

@@ -140,7 +140,7 @@ void BoardOutput::updateGeometry()
 
 	int before = outputWidth() * 100000 + outputHeight();
 	if (notCalibrated_.empty() &&
-	    compositor_.configure(c.colourToBoard.then(boardScaling(pw, ph, ow, oh)), cw, ch, ow, oh)) {
+	    compositor_.configure(c.colourToBoard.then(boardScaling(pw, ph, ow, oh)), cw, ch, ow, oh, c.lens())) {
 		scaled_.resize(ow, oh);
 		scalePicture();
 		showBoardOnly();

@@ -52,6 +52,38 @@ TEST(BoardCalibrationFile, RoundTripsExactly)
 	EXPECT_EQ(r.calibration.date, sample().date);
 }
 
+// The lens's terms are written and read back exactly; a file of the first
+// kind, without them, is a pinhole; a lens that folds the image is refused.
+TEST(BoardCalibrationFile, TheLensTermsRoundTripAndAreOptional)
+{
+	BoardCalibration c = sample();
+	c.lensK1 = -0.0341234567;
+	c.lensK2 = 0.00641;
+	std::string text = formatBoardCalibration(c);
+	BoardCalibrationResult r = parseBoardCalibration(text, "board.toml");
+	ASSERT_TRUE(r.ok()) << r.errors.front().toString();
+	EXPECT_EQ(r.calibration.lensK1, c.lensK1);
+	EXPECT_EQ(r.calibration.lensK2, c.lensK2);
+	EXPECT_FALSE(r.calibration.lens().isPinhole());
+
+	size_t a = text.find("lens_k1"), b = text.find('\n', text.find("lens_k2"));
+	std::string old = text;
+	old.erase(a, b + 1 - a);
+	r = parseBoardCalibration(old, "board.toml");
+	ASSERT_TRUE(r.ok()) << r.errors.front().toString();
+	EXPECT_TRUE(r.calibration.lens().isPinhole());
+
+	std::string k1 = text.substr(a, text.find('\n', a) - a);
+	r = parseBoardCalibration(replaceLine(text, k1, "lens_k1 = -0.9"), "board.toml");
+	ASSERT_EQ(r.errors.size(), 1u);
+	EXPECT_EQ(r.errors[0].key, "board.lens_k1");
+	EXPECT_NE(r.errors[0].message.find("fold"), std::string::npos) << r.errors[0].message;
+	r = parseBoardCalibration(replaceLine(text, k1, "lens_k1 = nan"), "board.toml");
+	ASSERT_FALSE(r.ok());
+	EXPECT_EQ(r.errors[0].key, "board.lens_k1");
+	EXPECT_EQ(r.errors[0].line, lineOf(text, "lens_k1 ="));
+}
+
 TEST(BoardCalibrationFile, ACutFileIsRefusedAtItsLastLine)
 {
 	std::string text = formatBoardCalibration(sample());

@@ -60,12 +60,15 @@ struct Reference {
 	double r, g, b, a;
 	bool seen;
 };
-Reference reference(const Scene &s, const Homography &h, double opacity, int x, int y)
+Reference reference(const Scene &s, const Homography &h, double opacity, int x, int y,
+		    const RadialLens &lens = RadialLens{})
 {
 	Homography inv;
 	h.inverse(inv);
-	double sx = -1e9, sy = -1e9;
-	inv.apply(x, y, sx, sy);
+	double ix = -1e9, iy = -1e9, sx = -1e9, sy = -1e9;
+	inv.apply(x, y, ix, iy);
+	if (!lens.distort(ix, iy, sx, sy))
+		sx = sy = -1e9;
 	if (!(sx >= -0.5 && sx <= kCw - 0.5 && sy >= -0.5 && sy <= kCh - 0.5)) {
 		const Rgb8 &b = s.board.at(x, y);
 		return { double(b.r), double(b.g), double(b.b), 0, false };
@@ -96,43 +99,71 @@ RgbaImage layerOf(const RgbImage &colour, const Gray8Image &alpha)
 	return layer;
 }
 
-} // namespace
-
 // Tolerance: Q8 map coordinates (1/512 px rounding) and Q8 weights with one
 // rounding each for the sample and the blend: at most 2 levels per channel
 // on these images, under 0.3 on average.
-TEST(BoardCompositor, MatchesTheFloatingPointReference)
+struct Agreement {
+	double worst = 0, mean = 0;
+	size_t seen = 0, lecturerPixels = 0;
+};
+
+Agreement composeAgainstReference(const Homography &h, const RadialLens &lens)
 {
 	Scene s = makeScene(7);
 	BoardCompositor compositor;
-	ASSERT_TRUE(compositor.configure(tiltedView(), kCw, kCh, kBw, kBh));
+	Agreement a;
+	EXPECT_TRUE(compositor.configure(h, kCw, kCh, kBw, kBh, lens));
 	RgbImage composite;
 	RgbaImage lecturer;
 	const int opacityQ8 = opacityToQ8(0.6);
 	compositor.compose(layerOf(s.colour, s.alpha), s.roi, s.board, opacityQ8, composite, lecturer);
-
-	double worst = 0, sum = 0;
-	size_t n = 0, seen = 0, lecturerPixels = 0;
+	double sum = 0;
+	size_t n = 0;
 	for (int y = 0; y < kBh; ++y)
 		for (int x = 0; x < kBw; ++x) {
-			Reference ref = reference(s, tiltedView(), opacityQ8 / 256.0, x, y);
+			Reference ref = reference(s, h, opacityQ8 / 256.0, x, y, lens);
 			const Rgb8 &c = composite.at(x, y);
 			const Rgba8 &l = lecturer.at(x, y);
 			for (double d : { c.r - ref.r, c.g - ref.g, c.b - ref.b, l.a - ref.a }) {
-				worst = std::max(worst, std::fabs(d));
+				a.worst = std::max(a.worst, std::fabs(d));
 				sum += std::fabs(d);
 				n++;
 			}
-			seen += ref.seen;
-			lecturerPixels += l.a > 0;
+			a.seen += ref.seen;
+			a.lecturerPixels += l.a > 0;
 		}
-	EXPECT_LE(worst, 2.0);
-	EXPECT_LT(sum / n, 0.3);
+	a.mean = sum / n;
+	return a;
+}
+
+} // namespace
+
+TEST(BoardCompositor, MatchesTheFloatingPointReference)
+{
+	Agreement a = composeAgainstReference(tiltedView(), RadialLens{});
+	EXPECT_LE(a.worst, 2.0);
+	EXPECT_LT(a.mean, 0.3);
 	// The test means something: the camera sees part of the board, and the
 	// lecturer covers some of that.
-	EXPECT_GT(seen, size_t(kBw * kBh / 4));
-	EXPECT_LT(seen, size_t(kBw * kBh));
-	EXPECT_GT(lecturerPixels, size_t(1000));
+	EXPECT_GT(a.seen, size_t(kBw * kBh / 4));
+	EXPECT_LT(a.seen, size_t(kBw * kBh));
+	EXPECT_GT(a.lecturerPixels, size_t(1000));
+}
+
+// The lens folded into the map: the same tolerance against the reference
+// that distorts in doubles, and the lens moves pixels (the pinhole map
+// would not pass).
+TEST(BoardCompositor, WithALensMatchesTheFloatingPointReference)
+{
+	const RadialLens lens = RadialLens::forImage(kCw, kCh, -0.09, 0.02);
+	Agreement a = composeAgainstReference(tiltedView(), lens);
+	EXPECT_LE(a.worst, 2.0);
+	EXPECT_LT(a.mean, 0.3);
+	EXPECT_GT(a.seen, size_t(kBw * kBh / 4));
+	EXPECT_GT(a.lecturerPixels, size_t(1000));
+	double x, y;
+	lens.distort(0, 0, x, y);
+	EXPECT_GT(std::hypot(x, y), 1.0) << "the lens should move the corner by more than a pixel";
 }
 
 // With H the identity the warp samples whole pixels: the camera-geometry

@@ -169,16 +169,17 @@ void renderSimShot(const BoardOptions &o, const BoardPattern &pattern, LectureSi
 
 // The fitted H against the simulator's own mapping, over every 4th colour
 // pixel that sees the display.
-void reportSimTruth(const BoardOptions &o, const LectureSimulator &simulator, const Homography &h)
+void reportSimTruth(const BoardOptions &o, const LectureSimulator &simulator, const BoardFit &fit)
 {
 	const double d = simulator.settings().boardDistanceMm / 1000.0;
 	double sum = 0, worst = 0;
 	int n = 0;
 	for (int y = 0; y < o.colourHeight; y += 4)
 		for (int x = 0; x < o.colourWidth; x += 4) {
-			double tu, tv, u, v;
+			double tu, tv, ix, iy, u, v;
 			if (!simColourToBoard(simulator.rig(), d, o.boardWidth, o.boardHeight, x, y, tu, tv) ||
-			    tu < -0.5 || tv < -0.5 || tu > o.boardWidth - 0.5 || tv > o.boardHeight - 0.5 || !h.apply(x, y, u, v))
+			    tu < -0.5 || tv < -0.5 || tu > o.boardWidth - 0.5 || tv > o.boardHeight - 0.5 ||
+			    !fit.lens.undistort(x, y, ix, iy) || !fit.colourToBoard.apply(ix, iy, u, v))
 				continue;
 			double e = std::hypot(u - tu, v - tv);
 			sum += e * e;
@@ -186,7 +187,7 @@ void reportSimTruth(const BoardOptions &o, const LectureSimulator &simulator, co
 			n++;
 		}
 	std::printf("against the simulator's truth (%s): rms %.3f board px, max %.3f over %d points of the display the camera sees\n",
-		    o.distortion ? "lens distortion on: no homography is exact" : "pinhole lens: the true H exists",
+		    o.distortion ? "lens distortion on: the fitted lens, then H" : "pinhole lens: the true H exists",
 		    n ? std::sqrt(sum / n) : 0.0, worst, n);
 	if (!o.distortion) {
 		Homography truth = simTrueHomography(simulator.rig(), d, o.boardWidth, o.boardHeight);
@@ -194,7 +195,7 @@ void reportSimTruth(const BoardOptions &o, const LectureSimulator &simulator, co
 		for (double v : truth.h)
 			std::printf(" %.6g", v);
 		std::printf("\nfitted H: ");
-		for (double v : h.h)
+		for (double v : fit.colourToBoard.h)
 			std::printf(" %.6g", v);
 		std::printf("\n");
 	}
@@ -247,9 +248,11 @@ int runBoardCalibration(int argc, char **argv)
 	}
 	std::printf("found all %d circles; homography (RANSAC, %.0f px): %d inliers\n", fit.points, kBoardRansacPx,
 		    fit.inliers);
+	std::printf("colour lens: k1 %.5f k2 %.5f (radial, at a focal length of one image width)%s\n", fit.lens.k1,
+		    fit.lens.k2, fit.lens.isPinhole() ? ": a pinhole fits best" : "");
 	std::printf("reprojection error: rms %.3f board px, max %.3f board px\n", fit.rmsPx, fit.maxPx);
 	if (o.sim)
-		reportSimTruth(o, simulator, fit.colourToBoard);
+		reportSimTruth(o, simulator, fit);
 
 	int status = 0;
 	if (fit.rmsPx > o.maxRmsPx) {
@@ -259,6 +262,8 @@ int runBoardCalibration(int argc, char **argv)
 	} else if (!o.output.empty()) {
 		BoardCalibration c;
 		c.colourToBoard = fit.colourToBoard;
+		c.lensK1 = fit.lens.k1;
+		c.lensK2 = fit.lens.k2;
 		c.colourWidth = colour.rgb.width();
 		c.colourHeight = colour.rgb.height();
 		c.boardWidth = o.boardWidth;
