@@ -55,6 +55,10 @@ struct MappingModel {
 	// The regressors of one axis for a point, in coefficient order, so the
 	// calibration fit and map() can never disagree. Returns how many are used.
 	int basis(double s, double t, double zMetres, bool yAxis, std::array<double, kMappingCoefficients> &out) const;
+
+	// Every field: the pipeline remaps when any differs, so a field added
+	// here can never be forgotten by a hand-written comparison.
+	bool operator==(const MappingModel &) const = default;
 };
 
 } // namespace depthkey

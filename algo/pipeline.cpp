@@ -17,9 +17,7 @@ void Pipeline::configure(const Settings &settings, const MappingModel &mapping)
 		      !(settings.learning == settings_.learning);
 	if (!(settings.composite == settings_.composite) || settings.board.colour != settings_.board.colour)
 		boardDirty_ = true;
-	if (mapping.kind != mapping_.kind || mapping.x != mapping_.x || mapping.y != mapping_.y ||
-	    mapping.colourWidth != mapping_.colourWidth || mapping.colourHeight != mapping_.colourHeight ||
-	    mapping.tofWidth != mapping_.tofWidth || mapping.tofHeight != mapping_.tofHeight)
+	if (!(mapping == mapping_))
 		mappingDirty_ = reseed = true;
 	settings_ = settings;
 	mapping_ = mapping;

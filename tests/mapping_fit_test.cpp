@@ -232,5 +232,24 @@ TEST(CalibrationFit, NoHeldOutViewIsAnError)
 			 "compared: take more views");
 }
 
+// The pipeline remaps when the model differs in anything: each field alone
+// makes two models unequal.
+TEST(MappingModel, EqualityCoversEveryField)
+{
+	const MappingModel base = knownParallax();
+	EXPECT_EQ(base, knownParallax());
+	std::vector<MappingModel> changed(7, base);
+	changed[0].kind = MappingKind::Identity;
+	changed[1].colourWidth += 1;
+	changed[2].colourHeight += 1;
+	changed[3].tofWidth += 1;
+	changed[4].tofHeight += 1;
+	changed[5].x[3] += 1e-9;
+	changed[6].y[0] -= 1e-9;
+	ASSERT_NE(base.kind, MappingKind::Identity);
+	for (size_t i = 0; i < changed.size(); ++i)
+		EXPECT_FALSE(changed[i] == base) << "field " << i;
+}
+
 } // namespace
 } // namespace depthkey
