@@ -388,7 +388,8 @@ void Daemon::onReaderTick()
 	bool attachedChanged = (now.total() > 0) != (readers_.total() > 0);
 	readers_ = now;
 	logger().info("readers: composite " + std::to_string(now.composite) + ", lecturer " +
-			      std::to_string(now.lecturer),
+			      std::to_string(now.lecturer) + ", board-geometry lecturer " +
+			      std::to_string(now.boardLecturer),
 		      { { "DEVICE", "shm" } });
 	if (attachedChanged && leds_)
 		leds_->show(summary());

@@ -39,6 +39,7 @@ PreviewStatus Daemon::previewStatus(double colourFps, double depthFps, double ou
 	s.depthLatencyMs = latencyEstimate_.valid ? -latencyEstimate_.offsetMs : depthLatencyMs_;
 	s.readersComposite = readers_.composite;
 	s.readersLecturer = readers_.lecturer;
+	s.readersBoardLecturer = readers_.boardLecturer;
 	return s;
 }
 

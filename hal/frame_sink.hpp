@@ -16,7 +16,8 @@ namespace depthkey {
 struct ReaderCounts {
 	int composite = 0;
 	int lecturer = 0;
-	int total() const { return composite + lecturer; }
+	int boardLecturer = 0; // the board-geometry layer (0 while not calibrated)
+	int total() const { return composite + lecturer + boardLecturer; }
 	bool operator==(const ReaderCounts &) const = default;
 };
 

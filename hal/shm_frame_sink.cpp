@@ -85,7 +85,7 @@ int ShmFrameSink::publishBoardLecturer(const RgbaImage &image, uint64_t captureN
 
 ReaderCounts ShmFrameSink::countReaders(uint64_t nowNs)
 {
-	return { composite_.countReaders(nowNs), lecturer_.countReaders(nowNs) };
+	return { composite_.countReaders(nowNs), lecturer_.countReaders(nowNs), boardLecturer_.countReaders(nowNs) };
 }
 
 void ShmFrameSink::close()

@@ -43,8 +43,8 @@ TEST(DaemonReaderPresence, StatusCountsAReaderAndForgetsItWhenKilled)
 	auto killedAt = std::chrono::steady_clock::now();
 	EXPECT_TRUE(daemon.waitForNotify("readers 0;", 3500ms)) << daemon.log();
 	EXPECT_LT(std::chrono::steady_clock::now() - killedAt, 3500ms);
-	EXPECT_NE(daemon.log().find("readers: composite 1, lecturer 0"), std::string::npos) << daemon.log();
-	EXPECT_NE(daemon.log().find("readers: composite 0, lecturer 0"), std::string::npos) << daemon.log();
+	EXPECT_NE(daemon.log().find("readers: composite 1, lecturer 0, board-geometry lecturer 0"), std::string::npos) << daemon.log();
+	EXPECT_NE(daemon.log().find("readers: composite 0, lecturer 0, board-geometry lecturer 0"), std::string::npos) << daemon.log();
 
 	ASSERT_EQ(daemon.signal(SIGTERM), 0);
 	EXPECT_NE(daemon.waitExit(5s), -1);

@@ -27,6 +27,7 @@ PreviewStatus sample()
 	s.calibrationFile = "/var/lib/depthkey/calibration.toml";
 	s.depthLatencyMs = 40;
 	s.readersComposite = 1;
+	s.readersBoardLecturer = 2;
 	s.previewClients = 2;
 	return s;
 }
@@ -51,6 +52,7 @@ TEST(PreviewStatus, JsonCarriesEveryFigure)
 	EXPECT_EQ(j["depth_latency_ms"], 40.0);
 	EXPECT_EQ(j["readers"]["composite"], 1);
 	EXPECT_EQ(j["readers"]["lecturer"], 0);
+	EXPECT_EQ(j["readers"]["board_lecturer"], 2);
 	EXPECT_EQ(j["preview"]["clients"], 2);
 }
 
@@ -66,6 +68,7 @@ TEST(PreviewStatus, MetricsAreInTheExpositionFormat)
 	EXPECT_NE(text.find("depthkey_device_up{device=\"depth\",name=\"sr2 \\\"usb\\\"\\\\1\"} 0\n"), std::string::npos);
 	EXPECT_NE(text.find("# TYPE depthkey_output_fps gauge\ndepthkey_output_fps 24.5\n"), std::string::npos);
 	EXPECT_NE(text.find("depthkey_readers{stream=\"composite\"} 1\n"), std::string::npos);
+	EXPECT_NE(text.find("depthkey_readers{stream=\"lecturer.board\"} 2\n"), std::string::npos);
 	EXPECT_NE(text.find("depthkey_depth_latency_seconds 0.040000000000000001\n"), std::string::npos);
 
 	// Every sample line belongs to a family declared before it, once.

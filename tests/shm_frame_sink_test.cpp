@@ -16,11 +16,13 @@ namespace {
 struct SinkNames {
 	ShmName composite;
 	ShmName lecturer;
+	ShmName boardLecturer;
 	OutputSettings settings() const
 	{
 		OutputSettings s;
 		s.compositeName = composite.str();
 		s.lecturerName = lecturer.str();
+		s.boardLecturerName = boardLecturer.str();
 		s.slots = 3;
 		return s;
 	}
@@ -85,6 +87,26 @@ TEST(ShmFrameSink, PublishesBothStreams)
 	EXPECT_EQ(info.fourcc, DK_SHM_FORMAT_RGBA32);
 	EXPECT_EQ(info.flags, DK_SHM_FLAG_COLOUR_OK);
 	EXPECT_EQ(sink.describeError(), "");
+}
+
+// Each stream's readers are counted apart, the board-geometry layer's too
+// (a recorder rendering the board's strokes itself reads only that one).
+TEST(ShmFrameSink, CountsTheReadersOfEachStream)
+{
+	SinkNames names;
+	ShmFrameSink sink;
+	ASSERT_EQ(sink.open(names.settings(), 40, 30, 64, 36), 0) << sink.describeError();
+	EXPECT_EQ(sink.countReaders(1'000'000'000), (ReaderCounts{ 0, 0, 0 }));
+	dk_shm_reader board, composite;
+	ASSERT_EQ(dk_shm_open(names.boardLecturer.c_str(), &board), 0);
+	ASSERT_EQ(dk_shm_open(names.composite.c_str(), &composite), 0);
+	ReaderCounts counts = sink.countReaders(1'000'000'000);
+	EXPECT_EQ(counts, (ReaderCounts{ 1, 0, 1 }));
+	EXPECT_EQ(counts.total(), 2);
+	dk_shm_close(&board);
+	EXPECT_EQ(sink.countReaders(1'000'000'000), (ReaderCounts{ 1, 0, 0 }));
+	dk_shm_close(&composite);
+	sink.close();
 }
 
 TEST(ShmFrameSink, WrongImageSizeNamesTheStream)

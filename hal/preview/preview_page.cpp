@@ -55,8 +55,9 @@ async function refresh() {
     body.append(row("calibration", s.calibration.calibrated ? "loaded " + s.calibration.file
                                                              : "not calibrated", s.calibration.calibrated));
     body.append(row("depth latency", s.depth_latency_ms.toFixed(1) + " ms"));
-    body.append(row("readers", "composite " + s.readers.composite + ", lecturer " + s.readers.lecturer,
-                    s.readers.composite + s.readers.lecturer > 0));
+    body.append(row("readers", "composite " + s.readers.composite + ", lecturer " + s.readers.lecturer +
+                    ", board-geometry lecturer " + s.readers.board_lecturer,
+                    s.readers.composite + s.readers.lecturer + s.readers.board_lecturer > 0));
     body.append(row("preview", s.preview.clients + " streams, " + s.preview.encode_ms.toFixed(1) + " ms per JPEG"));
     body.append(row("uptime", Math.round(s.uptime_s) + " s"));
   } catch (e) {

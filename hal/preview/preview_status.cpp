@@ -24,7 +24,8 @@ std::string previewStatusJson(const PreviewStatus &s)
 		{ "pairing", { { "paired", s.paired }, { "unpaired", s.unpaired } } },
 		{ "calibration", { { "calibrated", s.calibrated }, { "file", s.calibrationFile } } },
 		{ "depth_latency_ms", s.depthLatencyMs },
-		{ "readers", { { "composite", s.readersComposite }, { "lecturer", s.readersLecturer } } },
+		{ "readers", { { "composite", s.readersComposite }, { "lecturer", s.readersLecturer },
+				  { "board_lecturer", s.readersBoardLecturer } } },
 		{ "preview",
 		  { { "clients", s.previewClients },
 		    { "encoded", s.previewEncoded },
@@ -110,6 +111,7 @@ std::string previewStatusMetrics(const PreviewStatus &s)
 	e.family("depthkey_readers", "gauge", "Readers of a shared-memory stream (heartbeats).");
 	e.sample("depthkey_readers", "stream=\"composite\"", s.readersComposite);
 	e.sample("depthkey_readers", "stream=\"lecturer\"", s.readersLecturer);
+	e.sample("depthkey_readers", "stream=\"lecturer.board\"", s.readersBoardLecturer);
 	e.family("depthkey_preview_clients", "gauge", "Preview streams being sent.");
 	e.sample("depthkey_preview_clients", "", s.previewClients);
 	e.family("depthkey_preview_jpegs_total", "counter", "Preview JPEGs encoded.");

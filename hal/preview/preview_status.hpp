@@ -29,7 +29,7 @@ struct PreviewStatus {
 	bool calibrated = false;
 	std::string calibrationFile;
 	double depthLatencyMs = 0;       // arrival after the depth frame's capture time
-	int readersComposite = 0, readersLecturer = 0;
+	int readersComposite = 0, readersLecturer = 0, readersBoardLecturer = 0;
 	// Filled in by the server when it formats.
 	int previewClients = 0;
 	uint64_t previewEncoded = 0, previewSkipped = 0;
