@@ -120,35 +120,30 @@ int ShmRingWriter::resolveGroup(const std::string &group, unsigned int *gid)
 // -ESTALE and re-open by name) and unlinked. Another user's is refused.
 int ShmRingWriter::retireStale(const std::string &name)
 {
-	int fd = shm_open(name.c_str(), O_RDWR | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0);
-	if (fd < 0 && errno == ENOENT)
+	UniqueFd fd(shm_open(name.c_str(), O_RDWR | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0));
+	if (!fd.isValid() && errno == ENOENT)
 		return 0;
-	if (fd < 0 && errno == EACCES)
+	if (!fd.isValid() && errno == EACCES)
 		return fail(-EPERM, "refusing an object created by another user",
 			    "it is not ours and we may not even open it: remove it from /dev/shm");
-	if (fd < 0)
+	if (!fd.isValid())
 		return fail(-errno, "open the existing object");
 
 	struct stat st{};
-	if (fstat(fd, &st) < 0) {
-		int err = -errno;
-		::close(fd);
-		return fail(err, "fstat the existing object");
-	}
+	if (fstat(fd.get(), &st) < 0)
+		return fail(-errno, "fstat the existing object");
 	if (st.st_uid != geteuid()) {
-		::close(fd);
 		detail_ = "uid " + std::to_string(st.st_uid);
 		return fail(-EPERM, "refusing an object owned by",
 			    "another user could read and change the frames: remove it from /dev/shm");
 	}
 	// A running writer (another depthkeyd) holds the lock; a crash frees it.
-	if (flock(fd, LOCK_EX | LOCK_NB) < 0) {
+	if (flock(fd.get(), LOCK_EX | LOCK_NB) < 0) {
 		int err = errno == EWOULDBLOCK ? -EBUSY : -errno;
-		::close(fd);
 		return fail(err, "lock", err == -EBUSY ? "another writer has it open" : nullptr);
 	}
 	if (static_cast<uint64_t>(st.st_size) >= sizeof(dk_shm_header)) {
-		void *map = mmap(nullptr, sizeof(dk_shm_header), PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
+		void *map = mmap(nullptr, sizeof(dk_shm_header), PROT_READ | PROT_WRITE, MAP_SHARED, fd.get(), 0);
 		if (map != MAP_FAILED) {
 			auto *h = static_cast<dk_shm_header *>(map);
 			__atomic_store_n(&h->online, 0, __ATOMIC_RELAXED);
@@ -158,17 +153,16 @@ int ShmRingWriter::retireStale(const std::string &name)
 		}
 	}
 	int ret = shm_unlink(name.c_str()) < 0 && errno != ENOENT ? -errno : 0;
-	::close(fd);
 	return ret ? fail(ret, "unlink the stale object") : 0;
 }
 
 // O_EXCL: the object is ours from its first byte. Created 0600, then group
 // and mode are applied through the fd, so nobody outside the group can open
 // it in between, and the umask cannot narrow the mode.
-int ShmRingWriter::createFresh(const std::string &name, unsigned int gid, const std::string &group)
+int ShmRingWriter::createFresh(const std::string &name, unsigned int gid, const std::string &group, UniqueFd &out)
 {
-	int fd = shm_open(name.c_str(), O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
-	if (fd < 0)
+	UniqueFd fd(shm_open(name.c_str(), O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600));
+	if (!fd.isValid())
 		return fail(-errno, "create",
 			    errno == EEXIST ? "created by someone else meanwhile: try again" : nullptr);
 	static constexpr const char *kChgrp = "chgrp to";
@@ -177,23 +171,24 @@ int ShmRingWriter::createFresh(const std::string &name, unsigned int gid, const 
 	// fchown only when the new object is not in the group yet: the packaged
 	// service's seccomp filter (~@privileged) refuses fchown even to our own
 	// group, and a fresh object already has our egid.
-	if (flock(fd, LOCK_EX | LOCK_NB) < 0)
+	if (flock(fd.get(), LOCK_EX | LOCK_NB) < 0)
 		step = "lock";
-	else if (fstat(fd, &st) < 0)
+	else if (fstat(fd.get(), &st) < 0)
 		step = "fstat";
-	else if (st.st_gid != gid && fchown(fd, static_cast<uid_t>(-1), gid) < 0)
+	else if (st.st_gid != gid && fchown(fd.get(), static_cast<uid_t>(-1), gid) < 0)
 		step = kChgrp;
-	else if (fchmod(fd, kMode) < 0)
+	else if (fchmod(fd.get(), kMode) < 0)
 		step = "chmod 0660";
 	if (step) {
 		int err = -errno; // before anything else may change errno
 		if (step == kChgrp)
 			detail_ = group.empty() ? std::to_string(gid) : group;
-		::close(fd);
+		fd.reset();
 		shm_unlink(name.c_str());
 		return fail(err, step);
 	}
-	return fd;
+	out = std::move(fd);
+	return 0;
 }
 
 int ShmRingWriter::open(const std::string &name, int width, int height, uint32_t fourcc,
@@ -232,25 +227,25 @@ int ShmRingWriter::open(const std::string &name, int width, int height, uint32_t
 	int ret = retireStale(name);
 	if (ret)
 		return ret;
-	int fd = createFresh(name, group.empty() ? getegid() : gid, group);
-	if (fd < 0)
-		return fd;
-	if (ftruncate(fd, static_cast<off_t>(needed)) < 0) {
+	UniqueFd fd;
+	ret = createFresh(name, group.empty() ? getegid() : gid, group, fd);
+	if (ret)
+		return ret;
+	// On a failure from here the object is unlinked and fd closes itself.
+	if (ftruncate(fd.get(), static_cast<off_t>(needed)) < 0) {
 		int err = -errno;
-		::close(fd);
 		shm_unlink(name.c_str());
 		return fail(err, "size");
 	}
 
-	void *map = mmap(nullptr, needed, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
+	void *map = mmap(nullptr, needed, PROT_READ | PROT_WRITE, MAP_SHARED, fd.get(), 0);
 	if (map == MAP_FAILED) {
 		int err = -errno;
-		::close(fd);
 		shm_unlink(name.c_str());
 		return fail(err, "mmap");
 	}
 
-	fd_ = fd;
+	fd_ = std::move(fd);
 	header_ = static_cast<dk_shm_header *>(map);
 	data_ = static_cast<uint8_t *>(map) + dataOffset;
 	readers_ = reinterpret_cast<dk_shm_reader_table *>(static_cast<uint8_t *>(map) + readerOffset);
@@ -396,8 +391,7 @@ void ShmRingWriter::close()
 		return;
 	__atomic_store_n(&header_->online, 0, __ATOMIC_RELEASE);
 	munmap(header_, mapSize_);
-	::close(fd_); // releases the writer lock
-	fd_ = -1;
+	fd_.reset(); // releases the writer lock
 	header_ = nullptr;
 	data_ = nullptr;
 	readers_ = nullptr;

@@ -7,6 +7,8 @@
 // readers notice a restart (or a new geometry) and re-open.
 #pragma once
 
+#include "hal/unique_fd.hpp"
+
 #include <array>
 #include <cstdint>
 #include <string>
@@ -77,12 +79,13 @@ private:
 	int fail(int error, const char *step, const char *reason = nullptr);
 	int resolveGroup(const std::string &group, unsigned int *gid);
 	int retireStale(const std::string &name);
-	int createFresh(const std::string &name, unsigned int gid, const std::string &group);
+	// 0 with out holding the new object, or a negative errno.
+	int createFresh(const std::string &name, unsigned int gid, const std::string &group, UniqueFd &out);
 	void writeHeader(uint64_t slotSize, uint64_t readerOffset, uint64_t dataOffset);
 	void clearReaders();
 
 	std::string name_;
-	int fd_ = -1; // held for the writer lock
+	UniqueFd fd_; // held for the writer lock
 	dk_shm_header *header_ = nullptr;
 	uint8_t *data_ = nullptr;
 	dk_shm_reader_table *readers_ = nullptr;

@@ -1,5 +1,7 @@
 #include "hal/preview/password_file.hpp"
 
+#include "hal/unique_fd.hpp"
+
 #include <cerrno>
 #include <crypt.h>
 #include <cstring>
@@ -35,26 +37,23 @@ std::string modeText(mode_t mode)
 int PasswordFile::load(const std::string &path, std::string &error)
 {
 	accounts_.clear();
-	int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
-	if (fd < 0) {
+	UniqueFd fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW));
+	if (!fd.isValid()) {
 		int ret = -errno;
 		error = path + ": cannot open: " + std::strerror(errno);
 		return ret;
 	}
 	struct stat st{};
-	if (fstat(fd, &st) < 0 || !S_ISREG(st.st_mode)) {
-		::close(fd);
+	if (fstat(fd.get(), &st) < 0 || !S_ISREG(st.st_mode)) {
 		error = path + ": not a regular file";
 		return -EINVAL;
 	}
 	if (st.st_mode & 077) {
-		::close(fd);
 		error = path + ": mode " + modeText(st.st_mode) +
 			" lets other users read or change the password hashes; chmod 600 it";
 		return -EPERM;
 	}
 	if (st.st_uid != geteuid() && st.st_uid != 0) {
-		::close(fd);
 		error = path + ": owned by uid " + std::to_string(st.st_uid) + ", not by this user (" +
 			std::to_string(geteuid()) + ") or root";
 		return -EPERM;
@@ -62,9 +61,9 @@ int PasswordFile::load(const std::string &path, std::string &error)
 	std::string text;
 	char buffer[4096];
 	ssize_t n;
-	while ((n = ::read(fd, buffer, sizeof(buffer))) > 0 && text.size() < (1u << 20))
+	while ((n = ::read(fd.get(), buffer, sizeof(buffer))) > 0 && text.size() < (1u << 20))
 		text.append(buffer, static_cast<size_t>(n));
-	::close(fd);
+	fd.reset();
 
 	std::istringstream lines(text);
 	std::string line;
