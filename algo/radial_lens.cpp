@@ -4,6 +4,22 @@
 
 namespace depthkey {
 
+bool undistortRadius(double rd, double k1, double k2, double &r)
+{
+	r = rd;
+	for (int i = 0; i < 20 && rd > 0; ++i) {
+		const double r2 = r * r;
+		const double f = r * (1.0 + r2 * (k1 + k2 * r2)) - rd;
+		const double step = f / (1.0 + r2 * (3.0 * k1 + 5.0 * k2 * r2));
+		r -= step;
+		if (std::fabs(step) < 1e-15)
+			break;
+	}
+	const double r2 = r * r;
+	return std::isfinite(r) && r >= 0 && std::fabs(r * (1.0 + r2 * (k1 + k2 * r2)) - rd) < 1e-9 &&
+	       1.0 + r2 * (3.0 * k1 + 5.0 * k2 * r2) > RadialLens::kMinSlope;
+}
+
 bool RadialLens::undistort(double x, double y, double &ix, double &iy) const
 {
 	const double dx = (x - cx) / f, dy = (y - cy) / f;
@@ -13,21 +29,8 @@ bool RadialLens::undistort(double x, double y, double &ix, double &iy) const
 		iy = y;
 		return true;
 	}
-	// Newton on the radius: r (1 + k1 r^2 + k2 r^4) = rd, from r = rd.
-	double r = rd;
-	for (int i = 0; i < 20; ++i) {
-		const double r2 = r * r;
-		const double g = r * (1.0 + r2 * (k1 + k2 * r2)) - rd;
-		const double slope = 1.0 + r2 * (3.0 * k1 + 5.0 * k2 * r2);
-		if (!(slope > kMinSlope))
-			return false; // past the fold of the radius
-		const double step = g / slope;
-		r -= step;
-		if (std::fabs(step) < 1e-12)
-			break;
-	}
-	const double r2 = r * r;
-	if (!std::isfinite(r) || r < 0 || std::fabs(r * (1.0 + r2 * (k1 + k2 * r2)) - rd) > 1e-9)
+	double r;
+	if (!undistortRadius(rd, k1, k2, r))
 		return false;
 	ix = cx + f * dx * (r / rd);
 	iy = cy + f * dy * (r / rd);

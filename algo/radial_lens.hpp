@@ -14,6 +14,12 @@
 
 namespace depthkey {
 
+// Brown's radial terms backwards, shared by this lens and the simulator's
+// (hal/sim/camera_rig.cpp): Newton on the radius, r (1 + k1 r^2 + k2 r^4) =
+// rd, from r = rd. r is always written; false when it did not settle on a
+// root where the lens is still monotonic (past its fold).
+bool undistortRadius(double rd, double k1, double k2, double &r);
+
 struct RadialLens {
 	double cx = 0, cy = 0, f = 1; // centre and nominal focal length, px
 	double k1 = 0, k2 = 0;

@@ -1,5 +1,7 @@
 #include "hal/sim/camera_rig.hpp"
 
+#include "algo/radial_lens.hpp"
+
 #include <Eigen/Geometry>
 #include <cmath>
 
@@ -39,16 +41,8 @@ void LensModel::undistort(double x, double y, double &xn, double &yn) const
 {
 	double xd = (x - cx) / fx, yd = (y - cy) / fy;
 	double rd = std::sqrt(xd * xd + yd * yd);
-	// Newton on the radius: r (1 + k1 r^2 + k2 r^4) = rd, from r = rd.
-	double r = rd;
-	for (int i = 0; i < 20 && rd > 0; ++i) {
-		double r2 = r * r;
-		double f = r * (1.0 + r2 * (k1 + k2 * r2)) - rd;
-		double step = f / (1.0 + r2 * (3.0 * k1 + 5.0 * k2 * r2));
-		r -= step;
-		if (std::fabs(step) < 1e-15)
-			break;
-	}
+	double r;
+	undistortRadius(rd, k1, k2, r); // the simulator's lenses never fold within the image
 	double scale = rd > 0 ? r / rd : 1.0;
 	xn = xd * scale;
 	yn = yd * scale;
