@@ -11,6 +11,16 @@ namespace depthkey {
 
 namespace {
 
+// OpenCV's 3x3 result normalised to h[8] = 1; false when it is not one.
+bool homographyFromMat(const cv::Mat &m, Homography &h)
+{
+	if (m.empty() || m.rows != 3 || m.cols != 3 || !(std::fabs(m.at<double>(2, 2)) > 1e-12))
+		return false;
+	for (int i = 0; i < 9; ++i)
+		h.h[i] = m.at<double>(i / 3, i % 3) / m.at<double>(2, 2);
+	return true;
+}
+
 // Least squares H on the points as seen through `lens` (undistorted);
 // false when a point does not undistort or no H fits.
 bool fitThroughLens(const std::vector<cv::Point2d> &seen, const std::vector<cv::Point2d> &board,
@@ -26,11 +36,7 @@ bool fitThroughLens(const std::vector<cv::Point2d> &seen, const std::vector<cv::
 	} catch (const cv::Exception &) {
 		return false;
 	}
-	if (m.empty() || m.rows != 3 || m.cols != 3 || !(std::fabs(m.at<double>(2, 2)) > 1e-12))
-		return false;
-	for (int i = 0; i < 9; ++i)
-		h.h[i] = m.at<double>(i / 3, i % 3) / m.at<double>(2, 2);
-	return true;
+	return homographyFromMat(m, h);
 }
 
 // Sum of squared board-px residuals of `h` after `lens`; +inf when a point
@@ -71,10 +77,11 @@ private:
 	int width_, height_;
 };
 
-// (k1, k2) minimising the residual; false (a pinhole stays) when the
+// (k1, k2) minimising the residual, and that residual (the squared sum of
+// the least-squares H through the lens); false (a pinhole stays) when the
 // solver fails or finds nothing better than no distortion.
 bool fitLensTerms(const std::vector<cv::Point2d> &seen, const std::vector<cv::Point2d> &board, int width,
-		  int height, RadialLens &lens)
+		  int height, RadialLens &lens, double &residual)
 {
 	cv::Ptr<LensObjective> objective = cv::makePtr<LensObjective>(seen, board, width, height);
 	const double pinhole[2] = { 0, 0 };
@@ -91,6 +98,7 @@ bool fitLensTerms(const std::vector<cv::Point2d> &seen, const std::vector<cv::Po
 		if (!(best < pinholeResidual))
 			return false;
 		lens = RadialLens::forImage(width, height, k.at<double>(0), k.at<double>(1));
+		residual = best;
 		return true;
 	} catch (const cv::Exception &) {
 		return false;
@@ -118,13 +126,11 @@ int fitBoardHomography(const std::vector<ImagePoint> &colour, const std::vector<
 	} catch (const cv::Exception &e) {
 		h.release();
 	}
-	if (h.empty() || h.rows != 3 || h.cols != 3) {
+	fit = BoardFit{};
+	if (!homographyFromMat(h, fit.colourToBoard)) {
 		error = "no homography fits the circles (are they in a straight grid?)";
 		return -EINVAL;
 	}
-	fit = BoardFit{};
-	for (int i = 0; i < 9; ++i)
-		fit.colourToBoard.h[i] = h.at<double>(i / 3, i % 3) / h.at<double>(2, 2);
 	fit.points = int(colour.size());
 	fit.inliers = cv::countNonZero(mask);
 
@@ -135,11 +141,11 @@ int fitBoardHomography(const std::vector<ImagePoint> &colour, const std::vector<
 			seenIn.push_back(src[i]), boardIn.push_back(dst[i]);
 	RadialLens lens;
 	Homography throughLens;
+	double lensResidual;
 	if (fitLens && int(seenIn.size()) >= kMinPointsForLens && colourWidth > 1 && colourHeight > 1 &&
-	    fitLensTerms(seenIn, boardIn, colourWidth, colourHeight, lens) &&
-	    fitThroughLens(seenIn, boardIn, lens, throughLens) &&
-	    squaredResiduals(seenIn, boardIn, lens, throughLens) <
-		    squaredResiduals(seenIn, boardIn, RadialLens{}, fit.colourToBoard)) {
+	    fitLensTerms(seenIn, boardIn, colourWidth, colourHeight, lens, lensResidual) &&
+	    lensResidual < squaredResiduals(seenIn, boardIn, RadialLens{}, fit.colourToBoard) &&
+	    fitThroughLens(seenIn, boardIn, lens, throughLens)) {
 		fit.lens = lens;
 		fit.colourToBoard = throughLens;
 	}
