@@ -77,6 +77,50 @@ void DepthSeeder::seed(const DepthFrame &depth, DepthSeeds &out)
 	}
 	out.lecturerDepthMm = out.lecturerPixels ? int(depthSum / unsigned(out.lecturerPixels)) : 0;
 	smoothSurface(depth.depthMm, out);
+	weighDepth(depth, out);
+}
+
+uint8_t DepthSeeder::depthEvidence(int dMm, int amplitude, int intensity, int zLecturerMm, int zBoardMm)
+{
+	// A learned depth that is not clearly behind him (he stood there for
+	// long, or furniture) is no board to compare with.
+	const int zB = zBoardMm > zLecturerMm + StaticBackground::kToleranceMm ? zBoardMm
+										: zLecturerMm + kUnknownBoardBehindMm;
+	// sigma^2 in mm^2: (7500 / sqrt(8) / 2)^2 = 1757813 (rounded: 1758276 =
+	// 1326^2, 0.03 % more), times I / A^2; plus the floor's square.
+	int64_t variance = int64_t(kNoiseFloorMm) * kNoiseFloorMm;
+	variance += amplitude > 0 ? int64_t(1758276) * intensity / (int64_t(amplitude) * amplitude)
+				  : int64_t(kNoAmplitudeSigmaMm) * kNoAmplitudeSigmaMm;
+	// |zB - zL| < 2^16 and |zL + zB - 2 d| < 2^18 (uint16 depths): times
+	// kUnitsPerNat under 2^38, so int64. Truncated towards zero.
+	const int64_t units = int64_t(zB - zLecturerMm) * (zLecturerMm + zB - 2 * dMm) * kUnitsPerNat / (2 * variance);
+	return uint8_t(std::clamp<int64_t>(128 + units, 1, 254));
+}
+
+void DepthSeeder::weighDepth(const DepthFrame &depth, DepthSeeds &out) const
+{
+	const int w = depth.depthMm.width(), h = depth.depthMm.height();
+	out.evidence.resize(w, h);
+	const bool haveAmplitude = depth.amplitude.width() == w && depth.amplitude.height() == h &&
+				   depth.intensity.width() == w && depth.intensity.height() == h;
+	const uint16_t *d = depth.depthMm.data(), *surface = out.surfaceMm.data();
+	const uint8_t *labels = out.labels.data();
+	uint8_t *evidence = out.evidence.data();
+	for (size_t i = 0; i < size_t(w) * h; ++i) {
+		if (labels[i] == kTrimapBoard) {
+			evidence[i] = 0;
+			continue;
+		}
+		const int a = haveAmplitude ? depth.amplitude.data()[i] : 0;
+		// No measurement, a weak or a saturated echo: depth says nothing.
+		if (d[i] == 0 || (haveAmplitude && (a < settings_.minAmplitude || a >= settings_.maxAmplitude))) {
+			evidence[i] = 128;
+			continue;
+		}
+		const int zL = surface[i] ? surface[i] : out.lecturerDepthMm;
+		evidence[i] = depthEvidence(d[i], a, haveAmplitude ? depth.intensity.data()[i] : 0, zL,
+					    background_.meanMm(i));
+	}
 }
 
 void DepthSeeder::smoothSurface(const Gray16Image &depthMm, DepthSeeds &out)

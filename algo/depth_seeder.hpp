@@ -11,7 +11,10 @@
 //   core      = erode(that in-range component, erode_px + core_px): fixed
 //               as lecturer whatever colour says;
 //   undecided = superset minus core, where the evidence decides, graded
-//               by depth (algo/trimap.hpp): subset, in range, out of range.
+//               by depth (algo/trimap.hpp): subset, in range, out of range;
+//   evidence  = per superset pixel, how much better its depth fits the
+//               lecturer's surface there than the board's learned depth,
+//               given the ToF noise at that pixel (depthEvidence below).
 #pragma once
 
 #include "algo/frames.hpp"
@@ -33,6 +36,9 @@ struct DepthSeeds {
 	// the radius reaches him from every band pixel, so the whole band moves
 	// with him), else his mean depth. 0 on board pixels.
 	Gray16Image surfaceMm;
+	// What depth says of each superset pixel (depthEvidence): 128 neither,
+	// higher lecturer, lower board; 0 outside the superset.
+	Gray8Image evidence;
 	int lecturerDepthMm = 0;    // mean depth of the surely-lecturer pixels; 0 = none
 	int lecturerPixels = 0;
 };
@@ -47,10 +53,30 @@ public:
 	// A frame whose images differ in size from each other gives no lecturer.
 	void seed(const DepthFrame &depth, DepthSeeds &out);
 
+	// The depth evidence of one pixel (the kernel, for tests): depth d is
+	// the lecturer's surface zL plus noise, or the board's learned depth zB
+	// plus noise, with the ToF's noise from amplitude A and intensity I
+	// (the paper's model, sigma = L / sqrt(8) * sqrt(I) / (2 A), L = 7.5 m
+	// at 20 MHz) plus kNoiseFloorMm. With equal variances the log-likelihood
+	// ratio is linear in d:
+	//   ln p(d | lecturer) / p(d | board) = (zB - zL) (zL + zB - 2 d) / (2 sigma^2)
+	// in nats; kUnitsPerNat confidence units a nat, around 128, clamped to
+	// 1..254. A mixed pixel at the silhouette (its depth between the two:
+	// the scattered-light halo, motion blur) says little, a clean pixel
+	// much, a pixel in the noisy image corner little. amplitude = 0: no
+	// amplitude image, kNoAmplitudeSigmaMm instead. zB = 0: not learned,
+	// the board is taken kUnknownBoardBehindMm behind him.
+	static uint8_t depthEvidence(int dMm, int amplitude, int intensity, int zLecturerMm, int zBoardMm);
+	static constexpr int kUnitsPerNat = 16;
+	static constexpr int kNoiseFloorMm = 15;       // calibration, quantisation
+	static constexpr int kNoAmplitudeSigmaMm = 50; // a Z16 camera without amplitude
+	static constexpr int kUnknownBoardBehindMm = 450;
+
 private:
 	SegmentationSettings settings_;
 	KernelPath path_ = bestKernelPath();
 	void smoothSurface(const Gray16Image &depthMm, DepthSeeds &out);
+	void weighDepth(const DepthFrame &depth, DepthSeeds &out) const;
 
 	Gray8Image trusted_, subset_, reach_, superset_, core_, moving_;
 	std::vector<uint32_t> depthSums_, counts_; // integral images, (w+1) x (h+1)

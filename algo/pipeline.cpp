@@ -149,7 +149,7 @@ void Pipeline::process(const ColourFrame &colour, const FramePairer::Bracket &de
 	// Until the first signatures exist (no lecturer or no board seen yet)
 	// the classifier calls every colour lecturer: the output is the depth
 	// superset, which never cuts the lecturer off.
-	evidence_.bind(colour.rgb, trimap, classifier_, boardModel_, havePrevious_ ? &previousAlpha_ : nullptr,
+	evidence_.bind(colour.rgb, keyed_.evidence, classifier_, boardModel_, havePrevious_ ? &previousAlpha_ : nullptr,
 		       &previousColour_, previousRoi_);
 	refiner_.setLecturerBeyondBorder(keyed_.lecturerBeyondBorder);
 	refiner_.refine(colour.rgb, trimap, keyed_.roi, evidence_, out.alpha);

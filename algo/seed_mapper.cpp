@@ -67,10 +67,14 @@ void SeedMapper::map(const DepthSeeds &seeds, MappedSeeds &out) const
 	if (trimap.width() != cw || trimap.height() != ch) {
 		trimap.resize(cw, ch);
 		std::memset(trimap.data(), kTrimapBoard, trimap.size());
+		out.evidence.resize(cw, ch);
+		std::memset(out.evidence.data(), 0, out.evidence.size());
 		roi = {};
 	}
-	for (int y = roi.y0; y < roi.y1; ++y)
+	for (int y = roi.y0; y < roi.y1; ++y) {
 		std::memset(trimap.row(y) + roi.x0, kTrimapBoard, size_t(roi.x1 - roi.x0));
+		std::memset(out.evidence.row(y) + roi.x0, 0, size_t(roi.x1 - roi.x0));
+	}
 
 	roi = { cw, ch, 0, 0 };
 	out.lecturerBeyondBorder = false;
@@ -82,6 +86,10 @@ void SeedMapper::map(const DepthSeeds &seeds, MappedSeeds &out) const
 	}
 	const uint8_t *labels = seeds.labels.data();
 	const uint16_t *surface = seeds.surfaceMm.data();
+	// Seeds without depth evidence (made by hand, or of another size) are
+	// painted as depth saying neither.
+	const bool haveEvidence = seeds.evidence.width() == tw && seeds.evidence.height() == th;
+	const uint8_t *evidence = haveEvidence ? seeds.evidence.data() : nullptr;
 	for (int i = 0; i < tw * th; ++i) {
 		uint8_t label = labels[i];
 		if (label == kTrimapBoard)
@@ -99,10 +107,16 @@ void SeedMapper::map(const DepthSeeds &seeds, MappedSeeds &out) const
 			out.lecturerBeyondBorder = true;
 		if (x0 >= x1 || y0 >= y1)
 			continue;
-		// Lecturer is the highest label: max() with it is a plain store,
-		// with no read of what overlapping blocks painted before.
+		// The depth evidence: where blocks overlap the more lecturer-like
+		// wins too (measured: better than the last painted). Lecturer is
+		// the highest label: max() with it is a plain store, with no read of
+		// what overlapping blocks painted before.
+		const uint8_t ev = evidence ? evidence[i] : uint8_t(128);
 		for (int y = y0; y < y1; ++y) {
 			uint8_t *row = trimap.row(y);
+			uint8_t *evidenceRow = out.evidence.row(y);
+			for (int x = x0; x < x1; ++x)
+				evidenceRow[x] = std::max(evidenceRow[x], ev);
 			if (label == kTrimapLecturer) {
 				std::memset(row + x0, kTrimapLecturer, size_t(x1 - x0));
 				continue;

@@ -13,7 +13,8 @@
 // else without clearing the whole image. lecturerBeyondBorder says whether
 // surely-lecturer depth pixels fell outside the colour image (the depth
 // camera sees wider): the lecturer reaches in over the image border, though
-// no lecturer seed may lie inside.
+// no lecturer seed may lie inside. The depth evidence (DepthSeeds::evidence)
+// is painted the same way beside the trimap.
 #pragma once
 
 #include "algo/depth_mapper.hpp"
@@ -27,6 +28,7 @@ namespace depthkey {
 // One depth frame's seeds in the colour image.
 struct MappedSeeds {
 	Gray8Image trimap;       // colour size; board outside roi
+	Gray8Image evidence;     // DepthSeeds::evidence, colour size; 0 outside roi
 	Roi roi;                 // the painted region (empty: no lecturer)
 	bool lecturerBeyondBorder = false;
 };

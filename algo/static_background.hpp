@@ -41,6 +41,9 @@ public:
 	// a moving arm two pixels thick still counts). The first frame, or one of a new size, starts the model
 	// with its depths and a deviation of kToleranceMm.
 	void update(const Gray16Image &depthMm, Gray8Image &moving);
+	// The learned depth of pixel i, mm (0 = not seen yet): the board's
+	// depth behind the lecturer, for DepthSeeder::depthEvidence.
+	int meanMm(size_t i) const { return i < mean_.size() ? mean_.data()[i] >> kFractionBits : 0; }
 
 private:
 	Gray16Image mean_, deviation_; // Q3 mm; mean 0 = not seen yet

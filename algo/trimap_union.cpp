@@ -14,10 +14,14 @@ void uniteTrimaps(const MappedSeeds &a, const MappedSeeds &b, int laterQ8, Mappe
 	if (out.trimap.width() != w || out.trimap.height() != h) {
 		out.trimap.resize(w, h);
 		std::memset(out.trimap.data(), kTrimapBoard, out.trimap.size());
+		out.evidence.resize(w, h);
+		std::memset(out.evidence.data(), 0, out.evidence.size());
 		roi = {};
 	}
-	for (int y = roi.y0; y < roi.y1; ++y)
+	for (int y = roi.y0; y < roi.y1; ++y) {
 		std::memset(out.trimap.row(y) + roi.x0, kTrimapBoard, size_t(roi.x1 - roi.x0));
+		std::memset(out.evidence.row(y) + roi.x0, 0, size_t(roi.x1 - roi.x0));
+	}
 	out.lecturerBeyondBorder = a.lecturerBeyondBorder || b.lecturerBeyondBorder;
 	if (a.roi.empty() || b.roi.empty()) {
 		// One side saw no lecturer: he may be where the other saw him (as
@@ -28,9 +32,13 @@ void uniteTrimaps(const MappedSeeds &a, const MappedSeeds &b, int laterQ8, Mappe
 		for (int y = roi.y0; y < roi.y1; ++y) {
 			const uint8_t *s = seen.trimap.row(y);
 			uint8_t *o = out.trimap.row(y);
-			for (int x = roi.x0; x < roi.x1; ++x)
+			const uint8_t *se = seen.evidence.row(y);
+			uint8_t *oe = out.evidence.row(y);
+			for (int x = roi.x0; x < roi.x1; ++x) {
 				o[x] = s[x] == kTrimapBoard ? kTrimapBoard
 							    : uint8_t(std::clamp((s[x] * weight + 128) >> 8, 1, 254));
+				oe[x] = uint8_t((se[x] * weight + 128) >> 8);
+			}
 		}
 		return;
 	}
@@ -39,7 +47,12 @@ void uniteTrimaps(const MappedSeeds &a, const MappedSeeds &b, int laterQ8, Mappe
 	for (int y = roi.y0; y < roi.y1; ++y) {
 		const uint8_t *p = a.trimap.row(y), *q = b.trimap.row(y);
 		uint8_t *o = out.trimap.row(y);
+		const uint8_t *pe = a.evidence.row(y), *qe = b.evidence.row(y);
+		uint8_t *oe = out.evidence.row(y);
 		for (int x = roi.x0; x < roi.x1; ++x) {
+			// The depth evidence blended by time (0 outside a superset:
+			// that frame says board).
+			oe[x] = uint8_t((pe[x] * (256 - laterQ8) + qe[x] * laterQ8 + 128) >> 8);
 			// Equal labels stay; any other pair is undecided (1..254),
 			// blended by time. Exact in 16 bits: 255 * 256 + 128 < 2^16.
 			const int blend = (p[x] * (256 - laterQ8) + q[x] * laterQ8 + 128) >> 8;

@@ -109,8 +109,8 @@ struct SioxSettings {
 // (algo/fused_evidence.hpp). Weights are in units of SIOX's colour
 // confidence, which counts 1.
 struct DecisionSettings {
-	int depthWeight = 96;               // 0..255: the graded depth trimap
-	int depthPivot = 150;               // 1..254: the depth trimap value that is neutral
+	int depthWeight = 64;               // 0..255: the depth evidence (DepthSeeder::depthEvidence)
+	int depthPivot = 144;               // 1..254: the depth evidence value that is neutral
 	int boardWeight = 160;              // 0..255: a match with the board model
 	int boardMatch = 16;                // 1..255: L1 RGB distance below which the board model matches
 	int temporalWeight = 64;            // 0..255: the previous frame's alpha where colour did not change
