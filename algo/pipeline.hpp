@@ -76,6 +76,9 @@ public:
 	const PipelineStatus &status() const { return status_; }
 	// Stage images of the last frame, for snapshots and previews.
 	const Gray8Image &trimap() const { return keyed_.trimap; }
+	// What depth says at each pixel of the last frame (128 neither, 255
+	// lecturer, 0 board or outside the superset: DepthSeeder::evidence).
+	const Gray8Image &depthEvidence() const { return keyed_.evidence; }
 	// The seeds of the newest depth frame the last colour frame was keyed with.
 	const DepthSeeds &seeds() const { return seeded_[newest_].seeds; }
 	// Where the last frame's alpha may be non-zero (0 outside): what the

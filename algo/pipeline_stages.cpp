@@ -61,6 +61,8 @@ void collectPipelineStages(const ColourFrame &colour, const DepthFrame &depth, c
 		stages.add("seeds-tof", StageKind::Seeds, pipeline.seeds().labels);
 	if (!pipeline.trimap().empty())
 		stages.add("seeds", StageKind::Seeds, pipeline.trimap());
+	if (!pipeline.depthEvidence().empty())
+		stages.add("depth-evidence", StageKind::Mask, pipeline.depthEvidence());
 	if (!colour.rgb.empty()) {
 		Gray8Image &confidence = stages.ownGray("siox-confidence", StageKind::Mask);
 		pipeline.confidence(colour.rgb, confidence);
