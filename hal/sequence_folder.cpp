@@ -13,6 +13,7 @@
 #include "config/atomic_file.hpp"
 #include "config/frame_limits.hpp"
 #include "config/text_file.hpp"
+#include "hal/image_file.hpp"
 #include "hal/image_file_reader.hpp"
 
 namespace depthkey {
@@ -67,15 +68,6 @@ int readGray16(const std::string &path, Gray16Image &out, std::string &error)
 		return -EINVAL;
 	}
 	copyMat(m, out);
-	return 0;
-}
-
-int writePng(const std::string &path, const cv::Mat &m, std::string &error)
-{
-	if (!cv::imwrite(path, m)) {
-		error = "cannot write " + path;
-		return -EIO;
-	}
 	return 0;
 }
 
@@ -149,17 +141,11 @@ int SequenceFolderWriter::write(double timestampS, const ColourFrame &colour, co
 	std::snprintf(name, sizeof(name), "%06zu.png", count_);
 	std::snprintf(stamp, sizeof(stamp), "%.6f ", timestampS);
 
-	cv::Mat rgb(colour.rgb.height(), colour.rgb.width(), CV_8UC3, const_cast<Rgb8 *>(colour.rgb.data()));
-	cv::Mat bgr;
-	cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
-	auto gray16 = [](const Gray16Image &img) {
-		return cv::Mat(img.height(), img.width(), CV_16UC1, const_cast<uint16_t *>(img.data()));
-	};
-	if (int ret = writePng(dir_ + "/rgb/" + name, bgr, error); ret < 0)
+	if (int ret = writePng(dir_ + "/rgb/" + name, colour.rgb, error); ret < 0)
 		return ret;
-	if (int ret = writePng(dir_ + "/depth/" + name, gray16(depth.depthMm), error); ret < 0)
+	if (int ret = writePng(dir_ + "/depth/" + name, depth.depthMm, error); ret < 0)
 		return ret;
-	if (int ret = writePng(dir_ + "/amplitude/" + name, gray16(depth.amplitude), error); ret < 0)
+	if (int ret = writePng(dir_ + "/amplitude/" + name, depth.amplitude, error); ret < 0)
 		return ret;
 	count_++;
 

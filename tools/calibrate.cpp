@@ -21,13 +21,13 @@
 #include <sys/stat.h>
 
 #include <opencv2/calib3d.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "algo/calibration_fit.hpp"
 #include "algo/calibration_plan.hpp"
 #include "algo/circle_grid_detector.hpp"
 #include "config/calibration_file.hpp"
+#include "hal/image_file.hpp"
 #include "hal/sequence_folder.hpp"
 #include "hal/sim/calibration_pattern.hpp"
 #include "tools/calibrate_board/board_command.hpp"
@@ -177,7 +177,9 @@ void writePreview(const std::string &dir, int index, const ColourFrame &colour, 
 		points.emplace_back(static_cast<float>(p.x), static_cast<float>(p.y));
 	cv::drawChessboardCorners(bgr, size, points, found);
 	std::snprintf(name, sizeof(name), "/view-%02d-colour.png", index);
-	cv::imwrite(dir + name, bgr);
+	std::string error;
+	if (writePicturePng(dir + name, bgr, error) < 0)
+		std::printf("        preview not written: %s\n", error.c_str());
 
 	Gray8Image scaled = amplitudeForDetection(depth.amplitude);
 	cv::Mat gray(scaled.height(), scaled.width(), CV_8UC1, scaled.data()), tof;
@@ -189,7 +191,8 @@ void writePreview(const std::string &dir, int index, const ColourFrame &colour, 
 				    static_cast<float>((p.y + 0.5) * kAmplitudeScale - 0.5));
 	cv::drawChessboardCorners(tof, size, points, found);
 	std::snprintf(name, sizeof(name), "/view-%02d-tof.png", index);
-	cv::imwrite(dir + name, tof);
+	if (writePicturePng(dir + name, tof, error) < 0)
+		std::printf("        preview not written: %s\n", error.c_str());
 }
 
 void printReport(const CalibrationFit &fit)
