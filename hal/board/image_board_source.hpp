@@ -11,6 +11,7 @@
 
 #include "config/settings.hpp"
 #include "hal/camera.hpp"
+#include "hal/unique_fd.hpp"
 
 namespace depthkey {
 
@@ -39,7 +40,7 @@ private:
 	StatusHandler onStatus_;
 	DeviceStatus status_;
 	ColourFrame frame_;
-	int fd_ = -1;
+	UniqueFd inotify_;
 	EventSource io_, retry_;
 	uint64_t reads_ = 0;
 };
