@@ -19,6 +19,7 @@
 #
 # Sources are found by wildcard, so adding a file needs no edit here:
 #   algo/ hal/ config/ daemon/   -> build/libdepthkey.a (daemon/main.cpp is depthkeyd's main)
+#   (settings/ holds headers only: the config's plain structs)
 #   tools/NAME.cpp              -> build/bin/depthkey-NAME
 #   tests/*.cpp                 -> build/bin/depthkey-tests (GoogleTest)
 #   tests/bench/*.cpp           -> build/bin/depthkey-bench (Google Benchmark)

@@ -8,7 +8,7 @@
 #include "algo/pipeline.hpp"
 #include "daemon/board_output.hpp"
 #include "config/config_loader.hpp"
-#include "config/settings.hpp"
+#include "settings/settings.hpp"
 #include "daemon/background_job.hpp"
 #include "daemon/device_factory.hpp"
 #include "daemon/frame_recorder.hpp"

@@ -7,7 +7,7 @@
 #include "algo/pairing_queue.hpp"
 #include "algo/mapping_model.hpp"
 #include "algo/pipeline.hpp"
-#include "config/settings.hpp"
+#include "settings/settings.hpp"
 
 #include <string>
 

@@ -9,9 +9,9 @@
 // write makes it Streaming again. A missing folder is retried every second.
 #pragma once
 
-#include "config/settings.hpp"
 #include "hal/camera.hpp"
 #include "hal/unique_fd.hpp"
+#include "settings/settings.hpp"
 
 namespace depthkey {
 

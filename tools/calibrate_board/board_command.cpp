@@ -14,10 +14,10 @@
 #include "algo/board_calibration.hpp"
 #include "algo/board_pattern.hpp"
 #include "config/board_calibration_file.hpp"
-#include "config/settings.hpp"
 #include "hal/image_file.hpp"
 #include "hal/sim/board_display.hpp"
 #include "hal/sim/lecture_simulator.hpp"
+#include "settings/settings.hpp"
 
 #include <cmath>
 #include <cstdio>
