@@ -3,9 +3,9 @@
 #include "config/config_loader.hpp"
 #include "algo/composite.hpp"
 #include "algo/pipeline_stages.hpp"
-#include "daemon/pipeline_setup.hpp"
+#include "wiring/pipeline_setup.hpp"
 #include "daemon/log.hpp"
-#include "daemon/snapshot_writer.hpp"
+#include "hal/preview/snapshot_writer.hpp"
 #include "algo/no_signal_frame.hpp"
 #include "hal/depthkey_shm.h"
 
@@ -80,7 +80,7 @@ int Daemon::start(const Settings &settings)
 	loop_.addSignal(SIGUSR1, [this] { writeSnapshot(); }, sigusr1_);
 
 	startedUs_ = statusAtUs_ = loop_.nowUs();
-	configurePipeline(loadPipelineFiles(settings_));
+	applyPipelineFiles(loadPipelineFiles(settings_));
 	configurePairing();
 	underSystemd_ = std::getenv("NOTIFY_SOCKET") != nullptr;
 
@@ -518,7 +518,7 @@ void Daemon::apply(const Settings &next, const PipelineFiles &files)
 	LogLevel level;
 	if (parseLogLevel(next.daemon.logLevel, level))
 		logger().setLevel(level);
-	configurePipeline(files);
+	applyPipelineFiles(files);
 	board_.apply(next);
 	configurePairing();
 	if (previous.daemon.recordDir != next.daemon.recordDir ||

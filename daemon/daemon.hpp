@@ -13,7 +13,7 @@
 #include "daemon/device_factory.hpp"
 #include "daemon/frame_recorder.hpp"
 #include "daemon/preview_feed.hpp"
-#include "daemon/pipeline_setup.hpp"
+#include "wiring/pipeline_setup.hpp"
 #include "daemon/service_notifier.hpp"
 #include "daemon/test_fault.hpp"
 #include "hal/camera.hpp"
@@ -83,7 +83,7 @@ private:
 	void startCameras();
 	void stopCameras();
 	void apply(const Settings &settings, const PipelineFiles &files);
-	void configurePipeline(const PipelineFiles &files);
+	void applyPipelineFiles(const PipelineFiles &files);
 	void checkCalibrationFits();
 	void publish(uint64_t captureNs, uint32_t flags);
 	void publishNoSignal(uint64_t nowNs);

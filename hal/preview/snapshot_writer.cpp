@@ -1,4 +1,4 @@
-#include "daemon/snapshot_writer.hpp"
+#include "hal/preview/snapshot_writer.hpp"
 
 #include "hal/image_file.hpp"
 #include "hal/preview/stage_picture.hpp"
