@@ -2,11 +2,9 @@
 
 #include "algo/composite.hpp"
 #include "algo/no_signal_frame.hpp"
-#include "algo/pipeline_stages.hpp"
 #include "config/config_loader.hpp"
 #include "daemon/log.hpp"
 #include "hal/depthkey_shm.h"
-#include "hal/preview/snapshot_writer.hpp"
 #include "wiring/pipeline_setup.hpp"
 
 #include <csignal>
@@ -22,9 +20,6 @@ namespace {
 constexpr int64_t kDepthStaleNs = 500'000'000;
 // Without a colour frame for this many frame periods, publish NO SIGNAL.
 constexpr uint64_t kColourStalePeriods = 3;
-// --preview: stage images of this many keyed frames, this many frames apart.
-constexpr int kPreviewCount = 3;
-constexpr uint64_t kPreviewEveryFrames = 50;
 // Reader heartbeats are sampled this often: a dead reader is gone within
 // DK_SHM_READER_TIMEOUT_MS plus this.
 constexpr uint64_t kReaderTickUs = 250'000;
@@ -72,9 +67,11 @@ int Daemon::start(const Settings &settings)
 	loop_.addSignal(SIGTERM, [this] { stop(); }, sigterm_);
 	loop_.addSignal(SIGINT, [this] { stop(); }, sigint_);
 	loop_.addSignal(SIGHUP, [this] { reload(); }, sighup_);
-	loop_.addSignal(SIGUSR1, [this] { writeSnapshot(); }, sigusr1_);
+	loop_.addSignal(SIGUSR1, [this] { stageDumps_.writeSnapshot(queue_.pairer().newest(), pipelineView()); },
+			sigusr1_);
 
 	status_.start(loop_);
+	stageDumps_.setFolders(settings_.daemon.snapshotDir, overrides_.previewDir);
 	applyPipelineFiles(loadPipelineFiles(settings_));
 	configurePairing();
 
@@ -275,10 +272,7 @@ void Daemon::keyFrame(const PairingQueue::Keying &keying)
 		board_.compose(output_.lecturer, pipeline_.roi(), opacityToQ8(settings_.composite.opacity));
 	else
 		board_.showBoardOnly();
-	if (settings_.daemon.snapshotDir.size() || overrides_.previewDir.size())
-		colourLatest_ = frame; // kept only for snapshots
-	if (depth)
-		maybeWritePreview(status_.colourFrames(), *depth);
+	stageDumps_.onKeyedFrame(frame, depth, status_.colourFrames(), pipelineView());
 	preview_.offer(&frame, depth, depth ? &pipeline_.trimap() : nullptr, output_, frame.timestampNs,
 		       loop_.nowUs() * 1000u);
 	publish(frame.timestampNs, flags);
@@ -472,6 +466,7 @@ void Daemon::apply(const Settings &next, const PipelineFiles &files)
 	applyPipelineFiles(files);
 	board_.apply(next);
 	configurePairing();
+	stageDumps_.setFolders(next.daemon.snapshotDir, overrides_.previewDir);
 	if (previous.daemon.recordDir != next.daemon.recordDir ||
 	    previous.daemon.recordCompression != next.daemon.recordCompression)
 		updateRecording();
@@ -505,18 +500,6 @@ void Daemon::apply(const Settings &next, const PipelineFiles &files)
 	}
 }
 
-int Daemon::writeStages(const std::string &dir, const std::string &prefix, const DepthFrame *depth)
-{
-	static const DepthFrame kNoDepth;
-	StageImages stages;
-	collectPipelineStages(colourLatest_, depth ? *depth : kNoDepth, pipeline_, output_, mapping_, stages);
-	std::string error;
-	int ret = writeStageImages(dir, prefix, stages, error);
-	if (ret < 0)
-		logger().error("stage images failed: " + error, { { "SNAPSHOT_DIR", dir } });
-	return ret;
-}
-
 void Daemon::injectTestFault()
 {
 	if (testFault_ == TestFault::Stall) {
@@ -528,35 +511,6 @@ void Daemon::injectTestFault()
 				 { { "TEST_FAULT", "hang" } });
 		hangForever();
 	}
-}
-
-void Daemon::writeSnapshot()
-{
-	const std::string &dir = settings_.daemon.snapshotDir;
-	if (dir.empty()) {
-		logger().warning("snapshot requested but daemon.snapshot_dir is not set");
-		return;
-	}
-	if (writeStages(dir, "", queue_.pairer().newest()) >= 0)
-		logger().info("snapshot written to " + dir, { { "SNAPSHOT_DIR", dir } });
-}
-
-// --preview: the first keyed frame and a few more, 2 s apart, each as
-// frameNNNNNN-<stage>.png, so a technician sees the stages without a signal.
-void Daemon::maybeWritePreview(uint64_t frameNumber, const DepthFrame &depth)
-{
-	if (overrides_.previewDir.empty() || previewsWritten_ >= kPreviewCount)
-		return;
-	if (previewsWritten_ > 0 && frameNumber < lastPreviewFrame_ + kPreviewEveryFrames)
-		return;
-	// The stages are those of this frame: process() has run, publish() not yet.
-	char prefix[32];
-	std::snprintf(prefix, sizeof(prefix), "frame%06llu-", static_cast<unsigned long long>(frameNumber));
-	previewsWritten_++;
-	lastPreviewFrame_ = frameNumber;
-	if (writeStages(overrides_.previewDir, prefix, &depth) >= 0)
-		logger().info(std::string("stage preview written: ") + overrides_.previewDir + "/" + prefix + "*.png",
-			      { { "SNAPSHOT_DIR", overrides_.previewDir } });
 }
 
 void Daemon::updateRecording()

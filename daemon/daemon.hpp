@@ -12,6 +12,7 @@
 #include "daemon/device_factory.hpp"
 #include "daemon/frame_recorder.hpp"
 #include "daemon/preview_feed.hpp"
+#include "daemon/stage_dumps.hpp"
 #include "daemon/status_reporter.hpp"
 #include "daemon/test_fault.hpp"
 #include "hal/camera.hpp"
@@ -70,9 +71,7 @@ private:
 	};
 	void reload();
 	void finishReload(const PendingReload &next);
-	void writeSnapshot();
-	int writeStages(const std::string &dir, const std::string &prefix, const DepthFrame *depth);
-	void maybeWritePreview(uint64_t frameNumber, const DepthFrame &depth);
+	PipelineView pipelineView() const { return { pipeline_, output_, mapping_ }; }
 	void updateRecording();
 	void checkRecording();
 	void injectTestFault();
@@ -120,8 +119,7 @@ private:
 
 	FrameRecorder recorder_;
 	uint64_t recorderDropsLogged_ = 0;
-	int previewsWritten_ = 0;
-	uint64_t lastPreviewFrame_ = 0;
+	StageDumps stageDumps_; // SIGUSR1 snapshots, --preview stage images
 
 	Pipeline pipeline_;
 	BoardOutput board_;        // the board's picture, H and board-geometry composite
@@ -133,7 +131,6 @@ private:
 	LatencyEstimator latency_; // the depth camera's offset, measured
 	LatencyEstimator::Estimate latencyEstimate_;
 	double latencyLoggedMs_ = 1e9;
-	ColourFrame colourLatest_;
 	bool haveColour_ = false;
 	uint64_t lastColourNs_ = 0;   // arrival (loop clock) of the last colour frame
 	RgbImage noSignal_;
