@@ -18,7 +18,8 @@
 #                   UBSan into build/fuzz/ and run each N seconds (default 30)
 #
 # Sources are found by wildcard, so adding a file needs no edit here:
-#   algo/ hal/ config/ daemon/   -> build/libdepthkey.a (daemon/main.cpp is depthkeyd's main)
+#   algo/ hal/ config/ wiring/ daemon/ -> build/libdepthkey.a (daemon/main.cpp is depthkeyd's main)
+#   (settings/ holds headers only: the config's plain structs)
 #   tools/NAME.cpp              -> build/bin/depthkey-NAME
 #   tests/*.cpp                 -> build/bin/depthkey-tests (GoogleTest)
 #   tests/bench/*.cpp           -> build/bin/depthkey-bench (Google Benchmark)
@@ -60,7 +61,7 @@ PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS))
 LDLIBS = $(shell pkg-config --libs $(PKGS)) $(OPENCV_LIBS) -lpthread -lrt
 LDFLAGS += $(SANFLAGS)
 
-LIB_SRCS := $(filter-out daemon/main.cpp,$(wildcard algo/*.cpp hal/*.cpp hal/*/*.cpp config/*.cpp daemon/*.cpp))
+LIB_SRCS := $(filter-out daemon/main.cpp,$(wildcard algo/*.cpp hal/*.cpp hal/*/*.cpp config/*.cpp wiring/*.cpp daemon/*.cpp))
 TOOL_SRCS := $(wildcard tools/*.cpp)
 SR2EMU_SRCS := $(wildcard tools/sr2_emulator/*.cpp)
 TEST_SRCS := $(wildcard tests/*.cpp)

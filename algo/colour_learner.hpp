@@ -15,7 +15,7 @@
 #include "algo/decaying_histogram.hpp"
 #include "algo/image.hpp"
 #include "algo/siox_classifier.hpp"
-#include "config/settings.hpp"
+#include "settings/settings.hpp"
 
 #include <vector>
 

@@ -21,7 +21,7 @@
 #include "algo/lecturer_picker.hpp"
 #include "algo/morphology.hpp"
 #include "algo/static_background.hpp"
-#include "config/settings.hpp"
+#include "settings/settings.hpp"
 
 #include <vector>
 

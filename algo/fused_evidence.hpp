@@ -26,7 +26,7 @@
 
 #include "algo/band_evidence.hpp"
 #include "algo/board_model.hpp"
-#include "config/settings.hpp"
+#include "settings/settings.hpp"
 
 namespace depthkey {
 

@@ -24,7 +24,7 @@
 #include "algo/seed_mapper.hpp"
 #include "algo/siox_classifier.hpp"
 #include "algo/siox_refiner.hpp"
-#include "config/settings.hpp"
+#include "settings/settings.hpp"
 
 #include <array>
 

@@ -32,7 +32,7 @@
 #include "algo/image.hpp"
 #include "algo/siox_classifier.hpp"
 #include "algo/trimap.hpp"
-#include "config/settings.hpp"
+#include "settings/settings.hpp"
 
 #include <cstdint>
 #include <vector>

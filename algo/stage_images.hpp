@@ -1,7 +1,7 @@
 // Named pictures of the pipeline's stages, for a technician tuning the
 // config (depthkey-eval --preview, depthkeyd --preview and SIGUSR1). The
 // pipeline lists what it has (borrowed, no copies); the writer
-// (daemon/snapshot_writer.hpp) draws each by its kind: depth in false
+// (hal/preview/snapshot_writer.hpp) draws each by its kind: depth in false
 // colour, seeds in three colours, masks in grey.
 #pragma once
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "config/config_error.hpp"
-#include "config/settings.hpp"
+#include "settings/settings.hpp"
 
 namespace depthkey {
 

@@ -12,8 +12,8 @@
 #include "algo/board_compositor.hpp"
 #include "algo/pipeline.hpp"
 #include "config/board_calibration_file.hpp"
-#include "config/settings.hpp"
 #include "hal/camera.hpp"
+#include "settings/settings.hpp"
 
 #include <functional>
 #include <memory>

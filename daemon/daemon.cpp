@@ -1,18 +1,15 @@
 #include "daemon/daemon.hpp"
 
-#include "config/config_loader.hpp"
 #include "algo/composite.hpp"
-#include "algo/pipeline_stages.hpp"
-#include "daemon/pipeline_setup.hpp"
-#include "daemon/log.hpp"
-#include "daemon/snapshot_writer.hpp"
 #include "algo/no_signal_frame.hpp"
+#include "config/config_loader.hpp"
+#include "daemon/log.hpp"
 #include "hal/depthkey_shm.h"
+#include "wiring/pipeline_setup.hpp"
 
 #include <csignal>
 #include <cstdio>
 #include <cmath>
-#include <cstdlib>
 
 namespace depthkey {
 
@@ -23,13 +20,6 @@ namespace {
 constexpr int64_t kDepthStaleNs = 500'000'000;
 // Without a colour frame for this many frame periods, publish NO SIGNAL.
 constexpr uint64_t kColourStalePeriods = 3;
-// In a degraded mode (a camera missing) READY=1 is sent after this long, so
-// that systemd's start job does not hang on a box with a camera unplugged.
-constexpr uint64_t kDegradedReadyUs = 5'000'000;
-constexpr uint64_t kTerminalStatusEvery = 5; // status ticks (seconds)
-// --preview: stage images of this many keyed frames, this many frames apart.
-constexpr int kPreviewCount = 3;
-constexpr uint64_t kPreviewEveryFrames = 50;
 // Reader heartbeats are sampled this often: a dead reader is gone within
 // DK_SHM_READER_TIMEOUT_MS plus this.
 constexpr uint64_t kReaderTickUs = 250'000;
@@ -77,12 +67,13 @@ int Daemon::start(const Settings &settings)
 	loop_.addSignal(SIGTERM, [this] { stop(); }, sigterm_);
 	loop_.addSignal(SIGINT, [this] { stop(); }, sigint_);
 	loop_.addSignal(SIGHUP, [this] { reload(); }, sighup_);
-	loop_.addSignal(SIGUSR1, [this] { writeSnapshot(); }, sigusr1_);
+	loop_.addSignal(SIGUSR1, [this] { stageDumps_.writeSnapshot(queue_.pairer().newest(), pipelineView()); },
+			sigusr1_);
 
-	startedUs_ = statusAtUs_ = loop_.nowUs();
-	configurePipeline(loadPipelineFiles(settings_));
+	status_.start(loop_);
+	stageDumps_.setFolders(settings_.daemon.snapshotDir, overrides_.previewDir);
+	applyPipelineFiles(loadPipelineFiles(settings_));
 	configurePairing();
-	underSystemd_ = std::getenv("NOTIFY_SOCKET") != nullptr;
 
 	leds_ = factory_.statusLeds(settings_);
 	if (leds_->open(loop_, settings_.leds) < 0)
@@ -106,8 +97,6 @@ int Daemon::start(const Settings &settings)
 	loop_.addPeriodic(1000000u / settings_.colour.fps, [this] { onFrameTick(); }, frameTick_);
 	loop_.addPeriodic(1000000u, [this] { onStatusTick(); }, statusTick_);
 	loop_.addPeriodic(kReaderTickUs, [this] { onReaderTick(); }, readerTick_);
-	if (uint64_t usec = ServiceNotifier::watchdogUsec())
-		loop_.addPeriodic(usec / 2, [this] { onWatchdogTick(); }, watchdogTick_);
 
 	logger().info("depthkeyd started", { { "CONFIG_FILE", configPath_ } });
 	return 0;
@@ -116,7 +105,7 @@ int Daemon::start(const Settings &settings)
 int Daemon::run()
 {
 	int ret = loop_.run();
-	notifier_.stopping();
+	status_.stopping();
 	preview_.stop();
 	stopCameras();
 	board_.stop();
@@ -129,7 +118,7 @@ int Daemon::run()
 
 void Daemon::stop()
 {
-	notifier_.stopping();
+	status_.stopping();
 	loop_.exit(0);
 }
 
@@ -213,12 +202,7 @@ void Daemon::updateLatency()
 
 void Daemon::onDeviceStatus(const std::string &device, const DeviceStatus &status)
 {
-	DeviceCounters &counters = deviceCounters_[device];
-	if (status.state == DeviceState::Lost && !counters.lost)
-		counters.faults++;
-	if (status.state == DeviceState::Streaming && counters.lost)
-		counters.reconnects++;
-	counters.lost = status.state == DeviceState::Lost;
+	status_.countDeviceStatus(device, status);
 	if (status.state == DeviceState::Lost)
 		logger().errorOnce(device, device + " lost: " + status.detail,
 				   { { "DEVICE", device }, { "ERROR", errnoText(status.error) } });
@@ -235,15 +219,13 @@ void Daemon::onDepthFrame(const DepthFrame &frame)
 	queue_.addDepth(frame); // same-size copy: no allocation after the first
 	latency_.addDepth(frame, frame.timestampNs);
 	recorder_.recordDepth(frame);
-	depthFrames_++;
-	const double latencyMs = (static_cast<double>(loop_.nowUs()) * 1000.0 - static_cast<double>(frame.timestampNs)) / 1e6;
-	depthLatencyMs_ += (latencyMs - depthLatencyMs_) * (depthFrames_ == 1 ? 1.0 : 0.1);
+	status_.countDepthFrame(frame.timestampNs, loop_.nowUs() * 1000u);
 	keyDueFrames();
 }
 
 void Daemon::onColourFrame(const ColourFrame &frame)
 {
-	colourFrames_++;
+	status_.countColourFrame();
 	haveColour_ = true;
 	colourWidth_ = frame.rgb.width();
 	colourHeight_ = frame.rgb.height();
@@ -290,10 +272,7 @@ void Daemon::keyFrame(const PairingQueue::Keying &keying)
 		board_.compose(output_.lecturer, pipeline_.roi(), opacityToQ8(settings_.composite.opacity));
 	else
 		board_.showBoardOnly();
-	if (settings_.daemon.snapshotDir.size() || overrides_.previewDir.size())
-		colourLatest_ = frame; // kept only for snapshots
-	if (depth)
-		maybeWritePreview(colourFrames_, *depth);
+	stageDumps_.onKeyedFrame(frame, depth, status_.colourFrames(), pipelineView());
 	preview_.offer(&frame, depth, depth ? &pipeline_.trimap() : nullptr, output_, frame.timestampNs,
 		       loop_.nowUs() * 1000u);
 	publish(frame.timestampNs, flags);
@@ -325,12 +304,7 @@ void Daemon::publish(uint64_t captureNs, uint32_t flags)
 				   { { "DEVICE", "shm" }, { "ERROR", errnoText(ret) } });
 		return;
 	}
-	published_++;
-	if (!ready_ && (flags & DK_SHM_FLAG_ONLINE)) {
-		ready_ = true;
-		notifier_.ready();
-		logger().info("frames flow, ready");
-	}
+	status_.countPublished(flags & DK_SHM_FLAG_ONLINE);
 }
 
 // Runs at the colour frame rate: when colour frames stop (camera lost or
@@ -395,71 +369,42 @@ void Daemon::onReaderTick()
 		leds_->show(summary());
 }
 
-void Daemon::onStatusTick()
+StatusSnapshot Daemon::statusSnapshot() const
 {
-	uint64_t now = loop_.nowUs();
-	double seconds = (now - statusAtUs_) / 1e6;
-	if (seconds <= 0)
-		return;
-	auto rate = [seconds](uint64_t count, uint64_t &before) {
-		double r = (count - before) / seconds;
-		before = count;
-		return r;
+	auto camera = [](const auto &device) {
+		StatusCamera c;
+		if (device) {
+			c.present = true;
+			c.name = device->name();
+			c.status = device->status();
+		}
+		return c;
 	};
-	DeviceStatus cs = colour_ ? colour_->status() : DeviceStatus{};
-	DeviceStatus ds = depth_ ? depth_->status() : DeviceStatus{};
-	updateLatency();
-	const PairingStats &ps = queue_.pairer().stats();
-	const double colourFps = rate(colourFrames_, colourFramesAtStatus_);
-	const double depthFps = rate(depthFrames_, depthFramesAtStatus_);
-	const double outputFps = rate(published_, publishedAtStatus_);
-	preview_.setStatus(previewStatus(colourFps, depthFps, outputFps));
-	char offset[64];
-	if (latencyEstimate_.valid)
-		std::snprintf(offset, sizeof(offset), "depth offset %+.0f ms measured%s", latencyEstimate_.offsetMs,
-			      settings_.pairing.offsetAuto ? "" : " (not applied)");
-	else
-		std::snprintf(offset, sizeof(offset), "depth offset %s", settings_.pairing.offsetAuto ? "measuring" : "set");
-	char text[768];
-	std::snprintf(text, sizeof(text),
-		      "colour %s %s %.1f fps %llu dropped; depth %s %s %.1f fps %llu dropped; "
-		      "paired %llu unpaired %llu; %s; output %.1f fps; readers %d; %s; %s",
-		      colour_ ? colour_->name().c_str() : "-", deviceStateName(cs.state),
-		      colourFps,
-		      static_cast<unsigned long long>(cs.droppedFrames),
-		      depth_ ? depth_->name().c_str() : "-", deviceStateName(ds.state),
-		      depthFps,
-		      static_cast<unsigned long long>(ds.droppedFrames),
-		      static_cast<unsigned long long>(ps.paired),
-		      static_cast<unsigned long long>(ps.unpaired), offset, outputFps, readers_.total(),
-		      summary().calibrated ? "calibrated"
-		      : calibrated_	   ? "calibration for other frame sizes (identity mapping)"
-					   : "not calibrated (identity mapping)",
-		      board_.statusText().c_str());
-	statusAtUs_ = now;
-	notifier_.status(text);
-	checkCalibrationFits();
-	checkRecording();
-	// In a terminal there is no STATUS= to look at: say it every few seconds.
-	if (!underSystemd_ && ++statusTicks_ % kTerminalStatusEvery == 0)
-		logger().info(text);
-	if (leds_)
-		leds_->show(summary());
-	if (!ready_ && now - startedUs_ > kDegradedReadyUs && published_ > 0) {
-		ready_ = true;
-		notifier_.ready();
-		logger().warning(std::string("ready in degraded mode: ") + text);
-	}
+	StatusSnapshot s;
+	s.colour = camera(colour_);
+	s.depth = camera(depth_);
+	s.pairing = queue_.pairer().stats();
+	s.latency = latencyEstimate_;
+	s.offsetAuto = settings_.pairing.offsetAuto;
+	s.readers = readers_;
+	s.calibrated = summary().calibrated;
+	s.calibrationLoaded = calibrated_;
+	s.calibrationFile = settings_.mapping.calibrationFile;
+	s.board = board_.statusText();
+	return s;
 }
 
-// Fed only while frames are being published: if the frame loop stalls,
-// systemd stops hearing from us and restarts the service.
-void Daemon::onWatchdogTick()
+void Daemon::onStatusTick()
 {
-	if (published_ == publishedAtWatchdog_)
+	updateLatency();
+	std::optional<PreviewStatus> figures = status_.report(statusSnapshot());
+	if (!figures)
 		return;
-	publishedAtWatchdog_ = published_;
-	notifier_.watchdog();
+	preview_.setStatus(*figures);
+	checkCalibrationFits();
+	checkRecording();
+	if (leds_)
+		leds_->show(summary());
 }
 
 // Reading and parsing (the config, then the calibration and board image it
@@ -473,7 +418,7 @@ void Daemon::reload()
 		reloadAgain_ = true;
 		return;
 	}
-	notifier_.reloading();
+	status_.reloading();
 	auto next = std::make_shared<PendingReload>();
 	int ret = reloadJob_.start(
 		loop_,
@@ -488,7 +433,7 @@ void Daemon::reload()
 	if (ret < 0) {
 		logger().error("config reload failed: cannot start a worker: " + errnoText(ret),
 			       { { "CONFIG_FILE", configPath_ } });
-		notifier_.reloaded();
+		status_.reloaded();
 	}
 }
 
@@ -504,7 +449,7 @@ void Daemon::finishReload(const PendingReload &next)
 		apply(result.settings, next.files);
 		logger().info("configuration reloaded", { { "CONFIG_FILE", configPath_ } });
 	}
-	notifier_.reloaded();
+	status_.reloaded();
 	if (reloadAgain_) {
 		reloadAgain_ = false;
 		reload();
@@ -518,9 +463,10 @@ void Daemon::apply(const Settings &next, const PipelineFiles &files)
 	LogLevel level;
 	if (parseLogLevel(next.daemon.logLevel, level))
 		logger().setLevel(level);
-	configurePipeline(files);
+	applyPipelineFiles(files);
 	board_.apply(next);
 	configurePairing();
+	stageDumps_.setFolders(next.daemon.snapshotDir, overrides_.previewDir);
 	if (previous.daemon.recordDir != next.daemon.recordDir ||
 	    previous.daemon.recordCompression != next.daemon.recordCompression)
 		updateRecording();
@@ -554,18 +500,6 @@ void Daemon::apply(const Settings &next, const PipelineFiles &files)
 	}
 }
 
-int Daemon::writeStages(const std::string &dir, const std::string &prefix, const DepthFrame *depth)
-{
-	static const DepthFrame kNoDepth;
-	StageImages stages;
-	collectPipelineStages(colourLatest_, depth ? *depth : kNoDepth, pipeline_, output_, mapping_, stages);
-	std::string error;
-	int ret = writeStageImages(dir, prefix, stages, error);
-	if (ret < 0)
-		logger().error("stage images failed: " + error, { { "SNAPSHOT_DIR", dir } });
-	return ret;
-}
-
 void Daemon::injectTestFault()
 {
 	if (testFault_ == TestFault::Stall) {
@@ -577,35 +511,6 @@ void Daemon::injectTestFault()
 				 { { "TEST_FAULT", "hang" } });
 		hangForever();
 	}
-}
-
-void Daemon::writeSnapshot()
-{
-	const std::string &dir = settings_.daemon.snapshotDir;
-	if (dir.empty()) {
-		logger().warning("snapshot requested but daemon.snapshot_dir is not set");
-		return;
-	}
-	if (writeStages(dir, "", queue_.pairer().newest()) >= 0)
-		logger().info("snapshot written to " + dir, { { "SNAPSHOT_DIR", dir } });
-}
-
-// --preview: the first keyed frame and a few more, 2 s apart, each as
-// frameNNNNNN-<stage>.png, so a technician sees the stages without a signal.
-void Daemon::maybeWritePreview(uint64_t frameNumber, const DepthFrame &depth)
-{
-	if (overrides_.previewDir.empty() || previewsWritten_ >= kPreviewCount)
-		return;
-	if (previewsWritten_ > 0 && frameNumber < lastPreviewFrame_ + kPreviewEveryFrames)
-		return;
-	// The stages are those of this frame: process() has run, publish() not yet.
-	char prefix[32];
-	std::snprintf(prefix, sizeof(prefix), "frame%06llu-", static_cast<unsigned long long>(frameNumber));
-	previewsWritten_++;
-	lastPreviewFrame_ = frameNumber;
-	if (writeStages(overrides_.previewDir, prefix, &depth) >= 0)
-		logger().info(std::string("stage preview written: ") + overrides_.previewDir + "/" + prefix + "*.png",
-			      { { "SNAPSHOT_DIR", overrides_.previewDir } });
 }
 
 void Daemon::updateRecording()

@@ -6,23 +6,24 @@
 #include "algo/latency_estimator.hpp"
 #include "algo/pairing_queue.hpp"
 #include "algo/pipeline.hpp"
-#include "daemon/board_output.hpp"
 #include "config/config_loader.hpp"
-#include "config/settings.hpp"
 #include "daemon/background_job.hpp"
+#include "daemon/board_output.hpp"
 #include "daemon/device_factory.hpp"
 #include "daemon/frame_recorder.hpp"
 #include "daemon/preview_feed.hpp"
-#include "daemon/pipeline_setup.hpp"
-#include "daemon/service_notifier.hpp"
+#include "daemon/stage_dumps.hpp"
+#include "daemon/status_reporter.hpp"
 #include "daemon/test_fault.hpp"
 #include "hal/camera.hpp"
 #include "hal/event_loop.hpp"
 #include "hal/frame_sink.hpp"
 #include "hal/status_leds.hpp"
+#include "settings/settings.hpp"
+#include "wiring/pipeline_setup.hpp"
 
-#include <map>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace depthkey {
@@ -62,7 +63,6 @@ private:
 	void onDeviceStatus(const std::string &device, const DeviceStatus &status);
 	void onFrameTick();
 	void onStatusTick();
-	void onWatchdogTick();
 	void onReaderTick();
 	// What a reload's worker read, for the loop thread to apply.
 	struct PendingReload {
@@ -71,9 +71,7 @@ private:
 	};
 	void reload();
 	void finishReload(const PendingReload &next);
-	void writeSnapshot();
-	int writeStages(const std::string &dir, const std::string &prefix, const DepthFrame *depth);
-	void maybeWritePreview(uint64_t frameNumber, const DepthFrame &depth);
+	PipelineView pipelineView() const { return { pipeline_, output_, mapping_ }; }
 	void updateRecording();
 	void checkRecording();
 	void injectTestFault();
@@ -83,7 +81,7 @@ private:
 	void startCameras();
 	void stopCameras();
 	void apply(const Settings &settings, const PipelineFiles &files);
-	void configurePipeline(const PipelineFiles &files);
+	void applyPipelineFiles(const PipelineFiles &files);
 	void checkCalibrationFits();
 	void publish(uint64_t captureNs, uint32_t flags);
 	void publishNoSignal(uint64_t nowNs);
@@ -94,14 +92,14 @@ private:
 	void updateLatency();
 	int64_t offsetNs() const;
 	StatusSummary summary() const;
-	PreviewStatus previewStatus(double colourFps, double depthFps, double outputFps) const;
+	StatusSnapshot statusSnapshot() const;
 
 	std::string configPath_;
 	CommandLineOverrides overrides_;
 	DeviceFactory factory_;
 	Settings settings_;
 	EventLoop loop_;
-	ServiceNotifier notifier_;
+	StatusReporter status_; // STATUS=, READY, the watchdog, the counters
 
 	std::unique_ptr<ColourCamera> colour_;
 	std::unique_ptr<DepthCamera> depth_;
@@ -111,24 +109,17 @@ private:
 
 	EventSource sigterm_, sigint_, sighup_, sigusr1_, sigusr2_;
 	EventSource keyTimer_;
-	EventSource frameTick_, statusTick_, watchdogTick_, readerTick_;
+	EventSource frameTick_, statusTick_, readerTick_;
 	BackgroundJob reloadJob_;
 	bool reloadAgain_ = false;
 	ReaderCounts readers_; // recorders reading the output, sampled every 250 ms
 
 	// The live preview page and what only it reports.
 	PreviewFeed preview_;
-	struct DeviceCounters {
-		uint64_t faults = 0, reconnects = 0;
-		bool lost = false;
-	};
-	std::map<std::string, DeviceCounters> deviceCounters_;
-	double depthLatencyMs_ = 0; // smoothed arrival after capture
 
 	FrameRecorder recorder_;
 	uint64_t recorderDropsLogged_ = 0;
-	int previewsWritten_ = 0;
-	uint64_t lastPreviewFrame_ = 0;
+	StageDumps stageDumps_; // SIGUSR1 snapshots, --preview stage images
 
 	Pipeline pipeline_;
 	BoardOutput board_;        // the board's picture, H and board-geometry composite
@@ -140,7 +131,6 @@ private:
 	LatencyEstimator latency_; // the depth camera's offset, measured
 	LatencyEstimator::Estimate latencyEstimate_;
 	double latencyLoggedMs_ = 1e9;
-	ColourFrame colourLatest_;
 	bool haveColour_ = false;
 	uint64_t lastColourNs_ = 0;   // arrival (loop clock) of the last colour frame
 	RgbImage noSignal_;
@@ -148,15 +138,6 @@ private:
 
 	TestFault testFault_ = TestFault::None;
 	bool framesStalled_ = false; // TEST-ONLY "stall" fault injected
-	bool ready_ = false;
-	bool underSystemd_ = false;
-	uint64_t statusTicks_ = 0;
-	uint64_t startedUs_ = 0;
-	uint64_t published_ = 0;
-	uint64_t publishedAtWatchdog_ = 0;
-	uint64_t colourFrames_ = 0, depthFrames_ = 0;
-	uint64_t colourFramesAtStatus_ = 0, depthFramesAtStatus_ = 0, publishedAtStatus_ = 0;
-	uint64_t statusAtUs_ = 0;
 };
 
 } // namespace depthkey

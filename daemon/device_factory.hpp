@@ -2,10 +2,10 @@
 // sees the hal/ interfaces and never knows whether a camera is real.
 #pragma once
 
-#include "config/settings.hpp"
 #include "hal/camera.hpp"
 #include "hal/frame_sink.hpp"
 #include "hal/status_leds.hpp"
+#include "settings/settings.hpp"
 
 #include <functional>
 #include <memory>

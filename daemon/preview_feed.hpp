@@ -6,9 +6,9 @@
 
 #include "algo/frames.hpp"
 #include "algo/pipeline.hpp"
-#include "config/settings.hpp"
 #include "hal/preview/preview_encoder.hpp"
 #include "hal/preview/preview_server.hpp"
+#include "settings/settings.hpp"
 
 namespace depthkey {
 

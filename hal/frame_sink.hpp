@@ -5,7 +5,7 @@
 #pragma once
 
 #include "algo/image.hpp"
-#include "config/settings.hpp"
+#include "settings/settings.hpp"
 
 #include <cstdint>
 #include <string>

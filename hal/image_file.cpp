@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <vector>
 
 #include "config/frame_limits.hpp"
 #include "hal/image_file_reader.hpp"
@@ -57,20 +58,48 @@ int readGray8Image(const std::string &path, Gray8Image &out, std::string &error)
 	return 0;
 }
 
-int writeGray8Png(const std::string &path, const Gray8Image &image, std::string &error)
+int writePicturePng(const std::string &path, const cv::Mat &picture, std::string &error, int pngCompression)
 {
-	cv::Mat mat(image.height(), image.width(), CV_8UC1, const_cast<uint8_t *>(image.data()));
+	std::vector<int> params;
+	if (pngCompression != kDefaultPngCompression)
+		params = { cv::IMWRITE_PNG_COMPRESSION, pngCompression };
 	bool ok = false;
 	try {
-		ok = cv::imwrite(path, mat);
+		ok = cv::imwrite(path, picture, params);
 	} catch (const cv::Exception &e) {
-		ok = false;
+		error = path + ": " + e.what();
+		return -EIO;
 	}
 	if (!ok) {
-		error = path + ": cannot write PNG";
+		error = path + ": cannot write";
 		return -EIO;
 	}
 	return 0;
+}
+
+int writePng(const std::string &path, const RgbImage &image, std::string &error, int pngCompression)
+{
+	cv::Mat rgb(image.height(), image.width(), CV_8UC3, const_cast<Rgb8 *>(image.data()));
+	cv::Mat bgr;
+	try {
+		cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR); // imwrite takes BGR
+	} catch (const cv::Exception &e) { // an empty image
+		error = path + ": " + e.what();
+		return -EIO;
+	}
+	return writePicturePng(path, bgr, error, pngCompression);
+}
+
+int writePng(const std::string &path, const Gray8Image &image, std::string &error, int pngCompression)
+{
+	cv::Mat mat(image.height(), image.width(), CV_8UC1, const_cast<uint8_t *>(image.data()));
+	return writePicturePng(path, mat, error, pngCompression);
+}
+
+int writePng(const std::string &path, const Gray16Image &image, std::string &error, int pngCompression)
+{
+	cv::Mat mat(image.height(), image.width(), CV_16UC1, const_cast<uint16_t *>(image.data()));
+	return writePicturePng(path, mat, error, pngCompression);
 }
 
 } // namespace depthkey

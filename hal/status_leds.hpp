@@ -3,8 +3,8 @@
 // LEDs fail softly: a backend that loses a line goes on without it.
 #pragma once
 
-#include "config/settings.hpp"
 #include "hal/event_loop.hpp"
+#include "settings/settings.hpp"
 
 #include <memory>
 

@@ -3,13 +3,14 @@
 // reload with a broken config, clean stop.
 #include "hal/depthkey_shm.h"
 #include "tests/daemon_process.hpp"
+#include "tests/wait_until.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <csignal>
 #include <cstdio>
-#include <cstdlib>
+#include <glob.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <thread>
@@ -17,6 +18,7 @@
 
 using namespace std::chrono_literals;
 using depthkey::test::DaemonProcess;
+using depthkey::test::waitUntil;
 
 namespace {
 
@@ -35,20 +37,26 @@ struct ShmFrame {
 // Opens and reads the newest frame, retrying while the writer starts up.
 bool readFrame(const std::string &name, ShmFrame &frame, std::chrono::milliseconds timeout)
 {
-	auto deadline = std::chrono::steady_clock::now() + timeout;
-	while (std::chrono::steady_clock::now() < deadline) {
-		dk_shm_reader reader{};
-		if (dk_shm_open(name.c_str(), &reader) == 0) {
+	return waitUntil(
+		[&] {
+			dk_shm_reader reader{};
+			if (dk_shm_open(name.c_str(), &reader) != 0)
+				return false;
 			frame.pixels.resize(reader.frame_bytes);
-			int ret = dk_shm_read_latest(&reader, frame.pixels.data(), frame.pixels.size(),
-						     &frame.info);
+			int ret = dk_shm_read_latest(&reader, frame.pixels.data(), frame.pixels.size(), &frame.info);
 			dk_shm_close(&reader);
-			if (ret == 0)
-				return true;
-		}
-		std::this_thread::sleep_for(20ms);
-	}
-	return false;
+			return ret == 0;
+		},
+		timeout, 20ms);
+}
+
+// Whether a file matches the shell pattern.
+bool matches(const std::string &pattern)
+{
+	glob_t found{};
+	bool any = glob(pattern.c_str(), 0, nullptr, &found) == 0 && found.gl_pathc > 0;
+	globfree(&found);
+	return any;
 }
 
 } // namespace
@@ -79,15 +87,21 @@ TEST_F(DaemonIntegration, ReadyWatchdogFramesReloadAndStop)
 
 	// WATCHDOG=1 keeps arriving (every WATCHDOG_USEC / 2 while frames flow).
 	int before = daemon_.countNotify("WATCHDOG=1");
-	std::this_thread::sleep_for(1200ms);
-	daemon_.pollNotify();
+	waitUntil(
+		[&] {
+			daemon_.pollNotify();
+			return daemon_.countNotify("WATCHDOG=1") - before >= 3 &&
+			       daemon_.countNotify("STATUS=colour sim-colour streaming") >= 1;
+		},
+		5s);
 	EXPECT_GE(daemon_.countNotify("WATCHDOG=1") - before, 3);
 	EXPECT_GE(daemon_.countNotify("STATUS=colour sim-colour streaming"), 1);
 
 	// Frames in shared memory: rising frame numbers, online, plausible content.
 	ShmFrame first, second;
 	ASSERT_TRUE(readFrame(prefix_ + ".composite", first, 2s));
-	std::this_thread::sleep_for(200ms);
+	waitUntil([&] { return readFrame(prefix_ + ".composite", second, 2s) && second.info.frame > first.info.frame; },
+		  2s);
 	ASSERT_TRUE(readFrame(prefix_ + ".composite", second, 2s));
 	EXPECT_GT(second.info.frame, first.info.frame);
 	EXPECT_GT(second.info.timestamp_ns, first.info.timestamp_ns);
@@ -118,9 +132,17 @@ TEST_F(DaemonIntegration, ReadyWatchdogFramesReloadAndStop)
 	// A broken config on SIGHUP is refused, naming file and line; the
 	// daemon runs on with the old one.
 	daemon_.writeFile("depthkey.toml", configText(prefix_, "[segmentation]\nnear_mm = \"close\"\n"));
+	daemon_.pollNotify();
+	const int readyBefore = daemon_.countNotify("READY=1");
 	ASSERT_EQ(daemon_.signal(SIGHUP), 0);
 	ASSERT_TRUE(daemon_.waitForNotify("RELOADING=1", 5s));
-	std::this_thread::sleep_for(500ms);
+	// The reload is over when READY=1 comes again.
+	waitUntil(
+		[&] {
+			daemon_.pollNotify();
+			return daemon_.countNotify("READY=1") > readyBefore;
+		},
+		5s);
 	EXPECT_TRUE(daemon_.running());
 	EXPECT_NE(daemon_.log().find("depthkey.toml:9:11"), std::string::npos) << daemon_.log();
 	ShmFrame third;
@@ -134,10 +156,8 @@ TEST_F(DaemonIntegration, ReadyWatchdogFramesReloadAndStop)
 				  prefix_ + ".composite\"\nlecturer_name = \"" + prefix_ + ".lecturer\"\n");
 	ASSERT_EQ(daemon_.signal(SIGHUP), 0);
 	ShmFrame resized;
-	auto deadline = std::chrono::steady_clock::now() + 5s;
-	while (std::chrono::steady_clock::now() < deadline &&
-	       !(readFrame(prefix_ + ".composite", resized, 1s) && resized.info.width == 160))
-		std::this_thread::sleep_for(50ms);
+	waitUntil([&] { return readFrame(prefix_ + ".composite", resized, 1s) && resized.info.width == 160; }, 5s,
+		  50ms);
 	EXPECT_EQ(resized.info.width, 160u);
 	EXPECT_EQ(resized.info.height, 120u);
 
@@ -219,7 +239,17 @@ TEST_F(DaemonIntegration, RecordThenReplayWithPreviews)
 	std::string previews = daemon_.dir() + "/previews";
 	ASSERT_TRUE(daemon_.start({ "--config", config_, "--record", recording, "--preview", previews }));
 	ASSERT_TRUE(daemon_.waitForNotify("READY=1", 10s)) << daemon_.log();
-	std::this_thread::sleep_for(1500ms);
+	const char *const stages[] = { "colour", "depth", "alpha", "composite" };
+	auto previewWritten = [&](const char *stage) { return matches(previews + "/frame*-" + stage + ".png"); };
+	// Recording until the folder holds enough frames and the first keyed
+	// frame's stage images are there.
+	waitUntil(
+		[&] {
+			return countLines(recording + "/rgb.txt", '#') >= 15 &&
+			       countLines(recording + "/depth.txt", '#') >= 5 &&
+			       std::all_of(std::begin(stages), std::end(stages), previewWritten);
+		},
+		10s, 50ms);
 	ASSERT_EQ(daemon_.signal(SIGTERM), 0);
 	ASSERT_NE(daemon_.waitExit(5s), -1);
 	int colourFrames = countLines(recording + "/rgb.txt", '#');
@@ -228,12 +258,8 @@ TEST_F(DaemonIntegration, RecordThenReplayWithPreviews)
 	EXPECT_EQ(countLines(recording + "/amplitude.txt", '#'), countLines(recording + "/depth.txt", '#'));
 	struct stat st;
 	EXPECT_EQ(stat((recording + "/rgb/000001.png").c_str(), &st), 0);
-	bool previewFound = false;
-	for (const char *stage : { "colour", "depth", "alpha", "composite" }) {
-		std::string glob = "ls " + previews + "/frame*-" + stage + ".png >/dev/null 2>&1";
-		previewFound = std::system(glob.c_str()) == 0;
-		EXPECT_TRUE(previewFound) << stage << "\n" << daemon_.log();
-	}
+	for (const char *stage : stages)
+		EXPECT_TRUE(previewWritten(stage)) << stage << "\n" << daemon_.log();
 
 	DaemonProcess replay;
 	std::string replayConfig = replay.writeFile("depthkey.toml",
@@ -244,8 +270,12 @@ TEST_F(DaemonIntegration, RecordThenReplayWithPreviews)
 					"[replay]\npath = \"" + recording + "\"\n");
 	ASSERT_TRUE(replay.start({ "--config", replayConfig }));
 	ASSERT_TRUE(replay.waitForNotify("READY=1", 10s)) << replay.log();
-	std::this_thread::sleep_for(1200ms);
-	replay.pollNotify();
+	waitUntil(
+		[&] {
+			replay.pollNotify();
+			return replay.countNotify("STATUS=colour replay-colour streaming") >= 1;
+		},
+		5s);
 	EXPECT_GE(replay.countNotify("STATUS=colour replay-colour streaming"), 1) << replay.log();
 	ShmFrame frame;
 	ASSERT_TRUE(readFrame(prefix_ + ".composite", frame, 2s));

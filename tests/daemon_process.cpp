@@ -1,6 +1,7 @@
 #include "tests/daemon_process.hpp"
 
 #include "tests/test_paths.hpp"
+#include "tests/wait_until.hpp"
 
 #include <csignal>
 #include <cstdlib>
@@ -162,12 +163,8 @@ int DaemonProcess::signal(int sig)
 
 int DaemonProcess::waitExit(std::chrono::milliseconds timeout)
 {
-	auto deadline = std::chrono::steady_clock::now() + timeout;
-	while (running()) {
-		if (std::chrono::steady_clock::now() > deadline)
-			return -1;
-		usleep(10000);
-	}
+	if (!waitUntil([this] { return !running(); }, timeout))
+		return -1;
 	return exitStatus_;
 }
 

@@ -1,13 +1,9 @@
 // The whole pipeline on the skeleton's simulated scene (hal/sim/simple_scene:
 // same scene for both cameras, ground truth from figureAt) and on synthetic
 // frames: accuracy against the depth-only keyer, zero heap allocations per
-// frame in steady state, the fixed-point mapping against MappingModel, and
-// the seeding stages against simple references.
-#include "algo/depth_mapper.hpp"
+// frame in steady state, seeding once per depth frame. Its stages have
+// their own tests (depth_mapper_test, morphology_test, depth_seeder_test).
 #include "algo/depth_range_keyer.hpp"
-#include "algo/depth_seeder.hpp"
-#include "algo/mask_rows.hpp"
-#include "algo/morphology.hpp"
 #include "algo/pipeline.hpp"
 #include "hal/sim/sim_sequence.hpp"
 #include "hal/sim/simple_scene.hpp"
@@ -17,9 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
-#include <random>
 
 using namespace depthkey;
 using namespace depthkey::test;
@@ -147,208 +141,6 @@ TEST(Pipeline, NoHeapAllocationPerFrameOnTheSimulatedLecture)
 	}
 	EXPECT_EQ(allocations, 0u);
 	std::printf("simulated lecture: 270 frames, %zu allocations\n", allocations);
-}
-
-TEST(DepthMapper, FixedPointWithinHalfAPixelOfTheModel)
-{
-	// A paper model and a parallax model with coefficients of the size a
-	// calibration gives (tens of pixels of parallax at 1 m).
-	for (MappingKind kind : { MappingKind::Paper, MappingKind::Parallax }) {
-		MappingModel model;
-		model.kind = kind;
-		model.colourWidth = 1920;
-		model.colourHeight = 1080;
-		if (kind == MappingKind::Paper) {
-			model.x = { 960, 1000, 5, -30, 12 };
-			model.y = { 540, 560, -4, 20, -8 };
-		} else {
-			model.x = { 940, 1010, 8, 3, -6, 2, -35, 4, -3, 1, 40, -3, 2, 6 };
-			model.y = { 530, 5, 570, -2, 4, 3, 2, -28, 3, 1, -6, 1, -2, -3 };
-		}
-		DepthMapper mapper;
-		mapper.configure(model);
-		double worst = 0;
-		for (int v = 0; v < model.tofHeight; v += 3)
-			for (int u = 0; u < model.tofWidth; u += 3)
-				for (int z = 400; z <= 7500; z += 137) {
-					double x, y;
-					model.map(u, v, z / 1000.0, x, y);
-					int32_t xq, yq;
-					mapper.map(v * model.tofWidth + u, z, xq, yq);
-					worst = std::max({ worst, std::fabs(xq / 256.0 - x), std::fabs(yq / 256.0 - y) });
-				}
-		std::printf("mapping %s: max |fixed - model| = %.5f px\n", mappingKindName(kind), worst);
-		EXPECT_LE(worst, 0.5);
-		EXPECT_LE(worst, 0.01); // in fact: Q8 rounding
-	}
-}
-
-TEST(Morphology, ErodeAndDilateMatchBruteForce)
-{
-	std::mt19937 rng(2);
-	std::bernoulli_distribution on(0.6);
-	Gray8Image in(37, 23), out;
-	MorphologyScratch scratch;
-	for (int trial = 0; trial < 4; ++trial) {
-		for (size_t i = 0; i < in.size(); ++i)
-			in.data()[i] = on(rng) ? 255 : 0;
-		for (int r = 0; r <= 5; ++r)
-			for (bool erode : { true, false }) {
-				KernelPath path = trial % 2 ? KernelPath::C : KernelPath::Sse2;
-				(erode ? erodeSquare : dilateSquare)(in, r, out, scratch, path);
-				for (int y = 0; y < in.height(); ++y)
-					for (int x = 0; x < in.width(); ++x) {
-						bool all = true, any = false;
-						for (int yy = std::max(0, y - r); yy <= std::min(in.height() - 1, y + r); ++yy)
-							for (int xx = std::max(0, x - r); xx <= std::min(in.width() - 1, x + r); ++xx) {
-								all = all && in.at(xx, yy);
-								any = any || in.at(xx, yy);
-							}
-						ASSERT_EQ(out.at(x, y), (erode ? all : any) ? 255 : 0) << r << " " << x << "," << y;
-					}
-			}
-	}
-}
-
-// The SSE2 mask rows against the C rows, bit for bit, for odd widths and
-// unaligned pointers.
-TEST(Morphology, Sse2MaskRowsEqualTheCRows)
-{
-	std::mt19937 rng(4);
-	std::uniform_int_distribution<int> byte(0, 255);
-	for (int width : { 0, 1, 15, 16, 17, 33, 160, 161 }) {
-		for (int offset : { 0, 1, 3 }) {
-			std::vector<uint8_t> acc(width + offset), src(width + offset);
-			for (int i = 0; i < width + offset; ++i) {
-				acc[i] = uint8_t(byte(rng));
-				src[i] = uint8_t(byte(rng));
-			}
-			for (bool erode : { false, true }) {
-				std::vector<uint8_t> c = acc, sse = acc;
-				maskRow(KernelPath::C, erode)(c.data() + offset, src.data() + offset, width);
-				maskRow(KernelPath::Sse2, erode)(sse.data() + offset, src.data() + offset, width);
-				ASSERT_EQ(c, sse) << "width " << width << " offset " << offset << " erode " << erode;
-			}
-		}
-	}
-}
-
-TEST(Morphology, ComponentLabelsMatchAFloodFillReference)
-{
-	std::mt19937 rng(8);
-	std::bernoulli_distribution on(0.5);
-	ComponentScratch scratch;
-	for (int trial = 0; trial < 20; ++trial) {
-		Gray8Image mask(31, 17);
-		for (size_t i = 0; i < mask.size(); ++i)
-			mask.data()[i] = on(rng) ? 255 : 0;
-		// Reference: label by repeated relaxation (min label of 4-neighbours).
-		const int w = mask.width(), n = int(mask.size());
-		std::vector<int> label(n);
-		for (int i = 0; i < n; ++i)
-			label[i] = mask.data()[i] ? i : -1;
-		for (bool changed = true; changed;) {
-			changed = false;
-			for (int i = 0; i < n; ++i) {
-				if (label[i] < 0)
-					continue;
-				int x = i % w;
-				for (int q : { x > 0 ? i - 1 : -1, x + 1 < w ? i + 1 : -1, i - w, i + w < n ? i + w : -1 })
-					if (q >= 0 && label[q] >= 0 && label[q] < label[i]) {
-						label[i] = label[q];
-						changed = true;
-					}
-			}
-		}
-		std::vector<int> size(n, 0);
-		for (int l : label)
-			if (l >= 0)
-				size[l]++;
-		int best = -1;
-		for (int i = 0; i < n; ++i)
-			if (best < 0 || size[i] > size[best])
-				best = i;
-		// The largest labelled component (the first in raster order on a
-		// tie) is the reference's largest, pixel for pixel.
-		Gray8Image got = mask;
-		const int count = labelComponents(got, scratch);
-		int largest = -1;
-		for (int k = 0; k < count; ++k)
-			if (largest < 0 || scratch.sizes[size_t(k)] > scratch.sizes[size_t(largest)])
-				largest = k;
-		keepComponent(got, scratch, largest);
-		const int kept = largest >= 0 ? scratch.sizes[size_t(largest)] : 0;
-		ASSERT_EQ(kept, size[best]);
-		for (int i = 0; i < n; ++i)
-			ASSERT_EQ(got.data()[i] != 0, label[i] == best) << trial << " " << i;
-	}
-}
-
-namespace {
-
-// A 40 x 30 depth frame: the board at 2000 mm, a lecturer in [10, 30) x
-// [5, 25) at depthAt(x, y), amplitude 3000 everywhere.
-template<typename DepthAt>
-DepthFrame boardWithLecturer(DepthAt depthAt)
-{
-	DepthFrame depth;
-	depth.depthMm = Gray16Image(40, 30, 2000);
-	depth.amplitude = Gray16Image(40, 30, 3000);
-	for (int y = 5; y < 25; ++y)
-		for (int x = 10; x < 30; ++x)
-			depth.depthMm.at(x, y) = depthAt(x, y);
-	return depth;
-}
-
-// The seeds of a frame with erode 1, dilate 2 and the given amplitude limit.
-DepthSeeds seedsOf(const DepthFrame &depth, int maxAmplitude = SegmentationSettings{}.maxAmplitude)
-{
-	SegmentationSettings settings;
-	settings.maxAmplitude = maxAmplitude;
-	settings.erodePx = 1;
-	settings.dilatePx = 2;
-	DepthSeeder seeder;
-	seeder.configure(settings);
-	DepthSeeds seeds;
-	seeder.seed(depth, seeds);
-	return seeds;
-}
-
-} // namespace
-
-TEST(DepthSeeder, RejectsUntrustedDepthAndSeparatesSubsetBandAndBoard)
-{
-	DepthFrame depth = boardWithLecturer([](int, int) { return uint16_t(1200); });
-	for (int y = 0; y < 3; ++y)
-		for (int x = 0; x < 3; ++x)
-			depth.depthMm.at(x, y) = 1000; // small in-range blob: not the largest
-	depth.amplitude.at(20, 15) = 65535;       // saturated inside the lecturer
-	const DepthSeeds seeds = seedsOf(depth, 60000);
-	EXPECT_EQ(seeds.labels.at(15, 10), kTrimapLecturer);
-	EXPECT_EQ(seeds.labels.at(20, 15), kTrimapUndecided); // untrusted: eroded around
-	EXPECT_EQ(seeds.labels.at(10, 5), kTrimapInRange);    // the edge: in range, eroded away
-	EXPECT_EQ(seeds.labels.at(12, 7), kTrimapSubset);     // eroded once, not deep enough for the core
-	EXPECT_EQ(seeds.labels.at(9, 15), kTrimapUndecided);  // dilated beyond
-	EXPECT_EQ(seeds.labels.at(8, 15), kTrimapUndecided);  // the in-range area, dilated
-	EXPECT_EQ(seeds.labels.at(7, 15), kTrimapBoard);
-	EXPECT_EQ(seeds.labels.at(1, 1), kTrimapBoard);       // smaller blob
-	EXPECT_EQ(seeds.labels.at(37, 15), kTrimapBoard);
-	EXPECT_EQ(seeds.lecturerDepthMm, 1200);
-}
-
-TEST(DepthSeeder, SurfaceDepthIsTheLecturersSmoothedDepth)
-{
-	// A lecturer whose depth alternates 1300 / 1700 mm (noise) in front of
-	// the board at 2000 mm.
-	const DepthSeeds seeds =
-		seedsOf(boardWithLecturer([](int x, int y) { return uint16_t((x + y) % 2 ? 1300 : 1700); }));
-	ASSERT_EQ(seeds.labels.at(20, 15), kTrimapLecturer);
-	EXPECT_NEAR(seeds.surfaceMm.at(20, 15), 1500, 10); // 7 x 7 mean (radius dilate + 1)
-	EXPECT_NEAR(seeds.surfaceMm.at(11, 6), 1500, 25);  // near the corner: fewer
-	ASSERT_EQ(seeds.labels.at(8, 15), kTrimapUndecided);
-	EXPECT_NEAR(seeds.surfaceMm.at(8, 15), 1500, 25);  // band on the board: his depth
-	EXPECT_EQ(seeds.labels.at(2, 2), kTrimapBoard);
-	EXPECT_EQ(seeds.surfaceMm.at(2, 2), 0);
 }
 
 TEST(Pipeline, SeedsOncePerDepthFrameAndAgainAfterNewSettings)

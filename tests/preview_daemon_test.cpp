@@ -8,6 +8,7 @@
 #include "hal/v4l2/mjpeg_decoder.hpp"
 #include "tests/daemon_process.hpp"
 #include "tests/preview_test_util.hpp"
+#include "tests/wait_until.hpp"
 
 #include <gtest/gtest.h>
 
@@ -205,7 +206,7 @@ TEST_F(PreviewDaemon, APasswordFileOthersCanReadIsRefusedAndTheDaemonRunsOn)
 		<< daemon_.log();
 	EXPECT_EQ(daemon_.log().find("preview page at"), std::string::npos);
 	const uint64_t before = latestFrame();
-	std::this_thread::sleep_for(500ms);
+	depthkey::test::waitUntil([&] { return latestFrame() > before; }, 5s);
 	EXPECT_GT(latestFrame(), before) << "frames go on without the preview";
 }
 

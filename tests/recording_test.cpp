@@ -4,6 +4,7 @@
 #include "hal/recording/sequence_writer.hpp"
 #include "hal/replay/replay_cameras.hpp"
 #include "hal/sim/sim_sequence.hpp"
+#include "tests/wait_until.hpp"
 
 #include <cstdlib>
 #include <filesystem>
@@ -130,11 +131,15 @@ TEST(Recording, DaemonRecorderWritesEverythingItWasGiven)
 	std::string error;
 	ASSERT_EQ(recorder.start(dir, 1, error), 0) << error;
 	size_t d = 0;
+	uint64_t given = 0;
 	for (const ColourFrame &c : sim.colour) {
-		while (d < sim.depth.size() && sim.depth[d].timestampNs <= c.timestampNs)
+		for (; d < sim.depth.size() && sim.depth[d].timestampNs <= c.timestampNs; ++given)
 			recorder.recordDepth(sim.depth[d++]);
 		recorder.recordColour(c);
-		usleep(20000); // give the worker time: this test is about content, not drops
+		++given;
+		// The worker catches up before the next frame: this test is about
+		// content, not drops.
+		test::waitUntil([&] { return recorder.written() == given; }, std::chrono::seconds(5));
 	}
 	while (d < sim.depth.size())
 		recorder.recordDepth(sim.depth[d++]);

@@ -2,7 +2,7 @@
 // small statistics over images.
 #pragma once
 
-#include "config/settings.hpp"
+#include "settings/settings.hpp"
 
 namespace depthkey::test {
 

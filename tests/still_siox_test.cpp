@@ -216,7 +216,7 @@ TEST(DepthkeySiox, SegmentsASyntheticImageAndWritesMaskAndAlpha)
 	SyntheticStill s = makeStill(320, 240, 10, 2);
 	std::string error;
 	ASSERT_EQ(writeRgbPng(dir.path + "/image.png", s.image), 0);
-	ASSERT_EQ(writeGray8Png(dir.path + "/trimap.png", s.trimap, error), 0) << error;
+	ASSERT_EQ(writePng(dir.path + "/trimap.png", s.trimap, error), 0) << error;
 	ASSERT_EQ(runTool(dir.path + "/image.png " + dir.path + "/trimap.png " + dir.path + "/mask.png --alpha " +
 			  dir.path + "/alpha.png"),
 		  0);
@@ -239,9 +239,9 @@ TEST(DepthkeySiox, FailsClearlyOnBadInput)
 	SyntheticStill s = makeStill(64, 48, 6, 1);
 	std::string error;
 	writeRgbPng(dir.path + "/image.png", s.image);
-	writeGray8Png(dir.path + "/trimap.png", s.trimap, error);
+	writePng(dir.path + "/trimap.png", s.trimap, error);
 	Gray8Image small(10, 10);
-	writeGray8Png(dir.path + "/small.png", small, error);
+	writePng(dir.path + "/small.png", small, error);
 	writeRgbPng(dir.path + "/colour-trimap.ppm", s.image);
 	EXPECT_EQ(runTool(""), 1);
 	EXPECT_EQ(runTool(dir.path + "/missing.png " + dir.path + "/trimap.png " + dir.path + "/m.png"), 1);

@@ -21,14 +21,15 @@
 #include <sys/stat.h>
 
 #include <opencv2/calib3d.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "algo/calibration_fit.hpp"
 #include "algo/calibration_plan.hpp"
 #include "algo/circle_grid_detector.hpp"
 #include "config/calibration_file.hpp"
-#include "hal/sequence_folder.hpp"
+#include "hal/image_file.hpp"
+#include "hal/recording/sequence_reader.hpp"
+#include "hal/recording/sequence_writer.hpp"
 #include "hal/sim/calibration_pattern.hpp"
 #include "tools/calibrate_board/board_command.hpp"
 
@@ -177,7 +178,9 @@ void writePreview(const std::string &dir, int index, const ColourFrame &colour, 
 		points.emplace_back(static_cast<float>(p.x), static_cast<float>(p.y));
 	cv::drawChessboardCorners(bgr, size, points, found);
 	std::snprintf(name, sizeof(name), "/view-%02d-colour.png", index);
-	cv::imwrite(dir + name, bgr);
+	std::string error;
+	if (writePicturePng(dir + name, bgr, error) < 0)
+		std::printf("        preview not written: %s\n", error.c_str());
 
 	Gray8Image scaled = amplitudeForDetection(depth.amplitude);
 	cv::Mat gray(scaled.height(), scaled.width(), CV_8UC1, scaled.data()), tof;
@@ -189,7 +192,8 @@ void writePreview(const std::string &dir, int index, const ColourFrame &colour, 
 				    static_cast<float>((p.y + 0.5) * kAmplitudeScale - 0.5));
 	cv::drawChessboardCorners(tof, size, points, found);
 	std::snprintf(name, sizeof(name), "/view-%02d-tof.png", index);
-	cv::imwrite(dir + name, tof);
+	if (writePicturePng(dir + name, tof, error) < 0)
+		std::printf("        preview not written: %s\n", error.c_str());
 }
 
 void printReport(const CalibrationFit &fit)
@@ -218,7 +222,7 @@ public:
 	{
 		options_ = &o;
 		if (!o.sim)
-			return sequence_.open(o.sequence, error);
+			return openSequence(o.sequence, error);
 		rig_.configure(640, 480, true, 60);
 		sim::PatternConditions conditions;
 		conditions.seed = o.seed;
@@ -229,13 +233,16 @@ public:
 		plan_ = calibrationPlan(o.depths);
 		return 0;
 	}
-	size_t views() const { return options_->sim ? plan_.size() : sequence_.frames() / options_->step; }
+	size_t views() const { return options_->sim ? plan_.size() : sequence_.colour().size() / options_->step; }
 	const PatternStep *step(size_t i) const { return options_->sim ? &plan_[i] : nullptr; }
-	int read(size_t i, ColourFrame &colour, DepthFrame &depth, std::string &error) const
+	int read(size_t i, ColourFrame &colour, DepthFrame &depth, std::string &error)
 	{
 		if (!options_->sim)
-			return sequence_.read(i * options_->step, colour, depth, error);
+			return readSequence(i * options_->step, colour, depth, error);
 		renderer_.render(renderer_.poseFor(plan_[i], static_cast<int>(i)), i, colour, depth);
+		// View i is stamped i seconds, so that a recording of the views
+		// pairs colour and depth frame by their one timestamp.
+		colour.timestampNs = depth.timestampNs = i * 1000000000ull;
 		return 0;
 	}
 	std::string colourName() const
@@ -250,8 +257,35 @@ public:
 	}
 
 private:
+	// A recording (hal/recording/sequence_format.hpp) with amplitude: the
+	// pattern is found in the ToF's amplitude image.
+	int openSequence(const std::string &dir, std::string &error)
+	{
+		using namespace recording;
+		if (int ret = sequence_.open(dir, { Rgb, Depth, Amplitude }); ret < 0) {
+			error = sequence_.describeError();
+			return ret;
+		}
+		if (sequence_.colour().empty() || sequence_.depth().empty()) {
+			error = dir + ": rgb.txt and depth.txt must both list frames";
+			return -EINVAL;
+		}
+		return 0;
+	}
+	// Colour frame i with the depth frame taken with it: the pattern is held
+	// still, so the nearest in time shows it where the colour frame does.
+	int readSequence(size_t i, ColourFrame &colour, DepthFrame &depth, std::string &error)
+	{
+		int ret = sequence_.readColour(i, colour);
+		if (ret == 0)
+			ret = sequence_.readDepth(sequence_.depthNearestColour(i), depth);
+		if (ret < 0)
+			error = sequence_.describeError();
+		return ret;
+	}
+
 	const Options *options_ = nullptr;
-	SequenceFolderReader sequence_;
+	SequenceReader sequence_;
 	CameraRig rig_;
 	sim::PatternRenderer renderer_;
 	std::vector<PatternStep> plan_;
@@ -274,9 +308,9 @@ int main(int argc, char **argv)
 		std::fprintf(stderr, "depthkey-calibrate: %s\n", error.c_str());
 		return 1;
 	}
-	SequenceFolderWriter recorder;
-	if (!o.record.empty() && recorder.open(o.record, error) < 0) {
-		std::fprintf(stderr, "depthkey-calibrate: %s\n", error.c_str());
+	SequenceWriter recorder;
+	if (!o.record.empty() && recorder.open(o.record) < 0) {
+		std::fprintf(stderr, "depthkey-calibrate: %s\n", recorder.describeError().c_str());
 		return 1;
 	}
 
@@ -304,8 +338,8 @@ int main(int argc, char **argv)
 			std::fprintf(stderr, "depthkey-calibrate: %s\n", error.c_str());
 			return 1;
 		}
-		if (!o.record.empty() && recorder.write(static_cast<double>(i), colour, depth, error) < 0) {
-			std::fprintf(stderr, "depthkey-calibrate: %s\n", error.c_str());
+		if (!o.record.empty() && (recorder.writeColour(colour) < 0 || recorder.writeDepth(depth) < 0)) {
+			std::fprintf(stderr, "depthkey-calibrate: %s\n", recorder.describeError().c_str());
 			return 1;
 		}
 		if (!o.preview.empty())

@@ -81,8 +81,8 @@ int main(int argc, char **argv)
 		return fail(positional[1] + ": no background (0) pixel: SIOX needs known board colours");
 	if (ret < 0)
 		return fail(std::string("segmentation failed: ") + std::strerror(-ret));
-	if (writeGray8Png(positional[2], mask, error) < 0 ||
-	    (!alphaPath.empty() && writeGray8Png(alphaPath, alpha, error) < 0))
+	if (writePng(positional[2], mask, error) < 0 ||
+	    (!alphaPath.empty() && writePng(alphaPath, alpha, error) < 0))
 		return fail(error);
 	return 0;
 }

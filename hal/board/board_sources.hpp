@@ -11,10 +11,10 @@
 //           board.fps, on the sim cameras' clock
 #pragma once
 
-#include "config/settings.hpp"
 #include "hal/camera.hpp"
 #include "hal/sim/board_display.hpp"
 #include "hal/sim/sim_cameras.hpp"
+#include "settings/settings.hpp"
 
 #include <memory>
 

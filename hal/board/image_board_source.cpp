@@ -63,9 +63,7 @@ void ImageBoardSource::stop()
 {
 	io_.reset();
 	retry_.reset();
-	if (fd_ >= 0)
-		::close(fd_);
-	fd_ = -1;
+	inotify_.reset();
 	status_ = { DeviceState::Stopped, 0, "", status_.droppedFrames };
 }
 
@@ -78,18 +76,18 @@ void ImageBoardSource::setStatus(DeviceState state, int error, const std::string
 // Watch first, then read: a replacement landing in between is not missed.
 void ImageBoardSource::watch()
 {
-	if (fd_ < 0)
-		fd_ = inotify_init1(IN_NONBLOCK | IN_CLOEXEC);
-	int ret = fd_ < 0 ? -errno : 0;
-	if (ret == 0 && inotify_add_watch(fd_, folder_.c_str(), IN_CLOSE_WRITE | IN_MOVED_TO | IN_DELETE_SELF |
-								  IN_MOVE_SELF | IN_ONLYDIR) < 0)
+	if (!inotify_.isValid())
+		inotify_.reset(inotify_init1(IN_NONBLOCK | IN_CLOEXEC));
+	int ret = inotify_.isValid() ? 0 : -errno;
+	if (ret == 0 && inotify_add_watch(inotify_.get(), folder_.c_str(),
+					  IN_CLOSE_WRITE | IN_MOVED_TO | IN_DELETE_SELF | IN_MOVE_SELF | IN_ONLYDIR) < 0)
 		ret = -errno;
 	if (ret < 0) {
 		setStatus(DeviceState::Lost, ret, folder_ + ": cannot watch for a new board picture: " + std::strerror(-ret));
 		loop_->addTimer(kWatchRetryUs, [this] { watch(); }, retry_);
 		return;
 	}
-	loop_->addIo(fd_, EPOLLIN, [this](uint32_t) { onInotify(); }, io_);
+	loop_->addIo(inotify_.get(), EPOLLIN, [this](uint32_t) { onInotify(); }, io_);
 	reload();
 }
 
@@ -98,7 +96,7 @@ void ImageBoardSource::onInotify()
 	alignas(struct inotify_event) char buf[4096];
 	bool changed = false, folderGone = false;
 	for (;;) {
-		ssize_t n = ::read(fd_, buf, sizeof(buf));
+		ssize_t n = ::read(inotify_.get(), buf, sizeof(buf));
 		if (n <= 0)
 			break;
 		for (char *p = buf; p < buf + n;) {
@@ -112,8 +110,7 @@ void ImageBoardSource::onInotify()
 	}
 	if (folderGone) {
 		io_.reset();
-		::close(fd_);
-		fd_ = -1;
+		inotify_.reset();
 		setStatus(DeviceState::Lost, -ENOENT, folder_ + ": folder gone, watching for it again");
 		loop_->addTimer(kWatchRetryUs, [this] { watch(); }, retry_);
 		return;

@@ -9,8 +9,9 @@
 // write makes it Streaming again. A missing folder is retried every second.
 #pragma once
 
-#include "config/settings.hpp"
 #include "hal/camera.hpp"
+#include "hal/unique_fd.hpp"
+#include "settings/settings.hpp"
 
 namespace depthkey {
 
@@ -39,7 +40,7 @@ private:
 	StatusHandler onStatus_;
 	DeviceStatus status_;
 	ColourFrame frame_;
-	int fd_ = -1;
+	UniqueFd inotify_;
 	EventSource io_, retry_;
 	uint64_t reads_ = 0;
 };

@@ -4,6 +4,7 @@
 #include "config/text_file.hpp"
 #include "hal/image_file_reader.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <opencv2/imgcodecs.hpp>
@@ -100,15 +101,18 @@ int SequenceReader::checkMatches(Stream stream, Stream owner)
 	return 0;
 }
 
-int SequenceReader::open(const std::string &dir)
+int SequenceReader::open(const std::string &dir, std::initializer_list<Stream> required)
 {
 	dir_ = dir;
 	for (auto &index : index_)
 		index.clear();
 	int ret;
-	for (int s = 0; s < StreamCount; ++s)
-		if ((ret = readIndex(static_cast<Stream>(s), false)) < 0)
+	for (int s = 0; s < StreamCount; ++s) {
+		Stream stream = static_cast<Stream>(s);
+		bool isRequired = std::find(required.begin(), required.end(), stream) != required.end();
+		if ((ret = readIndex(stream, isRequired)) < 0)
 			return ret;
+	}
 	if (colour().empty() && depth().empty()) {
 		error_ = dir + ": no frames (rgb.txt and depth.txt missing or empty)";
 		return -ENOENT;
@@ -117,6 +121,19 @@ int SequenceReader::open(const std::string &dir)
 	    (ret = checkMatches(Mask, Rgb)) < 0)
 		return ret;
 	return 0;
+}
+
+size_t SequenceReader::depthNearestColour(size_t i) const
+{
+	uint64_t t = colour().at(i).timestampNs;
+	const auto &frames = depth();
+	auto later = std::lower_bound(frames.begin(), frames.end(), t,
+				      [](const SequenceEntry &e, uint64_t ns) { return e.timestampNs < ns; });
+	if (later == frames.end())
+		return frames.size() - 1;
+	if (later != frames.begin() && t - std::prev(later)->timestampNs <= later->timestampNs - t)
+		--later;
+	return static_cast<size_t>(later - frames.begin());
 }
 
 template<typename Pixel>

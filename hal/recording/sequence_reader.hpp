@@ -6,6 +6,7 @@
 #include "algo/frames.hpp"
 #include "hal/recording/sequence_format.hpp"
 
+#include <initializer_list>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -26,14 +27,20 @@ int parseSequenceIndex(std::string_view text, const std::string &path,
 class SequenceReader
 {
 public:
-	// Needs rgb.txt or depth.txt (or both); amplitude, intensity and mask
-	// indices are optional but, when there, must list the same timestamps as
-	// the stream they belong to. Negative errno; describeError() says why.
-	int open(const std::string &dir);
+	// Needs rgb.txt or depth.txt (or both), and every index in required
+	// (depthkey-calibrate needs rgb, depth and amplitude); amplitude,
+	// intensity and mask indices are otherwise optional but, when there,
+	// must list the same timestamps as the stream they belong to. Negative
+	// errno; describeError() says why.
+	int open(const std::string &dir, std::initializer_list<recording::Stream> required = {});
 
 	const std::vector<SequenceEntry> &colour() const { return index_[recording::Rgb]; }
 	const std::vector<SequenceEntry> &depth() const { return index_[recording::Depth]; }
 	bool hasMask() const { return !index_[recording::Mask].empty(); }
+	// The depth frame taken nearest in time to colour frame i (the earlier
+	// of two as near); a colour and a depth frame recorded together have one
+	// timestamp. Needs both streams.
+	size_t depthNearestColour(size_t i) const;
 
 	int readColour(size_t i, ColourFrame &out);
 	int readDepth(size_t i, DepthFrame &out);   // amplitude/intensity zero if not recorded

@@ -1,9 +1,9 @@
 #include "hal/recording/sequence_writer.hpp"
 
+#include "hal/image_file.hpp"
+
 #include <cerrno>
 #include <cstring>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 #include <sys/stat.h>
 #include <vector>
 
@@ -18,23 +18,6 @@ int makeDir(const std::string &path)
 	if (mkdir(path.c_str(), 0755) < 0 && errno != EEXIST)
 		return -errno;
 	return 0;
-}
-
-cv::Mat toMat(const Image<Rgb8> &image, cv::Mat &scratch)
-{
-	cv::Mat rgb(image.height(), image.width(), CV_8UC3, const_cast<Rgb8 *>(image.data()));
-	cv::cvtColor(rgb, scratch, cv::COLOR_RGB2BGR); // imwrite expects BGR
-	return scratch;
-}
-
-cv::Mat toMat(const Image<uint16_t> &image, cv::Mat &)
-{
-	return cv::Mat(image.height(), image.width(), CV_16UC1, const_cast<uint16_t *>(image.data()));
-}
-
-cv::Mat toMat(const Image<uint8_t> &image, cv::Mat &)
-{
-	return cv::Mat(image.height(), image.width(), CV_8UC1, const_cast<uint8_t *>(image.data()));
 }
 
 } // namespace
@@ -76,18 +59,8 @@ int SequenceWriter::writeImage(Stream stream, const Image<Pixel> &image, uint64_
 	}
 	std::string name = frameFileName(stream, sequence);
 	std::string path = dir_ + "/" + name;
-	cv::Mat scratch;
-	bool ok = false;
-	try {
-		ok = cv::imwrite(path, toMat(image, scratch), { cv::IMWRITE_PNG_COMPRESSION, compression_ });
-	} catch (const cv::Exception &e) {
-		error_ = path + ": " + e.what();
-		return -EIO;
-	}
-	if (!ok) {
-		error_ = path + ": cannot write";
-		return -EIO;
-	}
+	if (int ret = writePng(path, image, error_, compression_); ret < 0)
+		return ret;
 	std::FILE *&index = index_[stream];
 	if (!index) {
 		std::string indexPath = dir_ + "/" + kStreams[stream] + ".txt";

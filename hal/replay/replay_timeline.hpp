@@ -9,9 +9,9 @@
 // recorded.
 #pragma once
 
-#include "config/settings.hpp"
 #include "hal/camera.hpp"
 #include "hal/recording/sequence_reader.hpp"
+#include "settings/settings.hpp"
 
 namespace depthkey {
 

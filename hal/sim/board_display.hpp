@@ -12,9 +12,9 @@
 
 #include "algo/homography.hpp"
 #include "algo/image.hpp"
-#include "config/settings.hpp"
 #include "hal/sim/camera_rig.hpp"
 #include "hal/sim/lecture_script.hpp"
+#include "settings/settings.hpp"
 
 #include <vector>
 

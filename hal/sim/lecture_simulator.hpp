@@ -13,12 +13,12 @@
 #pragma once
 
 #include "algo/frames.hpp"
-#include "config/settings.hpp"
 #include "hal/sim/camera_rig.hpp"
 #include "hal/sim/lecture_script.hpp"
 #include "hal/sim/lecturer_model.hpp"
 #include "hal/sim/ray_grid.hpp"
 #include "hal/sim/tof_artefacts.hpp"
+#include "settings/settings.hpp"
 
 #include <optional>
 

@@ -5,10 +5,10 @@
 // jitter after the moment it shows, as a real ToF delivers it late.
 #pragma once
 
-#include "config/settings.hpp"
 #include "hal/camera.hpp"
 #include "hal/sim/lecture_simulator.hpp"
 #include "hal/sim/sim_timing.hpp"
+#include "settings/settings.hpp"
 
 namespace depthkey {
 

@@ -7,7 +7,7 @@
 // the paper's 10-50 px offset.
 #pragma once
 
-#include "config/settings.hpp"
+#include "settings/settings.hpp"
 
 #include <cstdint>
 

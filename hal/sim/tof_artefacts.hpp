@@ -10,7 +10,7 @@
 #pragma once
 
 #include "algo/frames.hpp"
-#include "config/settings.hpp"
+#include "settings/settings.hpp"
 
 #include <vector>
 

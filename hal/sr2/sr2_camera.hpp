@@ -6,11 +6,11 @@
 // and re-opened with backoff; a hotplug arrival retries at once.
 #pragma once
 
-#include "config/settings.hpp"
 #include "hal/camera.hpp"
 #include "hal/reconnect_backoff.hpp"
 #include "hal/sr2/sr2_usb_device.hpp"
 #include "hal/usb/usb_event_bridge.hpp"
+#include "settings/settings.hpp"
 
 #include <deque>
 #include <libusb.h>

@@ -2,10 +2,10 @@
 // Y16 -> mm): the same V4l2Stream with two frame converters.
 #pragma once
 
-#include "config/settings.hpp"
 #include "hal/camera.hpp"
 #include "hal/v4l2/mjpeg_decoder.hpp"
 #include "hal/v4l2/v4l2_stream.hpp"
+#include "settings/settings.hpp"
 
 namespace depthkey {
 

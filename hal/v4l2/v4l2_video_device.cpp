@@ -22,7 +22,7 @@ int V4l2VideoDevice::ioctlRetry(unsigned long request, void *arg)
 {
 	int ret;
 	do
-		ret = ::ioctl(fd_, request, arg);
+		ret = ::ioctl(fd_.get(), request, arg);
 	while (ret < 0 && errno == EINTR);
 	return ret < 0 ? -errno : ret;
 }
@@ -30,8 +30,8 @@ int V4l2VideoDevice::ioctlRetry(unsigned long request, void *arg)
 int V4l2VideoDevice::open(const std::string &path)
 {
 	close();
-	fd_ = ::open(path.c_str(), O_RDWR | O_NONBLOCK | O_CLOEXEC);
-	if (fd_ < 0)
+	fd_.reset(::open(path.c_str(), O_RDWR | O_NONBLOCK | O_CLOEXEC));
+	if (!fd_.isValid())
 		return -errno;
 	v4l2_capability cap = {};
 	int ret = ioctlRetry(VIDIOC_QUERYCAP, &cap);
@@ -49,12 +49,11 @@ int V4l2VideoDevice::open(const std::string &path)
 
 void V4l2VideoDevice::close()
 {
-	if (fd_ < 0)
+	if (!fd_.isValid())
 		return;
 	streamOff();
 	releaseBuffers();
-	::close(fd_);
-	fd_ = -1;
+	fd_.reset();
 }
 
 std::vector<uint32_t> V4l2VideoDevice::formats()
@@ -118,7 +117,7 @@ int V4l2VideoDevice::allocateBuffers(unsigned count)
 		ret = ioctlRetry(VIDIOC_QUERYBUF, &buf);
 		void *address = ret < 0 ? MAP_FAILED
 					: mmap(nullptr, buf.length, PROT_READ | PROT_WRITE, MAP_SHARED,
-					       fd_, buf.m.offset);
+					       fd_.get(), buf.m.offset);
 		if (address == MAP_FAILED) {
 			ret = ret < 0 ? ret : -errno;
 			releaseBuffers();
@@ -135,7 +134,7 @@ void V4l2VideoDevice::releaseBuffers()
 		munmap(m.address, m.length);
 	bool had = !buffers_.empty();
 	buffers_.clear();
-	if (had && fd_ >= 0) {
+	if (had && fd_.isValid()) {
 		v4l2_requestbuffers req = {};
 		req.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
 		req.memory = V4L2_MEMORY_MMAP;

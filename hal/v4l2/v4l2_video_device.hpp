@@ -5,6 +5,8 @@
 // fd is non-blocking, dequeue says -EAGAIN when no buffer is ready).
 #pragma once
 
+#include "hal/unique_fd.hpp"
+
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -42,7 +44,7 @@ public:
 	// A capture + streaming device; path may be a /dev/v4l/by-id link.
 	int open(const std::string &path);
 	void close();
-	int fd() const { return fd_; }
+	int fd() const { return fd_.get(); }
 	const std::string &card() const { return card_; }
 
 	std::vector<uint32_t> formats(); // what the device offers (ENUM_FMT)
@@ -64,7 +66,7 @@ private:
 		void *address = nullptr;
 		size_t length = 0;
 	};
-	int fd_ = -1;
+	UniqueFd fd_;
 	bool streaming_ = false;
 	std::string card_;
 	std::vector<Mapping> buffers_;

@@ -14,12 +14,10 @@
 #include "algo/board_calibration.hpp"
 #include "algo/board_pattern.hpp"
 #include "config/board_calibration_file.hpp"
-#include "config/settings.hpp"
 #include "hal/image_file.hpp"
 #include "hal/sim/board_display.hpp"
 #include "hal/sim/lecture_simulator.hpp"
-
-#include <opencv2/imgcodecs.hpp>
+#include "settings/settings.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -133,15 +131,9 @@ int writePattern(const BoardPattern &pattern, const std::string &path)
 {
 	RgbImage picture;
 	pattern.render(picture);
-	cv::Mat mat(picture.height(), picture.width(), CV_8UC3, picture.data());
-	bool ok = false;
-	try {
-		ok = cv::imwrite(path, mat); // grey: RGB and BGR are the same
-	} catch (const cv::Exception &) {
-		ok = false;
-	}
-	if (!ok) {
-		std::fprintf(stderr, "depthkey-calibrate: %s: cannot write the pattern image\n", path.c_str());
+	std::string error;
+	if (writePng(path, picture, error) < 0) {
+		std::fprintf(stderr, "depthkey-calibrate: cannot write the pattern image: %s\n", error.c_str());
 		return 1;
 	}
 	std::printf("wrote the board pattern %s: %dx%d px, %dx%d circles %.0f px apart; show it full screen on the board\n",

@@ -1,5 +1,7 @@
 #include "tools/sr2_emulator/usb_gadget.hpp"
 
+#include "hal/unique_fd.hpp"
+
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -16,13 +18,12 @@ constexpr const char *kConfigfsGadgets = "/sys/kernel/config/usb_gadget";
 
 int writeFile(const std::string &path, const std::string &value)
 {
-	int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
-	if (fd < 0)
+	UniqueFd fd(::open(path.c_str(), O_WRONLY | O_CLOEXEC));
+	if (!fd.isValid())
 		return -errno;
-	ssize_t n = ::write(fd, value.data(), value.size());
-	int err = n < 0 ? -errno : 0;
-	::close(fd);
-	return err;
+	if (::write(fd.get(), value.data(), value.size()) < 0)
+		return -errno;
+	return 0;
 }
 
 int makeDir(const std::string &path)

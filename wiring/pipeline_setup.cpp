@@ -1,13 +1,8 @@
 // What the pipeline needs from files: the calibration (mapping) and the board
-// image. A file that is missing or refused is reported (once, and again when
-// it changes) and the daemon runs on its last good state: the previous
-// calibration, or identity scaling when there never was one; the solid board
-// colour instead of a missing board image.
-#include "daemon/pipeline_setup.hpp"
+// image, read and applied alike by depthkeyd and depthkey-eval.
+#include "wiring/pipeline_setup.hpp"
 
 #include "config/calibration_file.hpp"
-#include "daemon/daemon.hpp"
-#include "daemon/log.hpp"
 #include "hal/image_file.hpp"
 #include "hal/kernel_path_env.hpp"
 
@@ -47,24 +42,6 @@ std::string calibrationMismatch(const MappingModel &m, int colourWidth, int colo
 	       "(or set the cameras' width and height back)";
 }
 
-// On the status tick, once frames of both cameras have arrived: the
-// pipeline falls back to plain scaling for frame sizes the calibration was
-// not fitted for; the journal says so and why, once.
-void Daemon::checkCalibrationFits()
-{
-	if (!calibrated_ || colourWidth_ == 0 || depthWidth_ == 0)
-		return;
-	std::string why = calibrationMismatch(mapping_, colourWidth_, colourHeight_, depthWidth_,
-					      depthHeight_);
-	const std::string &path = settings_.mapping.calibrationFile;
-	if (!why.empty())
-		logger().errorOnce("calibration_size", path + ": " + why,
-				   { { "DEVICE", "calibration" }, { "CALIBRATION_FILE", path } });
-	else
-		logger().clearError("calibration_size", "calibration fits the frame sizes again",
-				    { { "DEVICE", "calibration" }, { "CALIBRATION_FILE", path } });
-}
-
 // SR-2 resolution; the pipeline rescales identity to whatever sizes arrive.
 MappingModel identityMapping(const Settings &settings)
 {
@@ -101,39 +78,6 @@ void configurePipeline(Pipeline &pipeline, const Settings &settings, const Mappi
 	pipeline.setKernelPath(kernelPathFromEnvironment());
 	pipeline.setBoardImage(board);
 	pipeline.configure(settings, mapping);
-}
-
-// files were read for settings_ (on the reload worker, or at start).
-void Daemon::configurePipeline(const PipelineFiles &files)
-{
-	const std::string &path = settings_.mapping.calibrationFile;
-	if (path.empty()) {
-		calibrated_ = false;
-		mapping_ = files.mapping;
-		logger().errorOnce("calibration",
-				   "no calibration file (mapping.calibration_file is empty): "
-				   "depth is mapped to colour by plain scaling",
-				   { { "DEVICE", "calibration" }, { "CALIBRATION_FILE", path } });
-	} else if (!files.calibrated) {
-		logger().errorOnce("calibration",
-				   "calibration refused: " + files.calibrationError +
-					   (calibrated_ ? "; keeping the previous calibration"
-							: "; mapping by plain scaling"),
-				   { { "DEVICE", "calibration" }, { "CALIBRATION_FILE", path } });
-		if (!calibrated_)
-			mapping_ = files.mapping;
-	} else {
-		mapping_ = files.mapping;
-		calibrated_ = true;
-		logger().clearError("calibration",
-				    std::string("calibration loaded, model ") + mappingKindName(mapping_.kind) +
-					    ", fitted for " + calibrationSizes(mapping_),
-				    { { "DEVICE", "calibration" }, { "CALIBRATION_FILE", path } });
-	}
-
-	// The board picture is the board source's (its errors are its own).
-	depthkey::configurePipeline(pipeline_, settings_, mapping_,
-				    board_.boardGeometry() ? RgbImage() : board_.picture());
 }
 
 } // namespace depthkey

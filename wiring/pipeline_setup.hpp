@@ -1,5 +1,5 @@
 // What the pipeline and the frame pairer are configured from, shared by
-// depthkeyd (Daemon::configurePipeline, pipeline_setup.cpp) and
+// depthkeyd (Daemon::applyPipelineFiles, daemon/daemon_calibration.cpp) and
 // depthkey-eval, so that the two never run them differently.
 #pragma once
 
@@ -7,7 +7,7 @@
 #include "algo/pairing_queue.hpp"
 #include "algo/mapping_model.hpp"
 #include "algo/pipeline.hpp"
-#include "config/settings.hpp"
+#include "settings/settings.hpp"
 
 #include <string>
 

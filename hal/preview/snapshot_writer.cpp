@@ -1,30 +1,12 @@
-#include "daemon/snapshot_writer.hpp"
+#include "hal/preview/snapshot_writer.hpp"
 
+#include "hal/image_file.hpp"
 #include "hal/preview/stage_picture.hpp"
 
 #include <cerrno>
-#include <opencv2/imgcodecs.hpp>
 #include <sys/stat.h>
 
 namespace depthkey {
-
-namespace {
-
-bool writePng(const std::string &path, const cv::Mat &mat, std::string &error)
-{
-	bool ok = false;
-	try {
-		ok = cv::imwrite(path, mat);
-	} catch (const cv::Exception &e) {
-		error = path + ": " + e.what();
-		return false;
-	}
-	if (!ok)
-		error = path + ": cannot write";
-	return ok;
-}
-
-} // namespace
 
 int writeStageImages(const std::string &dir, const std::string &prefix, const StageImages &stages,
 		     std::string &error)
@@ -38,8 +20,8 @@ int writeStageImages(const std::string &dir, const std::string &prefix, const St
 		cv::Mat picture = drawStagePicture(stage);
 		if (picture.empty())
 			continue;
-		if (!writePng(dir + "/" + prefix + stage.name + ".png", picture, error))
-			return -EIO;
+		if (int ret = writePicturePng(dir + "/" + prefix + stage.name + ".png", picture, error); ret < 0)
+			return ret;
 	}
 	return 0;
 }

@@ -1,6 +1,12 @@
 // Everything the config file can set, with the defaults that apply when a key
-// is absent. The loader (config_loader.hpp) fills this from TOML and refuses
-// anything it does not know; config/depthkey.toml documents each key.
+// is absent. The loader (config/config_loader.hpp) fills this from TOML and
+// refuses anything it does not know; config/depthkey.toml documents each key.
+//
+// Plain structs with no code and no includes of the project: every layer
+// reads them (algo/ its sections, hal/ the devices', daemon/ all), so they
+// sit apart from config/, whose file readers use algo/'s types (the mapping,
+// the homography). Dependencies then point one way: config/ -> algo/ ->
+// settings/.
 #pragma once
 
 #include <cstdint>

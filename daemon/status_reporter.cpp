@@ -1,0 +1,163 @@
+#include "daemon/status_reporter.hpp"
+
+#include "daemon/log.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+
+namespace depthkey {
+
+namespace {
+
+// In a degraded mode (a camera missing) READY=1 is sent after this long, so
+// that systemd's start job does not hang on a box with a camera unplugged.
+constexpr uint64_t kDegradedReadyUs = 5'000'000;
+constexpr uint64_t kTerminalStatusEvery = 5; // reports (seconds)
+
+} // namespace
+
+void StatusReporter::start(EventLoop &loop)
+{
+	loop_ = &loop;
+	startedUs_ = reportedAtUs_ = loop.nowUs();
+	underSystemd_ = std::getenv("NOTIFY_SOCKET") != nullptr;
+	if (uint64_t usec = ServiceNotifier::watchdogUsec())
+		loop.addPeriodic(usec / 2, [this] { onWatchdogTick(); }, watchdogTick_);
+}
+
+void StatusReporter::countDepthFrame(uint64_t captureNs, uint64_t nowNs)
+{
+	depthFrames_++;
+	const double latencyMs = (static_cast<double>(nowNs) - static_cast<double>(captureNs)) / 1e6;
+	depthLatencyMs_ += (latencyMs - depthLatencyMs_) * (depthFrames_ == 1 ? 1.0 : 0.1);
+}
+
+void StatusReporter::countDeviceStatus(const std::string &device, const DeviceStatus &status)
+{
+	DeviceCounters &counters = deviceCounters_[device];
+	if (status.state == DeviceState::Lost && !counters.lost)
+		counters.faults++;
+	if (status.state == DeviceState::Streaming && counters.lost)
+		counters.reconnects++;
+	counters.lost = status.state == DeviceState::Lost;
+}
+
+void StatusReporter::countPublished(bool online)
+{
+	published_++;
+	if (!ready_ && online) {
+		ready_ = true;
+		notifier_.ready();
+		logger().info("frames flow, ready");
+	}
+}
+
+// Fed only while frames are being published: if the frame loop stalls,
+// systemd stops hearing from us and restarts the service.
+void StatusReporter::onWatchdogTick()
+{
+	if (published_ == publishedAtWatchdog_)
+		return;
+	publishedAtWatchdog_ = published_;
+	notifier_.watchdog();
+}
+
+std::optional<PreviewStatus> StatusReporter::report(const StatusSnapshot &snapshot)
+{
+	uint64_t now = loop_->nowUs();
+	double seconds = (now - reportedAtUs_) / 1e6;
+	if (seconds <= 0)
+		return std::nullopt;
+	auto rate = [seconds](uint64_t count, uint64_t &before) {
+		double r = (count - before) / seconds;
+		before = count;
+		return r;
+	};
+	Rates rates;
+	rates.colourFps = rate(colourFrames_, colourFramesAtReport_);
+	rates.depthFps = rate(depthFrames_, depthFramesAtReport_);
+	rates.outputFps = rate(published_, publishedAtReport_);
+	reportedAtUs_ = now;
+	std::string text = statusLine(snapshot, rates);
+	notifier_.status(text);
+	// In a terminal there is no STATUS= to look at: say it every few seconds.
+	if (!underSystemd_ && ++reports_ % kTerminalStatusEvery == 0)
+		logger().info(text);
+	if (!ready_ && now - startedUs_ > kDegradedReadyUs && published_ > 0) {
+		ready_ = true;
+		notifier_.ready();
+		logger().warning(std::string("ready in degraded mode: ") + text);
+	}
+	return previewStatus(snapshot, rates);
+}
+
+std::string StatusReporter::statusLine(const StatusSnapshot &s, const Rates &rates) const
+{
+	const DeviceStatus &cs = s.colour.status, &ds = s.depth.status;
+	char offset[64];
+	if (s.latency.valid)
+		std::snprintf(offset, sizeof(offset), "depth offset %+.0f ms measured%s", s.latency.offsetMs,
+			      s.offsetAuto ? "" : " (not applied)");
+	else
+		std::snprintf(offset, sizeof(offset), "depth offset %s", s.offsetAuto ? "measuring" : "set");
+	char text[768];
+	std::snprintf(text, sizeof(text),
+		      "colour %s %s %.1f fps %llu dropped; depth %s %s %.1f fps %llu dropped; "
+		      "paired %llu unpaired %llu; %s; output %.1f fps; readers %d; %s; %s",
+		      s.colour.present ? s.colour.name.c_str() : "-", deviceStateName(cs.state), rates.colourFps,
+		      static_cast<unsigned long long>(cs.droppedFrames),
+		      s.depth.present ? s.depth.name.c_str() : "-", deviceStateName(ds.state), rates.depthFps,
+		      static_cast<unsigned long long>(ds.droppedFrames),
+		      static_cast<unsigned long long>(s.pairing.paired),
+		      static_cast<unsigned long long>(s.pairing.unpaired), offset, rates.outputFps, s.readers.total(),
+		      s.calibrated		? "calibrated"
+		      : s.calibrationLoaded ? "calibration for other frame sizes (identity mapping)"
+					    : "not calibrated (identity mapping)",
+		      s.board.c_str());
+	return text;
+}
+
+// What the preview page (/status.json, /metrics) shows: the figures of the
+// STATUS= line and the counters only the page shows.
+PreviewStatus StatusReporter::previewStatus(const StatusSnapshot &snapshot, const Rates &rates) const
+{
+	PreviewStatus s;
+	s.uptimeS = static_cast<double>(loop_->nowUs() - startedUs_) / 1e6;
+	s.devices.push_back(previewDevice("colour", snapshot.colour, rates.colourFps, colourFrames_));
+	s.devices.push_back(previewDevice("depth", snapshot.depth, rates.depthFps, depthFrames_));
+	s.outputFps = rates.outputFps;
+	s.published = published_;
+	s.paired = snapshot.pairing.paired;
+	s.unpaired = snapshot.pairing.unpaired;
+	s.calibrated = snapshot.calibrated;
+	s.calibrationFile = snapshot.calibrationFile;
+	// The measured offset when there is one (pairing.offset_ms = "auto"
+	// applies it), else how long depth frames take to arrive after their stamp.
+	s.depthLatencyMs = snapshot.latency.valid ? -snapshot.latency.offsetMs : depthLatencyMs_;
+	s.readersComposite = snapshot.readers.composite;
+	s.readersLecturer = snapshot.readers.lecturer;
+	s.readersBoardLecturer = snapshot.readers.boardLecturer;
+	return s;
+}
+
+PreviewDevice StatusReporter::previewDevice(const char *role, const StatusCamera &camera, double fps,
+					    uint64_t frames) const
+{
+	PreviewDevice d;
+	d.role = role;
+	if (camera.present) {
+		d.name = camera.name;
+		d.state = deviceStateName(camera.status.state);
+		d.dropped = camera.status.droppedFrames;
+		auto it = deviceCounters_.find(d.name);
+		if (it != deviceCounters_.end()) {
+			d.faults = it->second.faults;
+			d.reconnects = it->second.reconnects;
+		}
+	}
+	d.fps = fps;
+	d.frames = frames;
+	return d;
+}
+
+} // namespace depthkey

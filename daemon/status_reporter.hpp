@@ -1,0 +1,97 @@
+// What depthkeyd tells about itself: the frame and device counters, the
+// STATUS= line once a second (and, in a terminal without systemd, the same
+// line every few seconds), READY=1 when frames flow (or, with a camera
+// missing, after a grace period), the watchdog fed while frames are being
+// published, and the figures of the live preview page.
+#pragma once
+
+#include "algo/frame_pairer.hpp"
+#include "algo/latency_estimator.hpp"
+#include "daemon/service_notifier.hpp"
+#include "hal/camera.hpp"
+#include "hal/event_loop.hpp"
+#include "hal/frame_sink.hpp"
+#include "hal/preview/preview_status.hpp"
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+
+namespace depthkey {
+
+// A camera as the status line names it.
+struct StatusCamera {
+	bool present = false; // false before the cameras start
+	std::string name;
+	DeviceStatus status;
+};
+
+// What the daemon knows once a second that the status line says.
+struct StatusSnapshot {
+	StatusCamera colour, depth;
+	PairingStats pairing;
+	LatencyEstimator::Estimate latency; // the depth offset measured
+	bool offsetAuto = false;            // pairing.offset_ms = "auto": it is applied
+	ReaderCounts readers;
+	bool calibrated = false;            // a calibration that fits the frames
+	bool calibrationLoaded = false;     // a calibration, maybe for other frame sizes
+	std::string calibrationFile;
+	std::string board;                  // BoardOutput::statusText()
+};
+
+class StatusReporter
+{
+public:
+	// Notes the start time and whether systemd listens, and feeds the
+	// watchdog every half WATCHDOG_USEC while frames are published.
+	void start(EventLoop &loop);
+
+	void countColourFrame() { colourFrames_++; }
+	// The depth frame's arrival after its capture time is smoothed for the
+	// preview page.
+	void countDepthFrame(uint64_t captureNs, uint64_t nowNs);
+	// Faults and reconnects per device, for the preview page.
+	void countDeviceStatus(const std::string &device, const DeviceStatus &status);
+	// A frame went out; the first online one (both cameras) sends READY=1.
+	void countPublished(bool online);
+	uint64_t colourFrames() const { return colourFrames_; }
+
+	// Once a second: the status line to systemd, to the terminal every
+	// few calls, READY=1 in degraded mode; returns the preview page's
+	// figures, or nothing when no time has passed since the last report.
+	std::optional<PreviewStatus> report(const StatusSnapshot &snapshot);
+
+	void reloading() { notifier_.reloading(); }
+	void reloaded() { notifier_.reloaded(); }
+	void stopping() { notifier_.stopping(); }
+
+private:
+	struct Rates {
+		double colourFps = 0, depthFps = 0, outputFps = 0;
+	};
+	struct DeviceCounters {
+		uint64_t faults = 0, reconnects = 0;
+		bool lost = false;
+	};
+	std::string statusLine(const StatusSnapshot &snapshot, const Rates &rates) const;
+	PreviewStatus previewStatus(const StatusSnapshot &snapshot, const Rates &rates) const;
+	PreviewDevice previewDevice(const char *role, const StatusCamera &camera, double fps, uint64_t frames) const;
+	void onWatchdogTick();
+
+	EventLoop *loop_ = nullptr;
+	ServiceNotifier notifier_;
+	EventSource watchdogTick_;
+	bool ready_ = false;
+	bool underSystemd_ = false;
+	uint64_t startedUs_ = 0;
+	uint64_t reports_ = 0;
+	uint64_t colourFrames_ = 0, depthFrames_ = 0, published_ = 0;
+	uint64_t colourFramesAtReport_ = 0, depthFramesAtReport_ = 0, publishedAtReport_ = 0;
+	uint64_t reportedAtUs_ = 0;
+	uint64_t publishedAtWatchdog_ = 0;
+	double depthLatencyMs_ = 0; // smoothed arrival after capture
+	std::map<std::string, DeviceCounters> deviceCounters_;
+};
+
+} // namespace depthkey

@@ -1,0 +1,76 @@
+// The depth seeds (algo/depth_seeder.hpp) of a synthetic board with a
+// lecturer in front: untrusted depth rejected, core, band and board told
+// apart, and the lecturer's smoothed surface depth.
+#include "algo/depth_seeder.hpp"
+#include "algo/trimap.hpp"
+
+#include <gtest/gtest.h>
+
+using namespace depthkey;
+
+namespace {
+
+// A 40 x 30 depth frame: the board at 2000 mm, a lecturer in [10, 30) x
+// [5, 25) at depthAt(x, y), amplitude 3000 everywhere.
+template<typename DepthAt>
+DepthFrame boardWithLecturer(DepthAt depthAt)
+{
+	DepthFrame depth;
+	depth.depthMm = Gray16Image(40, 30, 2000);
+	depth.amplitude = Gray16Image(40, 30, 3000);
+	for (int y = 5; y < 25; ++y)
+		for (int x = 10; x < 30; ++x)
+			depth.depthMm.at(x, y) = depthAt(x, y);
+	return depth;
+}
+
+// The seeds of a frame with erode 1, dilate 2 and the given amplitude limit.
+DepthSeeds seedsOf(const DepthFrame &depth, int maxAmplitude = SegmentationSettings{}.maxAmplitude)
+{
+	SegmentationSettings settings;
+	settings.maxAmplitude = maxAmplitude;
+	settings.erodePx = 1;
+	settings.dilatePx = 2;
+	DepthSeeder seeder;
+	seeder.configure(settings);
+	DepthSeeds seeds;
+	seeder.seed(depth, seeds);
+	return seeds;
+}
+
+} // namespace
+
+TEST(DepthSeeder, RejectsUntrustedDepthAndSeparatesSubsetBandAndBoard)
+{
+	DepthFrame depth = boardWithLecturer([](int, int) { return uint16_t(1200); });
+	for (int y = 0; y < 3; ++y)
+		for (int x = 0; x < 3; ++x)
+			depth.depthMm.at(x, y) = 1000; // small in-range blob: not the largest
+	depth.amplitude.at(20, 15) = 65535;       // saturated inside the lecturer
+	const DepthSeeds seeds = seedsOf(depth, 60000);
+	EXPECT_EQ(seeds.labels.at(15, 10), kTrimapLecturer);
+	EXPECT_EQ(seeds.labels.at(20, 15), kTrimapUndecided); // untrusted: eroded around
+	EXPECT_EQ(seeds.labels.at(10, 5), kTrimapInRange);    // the edge: in range, eroded away
+	EXPECT_EQ(seeds.labels.at(12, 7), kTrimapSubset);     // eroded once, not deep enough for the core
+	EXPECT_EQ(seeds.labels.at(9, 15), kTrimapUndecided);  // dilated beyond
+	EXPECT_EQ(seeds.labels.at(8, 15), kTrimapUndecided);  // the in-range area, dilated
+	EXPECT_EQ(seeds.labels.at(7, 15), kTrimapBoard);
+	EXPECT_EQ(seeds.labels.at(1, 1), kTrimapBoard);       // smaller blob
+	EXPECT_EQ(seeds.labels.at(37, 15), kTrimapBoard);
+	EXPECT_EQ(seeds.lecturerDepthMm, 1200);
+}
+
+TEST(DepthSeeder, SurfaceDepthIsTheLecturersSmoothedDepth)
+{
+	// A lecturer whose depth alternates 1300 / 1700 mm (noise) in front of
+	// the board at 2000 mm.
+	const DepthSeeds seeds =
+		seedsOf(boardWithLecturer([](int x, int y) { return uint16_t((x + y) % 2 ? 1300 : 1700); }));
+	ASSERT_EQ(seeds.labels.at(20, 15), kTrimapLecturer);
+	EXPECT_NEAR(seeds.surfaceMm.at(20, 15), 1500, 10); // 7 x 7 mean (radius dilate + 1)
+	EXPECT_NEAR(seeds.surfaceMm.at(11, 6), 1500, 25);  // near the corner: fewer
+	ASSERT_EQ(seeds.labels.at(8, 15), kTrimapUndecided);
+	EXPECT_NEAR(seeds.surfaceMm.at(8, 15), 1500, 25);  // band on the board: his depth
+	EXPECT_EQ(seeds.labels.at(2, 2), kTrimapBoard);
+	EXPECT_EQ(seeds.surfaceMm.at(2, 2), 0);
+}
