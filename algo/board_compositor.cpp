@@ -169,7 +169,8 @@ void BoardCompositor::compose(const RgbaImage &source, const Roi &roi, const Rgb
 		for (int y = cleared_.y0; y < cleared_.y1; ++y)
 			std::memset(lecturer.row(y) + cleared_.x0, 0, size_t(cleared_.x1 - cleared_.x0) * sizeof(Rgba8));
 	}
-	// The composite is the board but where a tile is warped over it.
+	// The composite is the board but where a tile is warped over it (the
+	// warp blends in place, over this copy).
 	std::memcpy(composite.data(), board.data(), composite.size() * sizeof(Rgb8));
 	markOccupied(source, clampedRoi);
 	Roi written{ w, h, 0, 0 };
@@ -196,7 +197,7 @@ void BoardCompositor::compose(const RgbaImage &source, const Roi &roi, const Rgb
 			for (int y = y0; y < y1; ++y) {
 				const size_t k = size_t(y) * w + x0;
 				boardWarpRow(path_, { index_.data() + k, frac_.data() + k, source.data(), colourWidth_,
-						      board.row(y) + x0, composite.row(y) + x0, lecturer.row(y) + x0, x1 - x0 },
+						      composite.row(y) + x0, lecturer.row(y) + x0, x1 - x0 },
 					     opacityQ8);
 			}
 		}
