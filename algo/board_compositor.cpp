@@ -77,14 +77,29 @@ void BoardCompositor::tileSources()
 }
 
 // Which colour tiles of the ROI hold some alpha (the source's alpha bytes).
+// Each tile row's pixels are ORed a tile at a time, two pixels per 64-bit
+// word, into a local: or-ing byte by byte into occupied_ chained every
+// pixel on the previous one's store (a tenth of the frame's time).
 void BoardCompositor::markOccupied(const RgbaImage &source, const Roi &roi)
 {
+	constexpr uint64_t kAlphaBytes = 0xFF000000FF000000ull;
 	std::fill(occupied_.begin(), occupied_.end(), uint8_t(0));
 	for (int y = roi.y0; y < roi.y1; ++y) {
 		const Rgba8 *row = source.row(y);
 		uint8_t *tiles = occupied_.data() + size_t(y / kColourTile) * colourTilesX_;
-		for (int x = roi.x0; x < roi.x1; ++x)
-			tiles[x / kColourTile] |= row[x].a;
+		for (int tx = roi.x0 / kColourTile; tx * kColourTile < roi.x1; ++tx) {
+			const int x0 = std::max(roi.x0, tx * kColourTile), x1 = std::min(roi.x1, (tx + 1) * kColourTile);
+			uint64_t any = 0;
+			int x = x0;
+			for (; x + 2 <= x1; x += 2) {
+				uint64_t two;
+				std::memcpy(&two, row + x, 8);
+				any |= two;
+			}
+			if (x < x1)
+				any |= uint64_t(row[x].a) << 24;
+			tiles[tx] |= uint8_t((any & kAlphaBytes) != 0);
+		}
 	}
 }
 
