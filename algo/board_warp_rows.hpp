@@ -10,11 +10,10 @@
 // horizontal, each (a * (256 - f) + b * f + 128) >> 8; then the camera
 // composite's blend with w = compositeWeight(opacity, alpha).
 //
-// The blend is in place: composite holds the board picture's row on entry
-// and layer is transparent, as the compositor leaves them (it copies the
-// board and clears the layer anyway, for the pixels it does not warp). So a
-// pixel nobody is at (unseen, or alpha 0 in all four taps) is not written at
-// all, and the row reads no third picture.
+// The row writes every pixel of composite and layer: a pixel nobody is at
+// (unseen, or alpha 0 in all four taps) is the board, transparent. So the
+// compositor copies the board and clears the layer only around the rows it
+// warps (each byte of the frame written once).
 #pragma once
 
 #include "algo/composite.hpp"
@@ -33,8 +32,9 @@ struct BoardWarpRow {
 	const uint16_t *frac;   // fx | fy << 8
 	const Rgba8 *source;    // colour-camera lecturer layer
 	int stride;             // its width
-	Rgb8 *composite;        // in: the board picture's row; out: the composite
-	Rgba8 *layer;           // in: transparent; out: the board-geometry lecturer layer
+	const Rgb8 *board;      // the board picture's row
+	Rgb8 *composite;
+	Rgba8 *layer;           // the board-geometry lecturer layer
 	int count;
 };
 
@@ -53,21 +53,22 @@ inline void boardWarpPixel_C(const BoardWarpRow &r, int x, int opacityQ8)
 {
 	using warp_detail::lerp8;
 	const int32_t k = r.index[x];
-	if (k == kOutsideView)
+	const Rgba8 *s = k == kOutsideView ? nullptr : r.source + k;
+	if (!s || (s[0].a | s[1].a | s[r.stride].a | s[r.stride + 1].a) == 0) {
+		r.composite[x] = r.board[x]; // nobody there: the board, transparent
+		r.layer[x] = { 0, 0, 0, 0 };
 		return;
-	const Rgba8 *s = r.source + k;
+	}
 	const Rgba8 p00 = s[0], p01 = s[1], p10 = s[r.stride], p11 = s[r.stride + 1];
-	if ((p00.a | p01.a | p10.a | p11.a) == 0)
-		return; // nobody there: the board, transparent, as on entry
 	const unsigned fx = r.frac[x] & 255u, fy = r.frac[x] >> 8;
 	auto sample = [&](uint8_t Rgba8::*c) {
 		return lerp8(lerp8(p00.*c, p10.*c, fy), lerp8(p01.*c, p11.*c, fy), fx);
 	};
 	const unsigned cr = sample(&Rgba8::r), cg = sample(&Rgba8::g), cb = sample(&Rgba8::b), ca = sample(&Rgba8::a);
 	const unsigned w = compositeWeight(opacityQ8, uint8_t(ca)), wb = 256u - w;
-	Rgb8 &c = r.composite[x];
-	c = { uint8_t((c.r * wb + cr * w + 128u) >> 8), uint8_t((c.g * wb + cg * w + 128u) >> 8),
-	      uint8_t((c.b * wb + cb * w + 128u) >> 8) };
+	const Rgb8 b = r.board[x];
+	r.composite[x] = { uint8_t((b.r * wb + cr * w + 128u) >> 8), uint8_t((b.g * wb + cg * w + 128u) >> 8),
+			   uint8_t((b.b * wb + cb * w + 128u) >> 8) };
 	r.layer[x] = { uint8_t(cr), uint8_t(cg), uint8_t(cb), uint8_t(ca) };
 }
 

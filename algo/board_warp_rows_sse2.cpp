@@ -5,10 +5,13 @@
 // pixel's own fractions and blend weight spread over its four lanes. Every
 // step is (a * (256 - f) + b * f + 128) >> 8 as in the C row: the sum is at
 // most 255 * 256 + 128 = 65408 (f <= 256), so unsigned 16-bit lanes never
-// overflow, and the bytes are the C row's. A group with an unseen pixel,
-// and the last count % 4 pixels, run the C row's pixel. Built without SSE2
-// it is the C row.
+// overflow, and the bytes are the C row's. A group with nobody in it is
+// the board, transparent, without the arithmetic; a group with an unseen
+// pixel, and the last count % 4 pixels, run the C row's pixel. Built
+// without SSE2 it is the C row.
 #include "algo/board_warp_rows.hpp"
+
+#include <cstring>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -98,6 +101,7 @@ void boardWarpRow_SSE2(const BoardWarpRow &r, int opacityQ8)
 	const uint16_t *frac = r.frac;
 	const Rgba8 *source = r.source;
 	const ptrdiff_t stride = r.stride;
+	const Rgb8 *board = r.board;
 	Rgb8 *composite = r.composite;
 	Rgba8 *layer = r.layer;
 	const int n = r.count;
@@ -120,16 +124,20 @@ void boardWarpRow_SSE2(const BoardWarpRow &r, int opacityQ8)
 		const __m128i any = _mm_castps_si128(_mm_or_ps(_mm_shuffle_ps(any01, any23, _MM_SHUFFLE(2, 0, 2, 0)),
 							       _mm_shuffle_ps(any01, any23, _MM_SHUFFLE(3, 1, 3, 1))));
 		const __m128i nobody = _mm_cmpeq_epi32(_mm_and_si128(any, k.alphaBytes), k.zero);
-		if (_mm_movemask_epi8(nobody) == 0xFFFF)
-			continue; // the board, transparent, as on entry
+		if (_mm_movemask_epi8(nobody) == 0xFFFF) {
+			std::memcpy(composite + x, board + x, 4 * sizeof(Rgb8));
+			_mm_storeu_si128(reinterpret_cast<__m128i *>(layer + x), k.zero);
+			continue;
+		}
 		const __m128i fr = _mm_unpacklo_epi8(_mm_loadl_epi64(reinterpret_cast<const __m128i *>(frac + x)), k.zero);
 		const __m128i h01 = samplePair(k, top01, bottom01, _mm_unpacklo_epi16(fr, fr));
 		const __m128i h23 = samplePair(k, top23, bottom23, _mm_unpackhi_epi16(fr, fr));
-		// Nobody's pixels stay transparent (the C row does not write them).
+		// Nobody's pixels transparent, their colour samples dropped (their
+		// composite is the board already: alpha 0 weighs the samples 0).
 		_mm_storeu_si128(reinterpret_cast<__m128i *>(layer + x), _mm_andnot_si128(nobody, _mm_packus_epi16(h01, h23)));
-		const __m128i board = loadRgb4(k, composite + x);
-		const __m128i c01 = blendPair(k, _mm_unpacklo_epi8(board, k.zero), h01, opacity);
-		const __m128i c23 = blendPair(k, _mm_unpackhi_epi8(board, k.zero), h23, opacity);
+		const __m128i under = loadRgb4(k, board + x);
+		const __m128i c01 = blendPair(k, _mm_unpacklo_epi8(under, k.zero), h01, opacity);
+		const __m128i c23 = blendPair(k, _mm_unpackhi_epi8(under, k.zero), h23, opacity);
 		storeRgb4(k, composite + x, _mm_packus_epi16(c01, c23));
 	}
 	for (; x < n; ++x)

@@ -2,8 +2,8 @@
 // sources, fractions (0 and 255 included), unseen pixels, zero and full
 // alpha, and every opacity class; for every count up to a few groups of four
 // and a long odd one, at every start offset (unaligned map, layer and
-// composite pointers), with groups where nobody is (skipped) or one pixel is
-// unseen (the C pixel), and never a byte written outside the row.
+// composite pointers), with groups where nobody is or one pixel is unseen
+// (the C pixel), every pixel of the row written and none outside it.
 #include "algo/board_warp_rows.hpp"
 
 #include <gtest/gtest.h>
@@ -47,11 +47,13 @@ TEST(BoardWarpRows, Sse2MatchesC)
 	for (int opacity : { 0, 1, 128, 255, 256 })
 		for (int count : counts)
 			for (int offset = 0; offset <= kMaxOffset; ++offset) {
-				// On entry the composite is the board, the layer transparent
-				// (the guard pixel too: it must stay so).
-				std::vector<Rgb8> cComposite = board, sComposite = board;
-				std::vector<Rgba8> cLayer(kLen, Rgba8{ 0, 0, 0, 0 }), sLayer = cLayer;
-				BoardWarpRow c{ index.data() + offset, frac.data() + offset, source.data(), kW,
+				// Outputs start as garbage: every pixel of the row is written,
+				// none outside it.
+				const Rgb8 was{ 7, 77, 177 };
+				const Rgba8 wasLayer{ 5, 55, 155, 255 };
+				std::vector<Rgb8> cComposite(kLen, was), sComposite = cComposite;
+				std::vector<Rgba8> cLayer(kLen, wasLayer), sLayer = cLayer;
+				BoardWarpRow c{ index.data() + offset, frac.data() + offset, source.data(), kW, board.data() + offset,
 						cComposite.data() + offset, cLayer.data() + offset, count };
 				BoardWarpRow s = c;
 				s.composite = sComposite.data() + offset;
@@ -64,8 +66,8 @@ TEST(BoardWarpRows, Sse2MatchesC)
 					ASSERT_EQ(cComposite[x], sComposite[x]) << "x " << x << " opacity " << opacity << " count " << count;
 					ASSERT_EQ(cLayer[x], sLayer[x]) << "x " << x << " opacity " << opacity << " count " << count;
 					if (!inRow) {
-						ASSERT_EQ(sComposite[x], board[x]) << "written outside the row: x " << x;
-						ASSERT_EQ(sLayer[x], (Rgba8{ 0, 0, 0, 0 })) << "written outside the row: x " << x;
+						ASSERT_EQ(sComposite[x], was) << "written outside the row: x " << x;
+						ASSERT_EQ(sLayer[x], wasLayer) << "written outside the row: x " << x;
 					}
 					lit += cLayer[x].a > 0;
 				}
@@ -75,17 +77,18 @@ TEST(BoardWarpRows, Sse2MatchesC)
 			}
 }
 
-// Where nobody is (unseen, or no alpha in the four taps) the row writes
-// nothing: the board stays, the layer stays transparent.
-TEST(BoardWarpRows, NobodyLeavesTheBoardAndTheLayer)
+// Where nobody is (unseen, or no alpha in the four taps) the row gives the
+// board and a transparent layer, the source's colour dropped.
+TEST(BoardWarpRows, NobodyIsTheBoardAndTransparent)
 {
 	std::vector<Rgba8> source(4 * 3, Rgba8{ 9, 8, 7, 0 });
 	std::vector<int32_t> index{ kOutsideView, 0, 1, 2, 4, 5, 6, kOutsideView, 0 };
 	std::vector<uint16_t> frac(index.size(), uint16_t(100 | 100 << 8));
+	const std::vector<Rgb8> board(index.size(), Rgb8{ 1, 2, 3 });
 	for (KernelPath path : { KernelPath::C, KernelPath::Sse2 }) {
-		std::vector<Rgb8> composite(index.size(), Rgb8{ 1, 2, 3 });
-		std::vector<Rgba8> layer(index.size(), Rgba8{ 0, 0, 0, 0 });
-		boardWarpRow(path, { index.data(), frac.data(), source.data(), 4, composite.data(), layer.data(), int(index.size()) }, 256);
+		std::vector<Rgb8> composite(index.size(), Rgb8{ 4, 5, 6 });
+		std::vector<Rgba8> layer(index.size(), Rgba8{ 1, 1, 1, 1 });
+		boardWarpRow(path, { index.data(), frac.data(), source.data(), 4, board.data(), composite.data(), layer.data(), int(index.size()) }, 256);
 		for (size_t x = 0; x < index.size(); ++x) {
 			EXPECT_EQ(composite[x], (Rgb8{ 1, 2, 3 })) << x;
 			EXPECT_EQ(layer[x], (Rgba8{ 0, 0, 0, 0 })) << x;
