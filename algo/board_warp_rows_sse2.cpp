@@ -3,9 +3,9 @@
 // neighbours with their alpha each), but the weighting is done for two
 // pixels per register: 16-bit lanes [pixel a r g b a, pixel b r g b a], each
 // pixel's own fractions and blend weight spread over its four lanes. Every
-// step is (a * (256 - f) + b * f + 128) >> 8 as in the C row: the sum is at
-// most 255 * 256 + 128 = 65408 (f <= 256), so unsigned 16-bit lanes never
-// overflow, and the bytes are the C row's. A group with nobody in it is
+// step is the C row's (a * (256 - f) + b * f + 128) >> 8, an integer of at
+// most 255 * 256 + 128 = 65408 for f <= 256, so it fits a 16-bit lane
+// (lerp16 below) and the bytes are the C row's. A group with nobody in it is
 // the board, transparent, without the arithmetic; a group with an unseen
 // pixel, and the last count % 4 pixels, run the C row's pixel. Built
 // without SSE2 it is the C row.
@@ -25,7 +25,7 @@ namespace {
 
 struct Constants {
 	const __m128i zero = _mm_setzero_si128();
-	const __m128i half = _mm_set1_epi16(128), full = _mm_set1_epi16(256);
+	const __m128i half = _mm_set1_epi16(128);
 	// compositeWeight(o, a) = (p + (p >> 8)) >> 8 with p = o a + 128 < 65536:
 	// exactly the high half of p * 257.
 	const __m128i v257 = _mm_set1_epi16(257);
@@ -36,10 +36,14 @@ struct Constants {
 	const __m128i secondRgb = _mm_set1_epi64x(0x0000FFFFFF000000ll);
 };
 
-// (a * (256 - f) + b * f + 128) >> 8 per 16-bit lane, f0 = 256 - f.
-inline __m128i lerp16(const Constants &k, __m128i a, __m128i b, __m128i f, __m128i f0)
+// (a * (256 - f) + b * f + 128) >> 8 per 16-bit lane, as
+// (a * 256 + (b - a) * f + 128) >> 8: the same integer, at most 65408, so
+// the 16-bit lanes' wrapping in (b - a) * f (negative) cancels in the sum.
+// One multiply, and no 256 - f.
+inline __m128i lerp16(const Constants &k, __m128i a, __m128i b, __m128i f)
 {
-	return _mm_srli_epi16(_mm_add_epi16(_mm_add_epi16(_mm_mullo_epi16(a, f0), _mm_mullo_epi16(b, f)), k.half), 8);
+	const __m128i d = _mm_mullo_epi16(_mm_sub_epi16(b, a), f);
+	return _mm_srli_epi16(_mm_add_epi16(_mm_add_epi16(_mm_slli_epi16(a, 8), d), k.half), 8);
 }
 
 // Two pixels' bilinear samples, 16-bit [a rgba, b rgba]. top and bottom: the
@@ -50,10 +54,9 @@ inline __m128i samplePair(const Constants &k, __m128i top, __m128i bottom, __m12
 	const __m128i t = _mm_shuffle_epi32(top, _MM_SHUFFLE(3, 1, 2, 0)); // a left, b left, a right, b right
 	const __m128i b = _mm_shuffle_epi32(bottom, _MM_SHUFFLE(3, 1, 2, 0));
 	const __m128i wx = _mm_shuffle_epi32(fr, _MM_SHUFFLE(2, 2, 0, 0)), wy = _mm_shuffle_epi32(fr, _MM_SHUFFLE(3, 3, 1, 1));
-	const __m128i wy0 = _mm_sub_epi16(k.full, wy);
-	const __m128i left = lerp16(k, _mm_unpacklo_epi8(t, k.zero), _mm_unpacklo_epi8(b, k.zero), wy, wy0);
-	const __m128i right = lerp16(k, _mm_unpackhi_epi8(t, k.zero), _mm_unpackhi_epi8(b, k.zero), wy, wy0);
-	return lerp16(k, left, right, wx, _mm_sub_epi16(k.full, wx));
+	const __m128i left = lerp16(k, _mm_unpacklo_epi8(t, k.zero), _mm_unpacklo_epi8(b, k.zero), wy);
+	const __m128i right = lerp16(k, _mm_unpackhi_epi8(t, k.zero), _mm_unpackhi_epi8(b, k.zero), wy);
+	return lerp16(k, left, right, wx);
 }
 
 // The camera composite's blend of two pixels: board (16-bit RGBx) and the
@@ -62,7 +65,7 @@ inline __m128i blendPair(const Constants &k, __m128i board, __m128i h, __m128i o
 {
 	const __m128i alpha = _mm_shufflehi_epi16(_mm_shufflelo_epi16(h, _MM_SHUFFLE(3, 3, 3, 3)), _MM_SHUFFLE(3, 3, 3, 3));
 	const __m128i w = _mm_mulhi_epu16(_mm_add_epi16(_mm_mullo_epi16(alpha, opacity), k.half), k.v257);
-	return lerp16(k, board, h, w, _mm_sub_epi16(k.full, w));
+	return lerp16(k, board, h, w);
 }
 
 // Four RGB pixels (12 bytes, no byte beyond read) as RGBx bytes.
