@@ -59,6 +59,10 @@ void BoardCompositor::tileSources()
 	colourTilesY_ = (colourHeight_ + kColourTile - 1) / kColourTile;
 	tileSources_.assign(size_t(tilesX_) * tilesY_, TileSources{ 0xFFFF, 0xFFFF, 0, 0 });
 	occupied_.assign(size_t(colourTilesX_) * colourTilesY_, 0);
+	warpedTiles_.assign(tileSources_.size(), 0);
+	lastWarpedTiles_.assign(tileSources_.size(), 0);
+	clearTiles_.assign(tileSources_.size(), 0);
+	runs_.reserve(size_t(tilesX_));
 	for (int y = 0; y < outputHeight_; ++y)
 		for (int x = 0; x < outputWidth_; ++x) {
 			int32_t k = index_[size_t(y) * outputWidth_ + x];
@@ -77,14 +81,29 @@ void BoardCompositor::tileSources()
 }
 
 // Which colour tiles of the ROI hold some alpha (the source's alpha bytes).
+// Each tile row's pixels are ORed a tile at a time, two pixels per 64-bit
+// word, into a local: or-ing byte by byte into occupied_ chained every
+// pixel on the previous one's store (a tenth of the frame's time).
 void BoardCompositor::markOccupied(const RgbaImage &source, const Roi &roi)
 {
+	constexpr uint64_t kAlphaBytes = 0xFF000000FF000000ull;
 	std::fill(occupied_.begin(), occupied_.end(), uint8_t(0));
 	for (int y = roi.y0; y < roi.y1; ++y) {
 		const Rgba8 *row = source.row(y);
 		uint8_t *tiles = occupied_.data() + size_t(y / kColourTile) * colourTilesX_;
-		for (int x = roi.x0; x < roi.x1; ++x)
-			tiles[x / kColourTile] |= row[x].a;
+		for (int tx = roi.x0 / kColourTile; tx * kColourTile < roi.x1; ++tx) {
+			const int x0 = std::max(roi.x0, tx * kColourTile), x1 = std::min(roi.x1, (tx + 1) * kColourTile);
+			uint64_t any = 0;
+			int x = x0;
+			for (; x + 2 <= x1; x += 2) {
+				uint64_t two;
+				std::memcpy(&two, row + x, 8);
+				any |= two;
+			}
+			if (x < x1)
+				any |= uint64_t(row[x].a) << 24;
+			tiles[tx] |= uint8_t((any & kAlphaBytes) != 0);
+		}
 	}
 }
 
@@ -104,7 +123,11 @@ void BoardCompositor::clear()
 	frac_.clear();
 	tileSources_.clear();
 	occupied_.clear();
-	warped_ = cleared_ = Roi{};
+	warpedTiles_.clear();
+	lastWarpedTiles_.clear();
+	clearTiles_.clear();
+	runs_.clear();
+	warped_ = Roi{};
 	layerValid_ = false;
 }
 
@@ -160,48 +183,66 @@ void BoardCompositor::compose(const RgbaImage &source, const Roi &roi, const Rgb
 	const Roi clampedRoi{ std::max(roi.x0, 0), std::max(roi.y0, 0), std::min(roi.x1, colourWidth_),
 			      std::min(roi.y1, colourHeight_) };
 	warped_ = boardRoiOf(clampedRoi);
-	// The layer is transparent outside what was written last time: clear
-	// only that (a whole 1920x1080 RGBA clear would cost as much as the warp).
-	if (!layerValid_) {
-		std::fill(lecturer.data(), lecturer.data() + lecturer.size(), Rgba8{ 0, 0, 0, 0 });
-		layerValid_ = true;
-	} else {
-		for (int y = cleared_.y0; y < cleared_.y1; ++y)
-			std::memset(lecturer.row(y) + cleared_.x0, 0, size_t(cleared_.x1 - cleared_.x0) * sizeof(Rgba8));
-	}
-	// The composite is the board but where a tile is warped over it.
-	std::memcpy(composite.data(), board.data(), composite.size() * sizeof(Rgb8));
 	markOccupied(source, clampedRoi);
-	Roi written{ w, h, 0, 0 };
-	warpedPixels_ = 0;
+	// The board tiles warped this frame: those in the ROI's reach whose
+	// colour tiles hold alpha.
+	std::swap(warpedTiles_, lastWarpedTiles_);
+	std::fill(warpedTiles_.begin(), warpedTiles_.end(), uint8_t(0));
 	const int tx0 = warped_.x0 / kBoardTile, tx1 = (warped_.x1 + kBoardTile - 1) / kBoardTile;
 	const int ty0 = warped_.y0 / kBoardTile, ty1 = (warped_.y1 + kBoardTile - 1) / kBoardTile;
-	for (int ty = ty0; ty < ty1; ++ty) {
+	for (int ty = ty0; ty < ty1; ++ty)
+		for (int tx = tx0; tx < tx1; ++tx) {
+			const size_t t = size_t(ty) * tilesX_ + tx;
+			warpedTiles_[t] = tileOccupied(tileSources_[t]);
+		}
+	// The layer is transparent but where last frame's tiles were warped:
+	// clear those this frame does not warp over (a whole 1920x1080 RGBA
+	// clear would cost a third of the warp).
+	if (!layerValid_) {
+		std::fill(lecturer.data(), lecturer.data() + lecturer.size(), Rgba8{ 0, 0, 0, 0 });
+		std::fill(lastWarpedTiles_.begin(), lastWarpedTiles_.end(), uint8_t(0));
+		layerValid_ = true;
+	}
+	for (size_t t = 0; t < clearTiles_.size(); ++t)
+		clearTiles_[t] = lastWarpedTiles_[t] && !warpedTiles_[t];
+	warpedPixels_ = 0;
+	for (int ty = 0; ty < tilesY_; ++ty) {
 		const int y0 = ty * kBoardTile, y1 = std::min(h, y0 + kBoardTile);
-		// Runs of occupied tiles along the tile row: one kernel call per
-		// pixel row and run, not per tile.
-		for (int tx = tx0; tx < tx1;) {
-			if (!tileOccupied(tileSources_[size_t(ty) * tilesX_ + tx])) {
-				++tx;
+		for (const Run &run : runsOf(clearTiles_.data() + size_t(ty) * tilesX_))
+			if (run.on)
+				for (int y = y0; y < y1; ++y)
+					std::memset(lecturer.row(y) + run.x0, 0, size_t(run.x1 - run.x0) * sizeof(Rgba8));
+		// The composite: the board copied, or warped over, each byte once.
+		// One kernel call per pixel row and run of warped tiles.
+		for (const Run &run : runsOf(warpedTiles_.data() + size_t(ty) * tilesX_)) {
+			if (!run.on) {
+				for (int y = y0; y < y1; ++y)
+					std::memcpy(composite.row(y) + run.x0, board.row(y) + run.x0, size_t(run.x1 - run.x0) * sizeof(Rgb8));
 				continue;
 			}
-			int end = tx + 1;
-			while (end < tx1 && tileOccupied(tileSources_[size_t(ty) * tilesX_ + end]))
-				++end;
-			const int x0 = tx * kBoardTile, x1 = std::min(w, end * kBoardTile);
-			tx = end;
-			warpedPixels_ += size_t(x1 - x0) * (y1 - y0);
-			written = { std::min(written.x0, x0), std::min(written.y0, y0), std::max(written.x1, x1),
-				    std::max(written.y1, y1) };
+			warpedPixels_ += size_t(run.x1 - run.x0) * (y1 - y0);
 			for (int y = y0; y < y1; ++y) {
-				const size_t k = size_t(y) * w + x0;
+				const size_t k = size_t(y) * w + run.x0;
 				boardWarpRow(path_, { index_.data() + k, frac_.data() + k, source.data(), colourWidth_,
-						      board.row(y) + x0, composite.row(y) + x0, lecturer.row(y) + x0, x1 - x0 },
+						      board.row(y) + run.x0, composite.row(y) + run.x0, lecturer.row(y) + run.x0,
+						      run.x1 - run.x0 },
 					     opacityQ8);
 			}
 		}
 	}
-	cleared_ = written.empty() ? Roi{} : written;
+}
+
+const std::vector<BoardCompositor::Run> &BoardCompositor::runsOf(const uint8_t *flags)
+{
+	runs_.clear();
+	for (int tx = 0; tx < tilesX_;) {
+		int end = tx + 1;
+		while (end < tilesX_ && flags[end] == flags[tx])
+			++end;
+		runs_.push_back({ tx * kBoardTile, std::min(outputWidth_, end * kBoardTile), flags[tx] != 0 });
+		tx = end;
+	}
+	return runs_;
 }
 
 } // namespace depthkey

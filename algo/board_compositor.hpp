@@ -14,8 +14,10 @@
 // into 16x16 tiles, each knowing (from the map) the 8x8 colour tiles it
 // reads, and a tile is warped only when one of those holds some alpha in
 // this frame. Elsewhere the composite is the board and the board-geometry
-// lecturer layer is transparent. Nothing is allocated per frame (tests/board_compositor_test.cpp
-// counts).
+// lecturer layer is transparent: the board is copied and the layer cleared
+// only around the warped tiles (the warp writes its pixels whole), the
+// layer only where last frame's warped tiles were. Nothing is allocated per
+// frame (tests/board_compositor_test.cpp counts).
 #pragma once
 
 #include "algo/homography.hpp"
@@ -55,7 +57,7 @@ public:
 	void compose(const RgbaImage &source, const Roi &roi, const RgbImage &board, int opacityQ8,
 		     RgbImage &composite, RgbaImage &lecturer);
 
-	// compose() clears only what it wrote into lecturer last time: call this
+	// compose() clears only the tiles it warped into lecturer last time: call this
 	// when lecturer was written by anyone else (the next compose clears all).
 	void forgetLayer() { layerValid_ = false; }
 
@@ -77,16 +79,24 @@ private:
 	void tileSources();
 	bool tileOccupied(const TileSources &t) const;
 	void markOccupied(const RgbaImage &source, const Roi &roi);
+	// Runs of equal flags along one row of board tiles, as pixel columns.
+	struct Run {
+		int x0, x1;
+		bool on;
+	};
+	const std::vector<Run> &runsOf(const uint8_t *flags); // valid until the next call
 
 	KernelPath path_ = bestKernelPath();
 	int tilesX_ = 0, tilesY_ = 0, colourTilesX_ = 0, colourTilesY_ = 0;
 	std::vector<TileSources> tileSources_; // per board tile
 	std::vector<uint8_t> occupied_;        // per colour tile: some alpha this frame
+	std::vector<uint8_t> warpedTiles_, lastWarpedTiles_, clearTiles_; // per board tile
+	std::vector<Run> runs_;                // runsOf()'s, capacity tilesX_
 	std::vector<int32_t> index_;       // per output pixel: top-left source pixel, kOutsideView = unseen
 	std::vector<uint16_t> frac_;       // per output pixel: Q8 fx | fy << 8
-	Roi warped_, cleared_;
+	Roi warped_;
 	size_t warpedPixels_ = 0;
-	bool layerValid_ = false;          // lecturer is transparent outside cleared_
+	bool layerValid_ = false;          // lecturer is transparent outside lastWarpedTiles_
 };
 
 } // namespace depthkey

@@ -9,8 +9,14 @@
 // neighbours with their alpha. Bilinear in two rounded steps, vertical then
 // horizontal, each (a * (256 - f) + b * f + 128) >> 8; then the camera
 // composite's blend with w = compositeWeight(opacity, alpha).
+//
+// The row writes every pixel of composite and layer: a pixel nobody is at
+// (unseen, or alpha 0 in all four taps) is the board, transparent. So the
+// compositor copies the board and clears the layer only around the rows it
+// warps (each byte of the frame written once).
 #pragma once
 
+#include "algo/composite.hpp"
 #include "algo/image.hpp"
 #include "algo/kernel_path.hpp"
 
@@ -32,22 +38,38 @@ struct BoardWarpRow {
 	int count;
 };
 
-// Output pixel x's source taps, two neighbours with their alpha in each
-// 8-byte row; false when nobody is there (not seen, or alpha 0 in all four):
-// the pixel is then the board, transparent.
-inline bool loadTaps(const BoardWarpRow &r, int x, uint64_t &top, uint64_t &bottom)
+namespace warp_detail {
+
+inline unsigned lerp8(unsigned a, unsigned b, unsigned f)
 {
-	constexpr uint64_t kAlphaBytes = 0xFF000000FF000000ull;
+	return (a * (256u - f) + b * f + 128u) >> 8;
+}
+
+} // namespace warp_detail
+
+// Output pixel x of the C reference (the SSE2 row's tail and its groups
+// with an unseen pixel run it too, so both rows share one definition).
+inline void boardWarpPixel_C(const BoardWarpRow &r, int x, int opacityQ8)
+{
+	using warp_detail::lerp8;
 	const int32_t k = r.index[x];
-	if (k == kOutsideView)
-		return false;
-	std::memcpy(&top, r.source + k, 8);
-	std::memcpy(&bottom, r.source + k + r.stride, 8);
-	if (((top | bottom) & kAlphaBytes) != 0)
-		return true;
-	r.composite[x] = r.board[x];
-	r.layer[x] = { 0, 0, 0, 0 };
-	return false;
+	const Rgba8 *s = k == kOutsideView ? nullptr : r.source + k;
+	if (!s || (s[0].a | s[1].a | s[r.stride].a | s[r.stride + 1].a) == 0) {
+		r.composite[x] = r.board[x]; // nobody there: the board, transparent
+		r.layer[x] = { 0, 0, 0, 0 };
+		return;
+	}
+	const Rgba8 p00 = s[0], p01 = s[1], p10 = s[r.stride], p11 = s[r.stride + 1];
+	const unsigned fx = r.frac[x] & 255u, fy = r.frac[x] >> 8;
+	auto sample = [&](uint8_t Rgba8::*c) {
+		return lerp8(lerp8(p00.*c, p10.*c, fy), lerp8(p01.*c, p11.*c, fy), fx);
+	};
+	const unsigned cr = sample(&Rgba8::r), cg = sample(&Rgba8::g), cb = sample(&Rgba8::b), ca = sample(&Rgba8::a);
+	const unsigned w = compositeWeight(opacityQ8, uint8_t(ca)), wb = 256u - w;
+	const Rgb8 b = r.board[x];
+	r.composite[x] = { uint8_t((b.r * wb + cr * w + 128u) >> 8), uint8_t((b.g * wb + cg * w + 128u) >> 8),
+			   uint8_t((b.b * wb + cb * w + 128u) >> 8) };
+	r.layer[x] = { uint8_t(cr), uint8_t(cg), uint8_t(cb), uint8_t(ca) };
 }
 
 void boardWarpRow_C(const BoardWarpRow &row, int opacityQ8);

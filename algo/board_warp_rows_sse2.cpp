@@ -1,10 +1,15 @@
-// SSE2 row of algo/board_warp_rows.hpp: one pixel at a time (each has its
-// own source), its two 8-byte source loads bilinearly mixed in 16-bit lanes,
-// all four channels at once. The sums are at most 255 * 256 + 128 = 65408,
-// so unsigned 16-bit lanes never overflow, and every step rounds as the C
-// row does: the same bytes. Built without SSE2 it is the C row.
+// SSE2 row of algo/board_warp_rows.hpp: four pixels per step. Each pixel has
+// its own source, so the taps are gathered with scalar 8-byte loads (two
+// neighbours with their alpha each), but the weighting is done for two
+// pixels per register: 16-bit lanes [pixel a r g b a, pixel b r g b a], each
+// pixel's own fractions and blend weight spread over its four lanes. Every
+// step is the C row's (a * (256 - f) + b * f + 128) >> 8, an integer of at
+// most 255 * 256 + 128 = 65408 for f <= 256, so it fits a 16-bit lane
+// (lerp16 below) and the bytes are the C row's. A group with nobody in it is
+// the board, transparent, without the arithmetic; a group with an unseen
+// pixel, and the last count % 4 pixels, run the C row's pixel. Built
+// without SSE2 it is the C row.
 #include "algo/board_warp_rows.hpp"
-
 
 #include <cstring>
 
@@ -16,42 +21,130 @@ namespace depthkey {
 
 #if defined(__SSE2__)
 
+namespace {
+
+struct Constants {
+	const __m128i zero = _mm_setzero_si128();
+	const __m128i half = _mm_set1_epi16(128);
+	// compositeWeight(o, a) = (p + (p >> 8)) >> 8 with p = o a + 128 < 65536:
+	// exactly the high half of p * 257.
+	const __m128i v257 = _mm_set1_epi16(257);
+	const __m128i alphaBytes = _mm_set1_epi32(int(0xFF000000u));
+	// Two RGB pixels in a 64-bit lane, bytes 0-2 and 3-5; as RGBx, 0-2 and 4-6.
+	const __m128i firstRgb = _mm_set1_epi64x(0x0000000000FFFFFFll);
+	const __m128i secondRgbx = _mm_set1_epi64x(0x00FFFFFF00000000ll);
+	const __m128i secondRgb = _mm_set1_epi64x(0x0000FFFFFF000000ll);
+};
+
+// (a * (256 - f) + b * f + 128) >> 8 per 16-bit lane, as
+// (a * 256 + (b - a) * f + 128) >> 8: the same integer, at most 65408, so
+// the 16-bit lanes' wrapping in (b - a) * f (negative) cancels in the sum.
+// One multiply, and no 256 - f.
+inline __m128i lerp16(const Constants &k, __m128i a, __m128i b, __m128i f)
+{
+	const __m128i d = _mm_mullo_epi16(_mm_sub_epi16(b, a), f);
+	return _mm_srli_epi16(_mm_add_epi16(_mm_add_epi16(_mm_slli_epi16(a, 8), d), k.half), 8);
+}
+
+// Two pixels' bilinear samples, 16-bit [a rgba, b rgba]. top and bottom: the
+// pixels' 8-byte tap rows, [a left, a right, b left, b right]; fr: 16-bit
+// [fx_a fx_a fy_a fy_a fx_b fx_b fy_b fy_b].
+inline __m128i samplePair(const Constants &k, __m128i top, __m128i bottom, __m128i fr)
+{
+	const __m128i t = _mm_shuffle_epi32(top, _MM_SHUFFLE(3, 1, 2, 0)); // a left, b left, a right, b right
+	const __m128i b = _mm_shuffle_epi32(bottom, _MM_SHUFFLE(3, 1, 2, 0));
+	const __m128i wx = _mm_shuffle_epi32(fr, _MM_SHUFFLE(2, 2, 0, 0)), wy = _mm_shuffle_epi32(fr, _MM_SHUFFLE(3, 3, 1, 1));
+	const __m128i left = lerp16(k, _mm_unpacklo_epi8(t, k.zero), _mm_unpacklo_epi8(b, k.zero), wy);
+	const __m128i right = lerp16(k, _mm_unpackhi_epi8(t, k.zero), _mm_unpackhi_epi8(b, k.zero), wy);
+	return lerp16(k, left, right, wx);
+}
+
+// The camera composite's blend of two pixels: board (16-bit RGBx) and the
+// samples h, each pixel weighted by its own alpha (lane 3).
+inline __m128i blendPair(const Constants &k, __m128i board, __m128i h, __m128i opacity)
+{
+	const __m128i alpha = _mm_shufflehi_epi16(_mm_shufflelo_epi16(h, _MM_SHUFFLE(3, 3, 3, 3)), _MM_SHUFFLE(3, 3, 3, 3));
+	const __m128i w = _mm_mulhi_epu16(_mm_add_epi16(_mm_mullo_epi16(alpha, opacity), k.half), k.v257);
+	return lerp16(k, board, h, w);
+}
+
+// Four RGB pixels (12 bytes, no byte beyond read) as RGBx bytes.
+inline __m128i loadRgb4(const Constants &k, const Rgb8 *p)
+{
+	const uint8_t *b = reinterpret_cast<const uint8_t *>(p);
+	const __m128i v = _mm_unpacklo_epi64(_mm_loadl_epi64(reinterpret_cast<const __m128i *>(b)),
+					     _mm_srli_epi64(_mm_loadl_epi64(reinterpret_cast<const __m128i *>(b + 4)), 16));
+	return _mm_or_si128(_mm_and_si128(v, k.firstRgb), _mm_and_si128(_mm_slli_epi64(v, 8), k.secondRgbx));
+}
+
+// Four RGBx pixels stored as 12 RGB bytes, no byte beyond written.
+inline void storeRgb4(const Constants &k, Rgb8 *p, __m128i rgbx)
+{
+	__m128i v = _mm_or_si128(_mm_and_si128(rgbx, k.firstRgb), _mm_and_si128(_mm_srli_epi64(rgbx, 8), k.secondRgb));
+	v = _mm_or_si128(_mm_move_epi64(v), _mm_slli_si128(_mm_unpackhi_epi64(v, k.zero), 6));
+	uint8_t *b = reinterpret_cast<uint8_t *>(p);
+	_mm_storel_epi64(reinterpret_cast<__m128i *>(b), v);
+	const uint32_t last = uint32_t(_mm_cvtsi128_si32(_mm_srli_si128(v, 8)));
+	std::memcpy(b + 8, &last, 4);
+}
+
+inline __m128i load8(const Rgba8 *p)
+{
+	return _mm_loadl_epi64(reinterpret_cast<const __m128i *>(p));
+}
+
+} // namespace
+
 void boardWarpRow_SSE2(const BoardWarpRow &r, int opacityQ8)
 {
-	const __m128i zero = _mm_setzero_si128(), half = _mm_set1_epi16(128), full = _mm_set1_epi16(256);
-	const __m128i opacity = _mm_set1_epi16(short(opacityQ8)), v257 = _mm_set1_epi16(257);
-	for (int x = 0; x < r.count; ++x) {
-		uint64_t top, bottom;
-		if (!loadTaps(r, x, top, bottom))
+	const Constants k;
+	const __m128i opacity = _mm_set1_epi16(short(opacityQ8)), unseen = _mm_set1_epi32(kOutsideView);
+	// Locals: the stores below are through byte pointers, which may alias r.
+	const int32_t *index = r.index;
+	const uint16_t *frac = r.frac;
+	const Rgba8 *source = r.source;
+	const ptrdiff_t stride = r.stride;
+	const Rgb8 *board = r.board;
+	Rgb8 *composite = r.composite;
+	Rgba8 *layer = r.layer;
+	const int n = r.count;
+	int x = 0;
+	for (; x + 4 <= n; x += 4) {
+		if (_mm_movemask_epi8(_mm_cmpeq_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i *>(index + x)), unseen))) {
+			for (int i = x; i < x + 4; ++i)
+				boardWarpPixel_C(r, i, opacityQ8);
 			continue;
-		const int fx = r.frac[x] & 255, fy = r.frac[x] >> 8;
-		// Lanes: p0 r g b a, p1 r g b a (the left and the right neighbour).
-		__m128i t = _mm_unpacklo_epi8(_mm_cvtsi64_si128(int64_t(top)), zero);
-		__m128i b = _mm_unpacklo_epi8(_mm_cvtsi64_si128(int64_t(bottom)), zero);
-		const __m128i wy = _mm_set1_epi16(short(fy)), wy0 = _mm_sub_epi16(full, wy);
-		__m128i v = _mm_add_epi16(_mm_mullo_epi16(t, wy0), _mm_mullo_epi16(b, wy));
-		v = _mm_srli_epi16(_mm_add_epi16(v, half), 8);
-		const __m128i wx = _mm_set1_epi16(short(fx)), wx0 = _mm_sub_epi16(full, wx);
-		__m128i h = _mm_add_epi16(_mm_mullo_epi16(v, wx0), _mm_mullo_epi16(_mm_srli_si128(v, 8), wx));
-		h = _mm_srli_epi16(_mm_add_epi16(h, half), 8);
-		const uint32_t rgba = uint32_t(_mm_cvtsi128_si32(_mm_packus_epi16(h, zero)));
-		std::memcpy(&r.layer[x], &rgba, 4);
-		// The blend in the same lanes: w = compositeWeight(opacity, a) =
-		// (p + (p >> 8)) >> 8 with p = o a + 128 < 65536, which is exactly
-		// the high half of p * 257.
-		const __m128i alpha = _mm_shufflelo_epi16(h, _MM_SHUFFLE(3, 3, 3, 3));
-		const __m128i w = _mm_mulhi_epu16(_mm_add_epi16(_mm_mullo_epi16(alpha, opacity), half), v257);
-		// Assembled in registers: a 3-byte memcpy into a 4-byte word went
-		// through the stack as two stores and one wider load, which the CPU
-		// cannot forward (perf: half of the row's time on that stall).
-		const Rgb8 bp = r.board[x];
-		const uint32_t b32 = uint32_t(bp.r) | uint32_t(bp.g) << 8 | uint32_t(bp.b) << 16;
-		const __m128i bv = _mm_unpacklo_epi8(_mm_cvtsi32_si128(int(b32)), zero);
-		__m128i out = _mm_add_epi16(_mm_mullo_epi16(bv, _mm_sub_epi16(full, w)), _mm_mullo_epi16(h, w));
-		out = _mm_srli_epi16(_mm_add_epi16(out, half), 8);
-		const uint32_t rgb = uint32_t(_mm_cvtsi128_si32(_mm_packus_epi16(out, zero)));
-		std::memcpy(&r.composite[x], &rgb, 3);
+		}
+		const Rgba8 *s0 = source + index[x], *s1 = source + index[x + 1], *s2 = source + index[x + 2],
+			    *s3 = source + index[x + 3];
+		const __m128i top01 = _mm_unpacklo_epi64(load8(s0), load8(s1));
+		const __m128i top23 = _mm_unpacklo_epi64(load8(s2), load8(s3));
+		const __m128i bottom01 = _mm_unpacklo_epi64(load8(s0 + stride), load8(s1 + stride));
+		const __m128i bottom23 = _mm_unpacklo_epi64(load8(s2 + stride), load8(s3 + stride));
+		// Per pixel: is there any alpha in its four taps (32-bit lanes)?
+		const __m128 any01 = _mm_castsi128_ps(_mm_or_si128(top01, bottom01));
+		const __m128 any23 = _mm_castsi128_ps(_mm_or_si128(top23, bottom23));
+		const __m128i any = _mm_castps_si128(_mm_or_ps(_mm_shuffle_ps(any01, any23, _MM_SHUFFLE(2, 0, 2, 0)),
+							       _mm_shuffle_ps(any01, any23, _MM_SHUFFLE(3, 1, 3, 1))));
+		const __m128i nobody = _mm_cmpeq_epi32(_mm_and_si128(any, k.alphaBytes), k.zero);
+		if (_mm_movemask_epi8(nobody) == 0xFFFF) {
+			std::memcpy(composite + x, board + x, 4 * sizeof(Rgb8));
+			_mm_storeu_si128(reinterpret_cast<__m128i *>(layer + x), k.zero);
+			continue;
+		}
+		const __m128i fr = _mm_unpacklo_epi8(_mm_loadl_epi64(reinterpret_cast<const __m128i *>(frac + x)), k.zero);
+		const __m128i h01 = samplePair(k, top01, bottom01, _mm_unpacklo_epi16(fr, fr));
+		const __m128i h23 = samplePair(k, top23, bottom23, _mm_unpackhi_epi16(fr, fr));
+		// Nobody's pixels transparent, their colour samples dropped (their
+		// composite is the board already: alpha 0 weighs the samples 0).
+		_mm_storeu_si128(reinterpret_cast<__m128i *>(layer + x), _mm_andnot_si128(nobody, _mm_packus_epi16(h01, h23)));
+		const __m128i under = loadRgb4(k, board + x);
+		const __m128i c01 = blendPair(k, _mm_unpacklo_epi8(under, k.zero), h01, opacity);
+		const __m128i c23 = blendPair(k, _mm_unpackhi_epi8(under, k.zero), h23, opacity);
+		storeRgb4(k, composite + x, _mm_packus_epi16(c01, c23));
 	}
+	for (; x < n; ++x)
+		boardWarpPixel_C(r, x, opacityQ8);
 }
 
 #else
