@@ -80,8 +80,8 @@ struct SegmentationSettings {
 	int minAmplitude = 100;             // 0..65535: weaker echoes are not trusted
 	int maxAmplitude = 65535;           // 1..65535: at or above = saturated, not trusted
 	int erodePx = 2;                    // 0..20 ToF px: in-range mask -> surely lecturer
-	int dilatePx = 4;                   // 1..40 ToF px: surely lecturer -> superset
-	int corePx = 2;                     // 0..20 ToF px eroded beyond erode_px: the fixed core
+	int dilatePx = 7;                   // 1..40 ToF px: surely lecturer -> superset
+	int corePx = 3;                     // 0..20 ToF px eroded beyond erode_px: the fixed core
 	bool operator==(const SegmentationSettings &) const = default;
 };
 
@@ -94,7 +94,7 @@ struct MappingSettings {
 // Colour learning (paper 6.1-6.2): decaying colour histograms per class.
 struct LearningSettings {
 	int initialFrames = 20;             // 1..1000 frames before SIOX starts
-	double boardRate = 0.1;             // 0..1 weight of each frame's board colours
+	double boardRate = 0.2;             // 0..1 weight of each frame's board colours
 	double lecturerRate = 0.01;         // 0..1 weight of each frame's lecturer colours
 	int samples = 4096;                 // 256..65536 samples per class and frame
 	int marginPx = 2;                   // 0..40 ToF px kept free beyond the superset
@@ -106,7 +106,7 @@ struct LearningSettings {
 struct SioxSettings {
 	int smoothing = 1;                  // 0..8 passes of 3x3 confidence smoothing
 	bool softAlpha = true;              // fractional alpha on the boundary
-	int guidedRadius = 3;               // 0..7: guided filter of the matte (edge-aware alpha); 0 = off
+	int guidedRadius = 5;               // 0..7: guided filter of the matte (edge-aware alpha); 0 = off
 	int guidedEps = 400;                // 1..65025: its smoothing, in squared 8-bit levels
 	bool operator==(const SioxSettings &) const = default;
 };
@@ -118,7 +118,7 @@ struct DecisionSettings {
 	int depthWeight = 64;               // 0..255: the depth evidence (DepthSeeder::depthEvidence)
 	int depthPivot = 144;               // 1..254: the depth evidence value that is neutral
 	int boardWeight = 160;              // 0..255: a match with the board model
-	int boardMatch = 16;                // 1..255: L1 RGB distance below which the board model matches
+	int boardMatch = 10;                // 1..255: L1 RGB distance below which the board model matches
 	int temporalWeight = 64;            // 0..255: the previous frame's alpha where colour did not change
 	int stillColour = 24;               // 1..255: L1 RGB change below which a pixel did not change
 	bool operator==(const DecisionSettings &) const = default;
