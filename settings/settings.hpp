@@ -97,7 +97,7 @@ struct LearningSettings {
 	double boardRate = 0.2;             // 0..1 weight of each frame's board colours
 	double lecturerRate = 0.01;         // 0..1 weight of each frame's lecturer colours
 	int samples = 4096;                 // 256..65536 samples per class and frame
-	int marginPx = 2;                   // 0..40 ToF px kept free beyond the superset
+	int marginPx = 1;                   // 0..40 ToF px kept free beyond the superset
 	double relearnMisfit = 0.05;        // 0..1 rise of misclassified samples that re-derives
 	bool operator==(const LearningSettings &) const = default;
 };
