@@ -184,11 +184,10 @@ $(HIL_TOOLS):
 	@mkdir -p $(dir $@)
 	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -o $@
 
+# The two GoogleTest binaries share tests/main.cpp and one link rule.
 $(UNIT_TESTS): $(call obj,$(UNIT_TEST_SRCS)) $(LIB)
-	@mkdir -p $(dir $@)
-	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -lgmock -lgtest -o $@
-
 $(PROCESS_TESTS): $(call obj,$(PROCESS_TEST_SRCS)) $(LIB)
+$(UNIT_TESTS) $(PROCESS_TESTS):
 	@mkdir -p $(dir $@)
 	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -lgmock -lgtest -o $@
 
