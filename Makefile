@@ -4,6 +4,9 @@
 #   make run        install missing packages, build, calibrate for and start depthkeyd on
 #                   simulated devices (config build/run.toml)
 #   make test       install missing packages, build, run every test, then the HIL suite
+#   make check      the unit tests alone (tests/*.cpp), in seconds, in-process
+#   make process-check  the tests that start processes (tests/process/*.cpp): the
+#                   daemon, the tools, curl, chromium, a C compiler
 #   make hil        the hardware-in-the-loop suite alone (QEMU VM, tests/hil/)
 #   make bench      run the Google Benchmark suite (medians)
 #   make deps       install missing Debian 12 packages (idempotent, quiet when all there)
@@ -21,7 +24,8 @@
 #   algo/ hal/ config/ wiring/ daemon/ -> build/libdepthkey.a (daemon/main.cpp is depthkeyd's main)
 #   (settings/ holds headers only: the config's plain structs)
 #   tools/NAME.cpp              -> build/bin/depthkey-NAME
-#   tests/*.cpp                 -> build/bin/depthkey-tests (GoogleTest)
+#   tests/*.cpp                 -> build/bin/depthkey-unit-tests (GoogleTest)
+#   tests/process/*.cpp         -> build/bin/depthkey-process-tests (GoogleTest, + tests/main.cpp)
 #   tests/bench/*.cpp           -> build/bin/depthkey-bench (Google Benchmark)
 
 PREFIX ?= /usr/local
@@ -64,14 +68,16 @@ LDFLAGS += $(SANFLAGS)
 LIB_SRCS := $(filter-out daemon/main.cpp,$(wildcard algo/*.cpp hal/*.cpp hal/*/*.cpp config/*.cpp wiring/*.cpp daemon/*.cpp))
 TOOL_SRCS := $(wildcard tools/*.cpp)
 SR2EMU_SRCS := $(wildcard tools/sr2_emulator/*.cpp)
-TEST_SRCS := $(wildcard tests/*.cpp)
+UNIT_TEST_SRCS := $(wildcard tests/*.cpp)
+PROCESS_TEST_SRCS := $(wildcard tests/process/*.cpp) tests/main.cpp
 BENCH_SRCS := $(wildcard tests/bench/*.cpp)
 
 LIB := $(BUILD)/libdepthkey.a
 DAEMON := $(BIN)/depthkeyd
 TOOLS := $(patsubst tools/%.cpp,$(BIN)/depthkey-%,$(TOOL_SRCS))
 SR2EMU := $(BIN)/depthkey-sr2-emulator
-TESTS := $(BIN)/depthkey-tests
+UNIT_TESTS := $(BIN)/depthkey-unit-tests
+PROCESS_TESTS := $(BIN)/depthkey-process-tests
 BENCH := $(BIN)/depthkey-bench
 
 obj = $(patsubst %.cpp,$(OBJ)/%.o,$(1))
@@ -81,7 +87,7 @@ JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 # Keep tool objects (intermediates of the pattern rule) so nothing rebuilds twice.
 .SECONDARY:
 
-.PHONY: all run test check hil bench deps deb deb-deps package-test boot-test install clean fuzz fuzz-build
+.PHONY: all run test check process-check hil bench deps deb deb-deps package-test boot-test install clean fuzz fuzz-build
 .DEFAULT_GOAL := all
 
 # The SR-2 emulator is built (for the HIL tests) but not installed.
@@ -112,11 +118,13 @@ $(SIM_BOARD_CALIBRATION): $(BIN)/depthkey-calibrate
 	@$< --board --sim --output $@ > $(@:.toml=.log) 2>&1 || { cat $(@:.toml=.log); exit 1; }
 	@echo "$@: `tail -n 1 $(@:.toml=.log)`"
 
-# The unit tests, then the hardware-in-the-loop suite: the real daemon in a
-# QEMU VM against emulated devices (tests/hil/run.sh; it fails, never skips,
-# when the VM cannot start).
+# The unit tests, the process tests, then the hardware-in-the-loop suite: the
+# real daemon in a QEMU VM against emulated devices (tests/hil/run.sh; it
+# fails, never skips, when the VM cannot start).
 test: deps
-	@$(MAKE) --no-print-directory -j$(JOBS) check $(HIL_TOOLS)
+	@$(MAKE) --no-print-directory -j$(JOBS) all $(UNIT_TESTS) $(PROCESS_TESTS) $(HIL_TOOLS)
+	@$(MAKE) --no-print-directory check
+	@$(MAKE) --no-print-directory process-check
 ifeq ($(SAN),0)
 	@$(MAKE) --no-print-directory package-test
 endif
@@ -126,8 +134,13 @@ hil: deps
 	@$(MAKE) --no-print-directory -j$(JOBS) all $(HIL_TOOLS)
 	@tests/hil/run.sh $(BIN)
 
-check: all $(TESTS)
-	@$(TESTS) --gtest_brief=1
+# The unit tests need no other binary; the process tests run the daemon and
+# the tools, so they build everything first.
+check: $(UNIT_TESTS)
+	@$(UNIT_TESTS) --gtest_brief=1
+
+process-check: all $(PROCESS_TESTS)
+	@$(PROCESS_TESTS) --gtest_brief=1
 
 bench: deps
 	@$(MAKE) --no-print-directory -j$(JOBS) $(BENCH)
@@ -171,7 +184,10 @@ $(HIL_TOOLS):
 	@mkdir -p $(dir $@)
 	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -o $@
 
-$(TESTS): $(call obj,$(TEST_SRCS)) $(LIB)
+# The two GoogleTest binaries share tests/main.cpp and one link rule.
+$(UNIT_TESTS): $(call obj,$(UNIT_TEST_SRCS)) $(LIB)
+$(PROCESS_TESTS): $(call obj,$(PROCESS_TEST_SRCS)) $(LIB)
+$(UNIT_TESTS) $(PROCESS_TESTS):
 	@mkdir -p $(dir $@)
 	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -lgmock -lgtest -o $@
 

@@ -11,11 +11,11 @@ Pipeline::Pipeline() : classifier_(lab_), learner_(lab_)
 {
 }
 
-void Pipeline::configure(const Settings &settings, const MappingModel &mapping)
+void Pipeline::configure(const PipelineSettings &settings, const MappingModel &mapping)
 {
 	bool reseed = !(settings.segmentation == settings_.segmentation) ||
 		      !(settings.learning == settings_.learning);
-	if (!(settings.composite == settings_.composite) || settings.board.colour != settings_.board.colour)
+	if (!(settings.composite == settings_.composite) || settings.boardColour != settings_.boardColour)
 		boardDirty_ = true;
 	if (!(mapping == mapping_))
 		mappingDirty_ = reseed = true;
@@ -87,7 +87,7 @@ void Pipeline::renderBoard(int width, int height)
 {
 	board_.resize(width, height);
 	if (boardSource_.empty()) {
-		uint32_t c = settings_.board.colour;
+		uint32_t c = settings_.boardColour;
 		Rgb8 colour{ uint8_t(c >> 16), uint8_t(c >> 8), uint8_t(c) };
 		std::fill(board_.data(), board_.data() + board_.size(), colour);
 		return;

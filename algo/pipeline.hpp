@@ -21,6 +21,7 @@
 #include "algo/guided_filter.hpp"
 #include "algo/kernel_path.hpp"
 #include "algo/mapping_model.hpp"
+#include "algo/pipeline_settings.hpp"
 #include "algo/seed_mapper.hpp"
 #include "algo/siox_classifier.hpp"
 #include "algo/siox_refiner.hpp"
@@ -52,7 +53,7 @@ public:
 
 	// Takes what may change on reload; cheap when unchanged. A new mapping
 	// or new seeding restarts the colour learning.
-	void configure(const Settings &settings, const MappingModel &mapping);
+	void configure(const PipelineSettings &settings, const MappingModel &mapping);
 	// The board's picture for the camera-geometry composite (scaled to the
 	// colour size, nearest neighbour); an empty image = board.colour.
 	void setBoardImage(const RgbImage &board);
@@ -114,7 +115,7 @@ private:
 	// The edge-aware alpha: the guided filter of the hard decision.
 	void guideAlpha(const RgbImage &colour, Gray8Image &alpha);
 
-	Settings settings_;
+	PipelineSettings settings_;
 	MappingModel mapping_;
 	int opacityQ8_ = 128;
 	KernelPath kernelPath_ = bestKernelPath();

@@ -276,8 +276,8 @@ std::string formatCalibration(const Calibration &c)
 	int n = coefficientCount(m.kind);
 	std::string out =
 		"# depthkey calibration: the depth -> colour mapping, written by depthkey-calibrate.\n"
-		"# Do not edit; calibrate again instead. Every key is described in README.md\n"
-		"# (\"Calibration file\"). Residuals are distances in colour pixels.\n"
+		"# Do not edit; calibrate again instead. Every key is described in\n"
+		"# docs/calibration-file.md. Residuals are distances in colour pixels.\n"
 		"format = " + std::to_string(kCalibrationFormat) + "\n\n"
 		"[calibration]\n"
 		"model = \"" + mappingKindName(m.kind) + "\"\n"

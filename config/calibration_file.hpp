@@ -1,8 +1,8 @@
 // The calibration file: the depth -> colour mapping that depthkey-calibrate
 // fits and the daemon applies, with what it was fitted on and how well.
 //
-// TOML, every key required, nothing unknown allowed (README.md, "Calibration
-// file", documents each key). The reader refuses a file that is corrupt,
+// TOML, every key required, nothing unknown allowed (docs/calibration-file.md
+// documents each key). The reader refuses a file that is corrupt,
 // partial or inconsistent with an error naming file:line:column and key, so
 // the daemon keeps its last good mapping. The writer only writes what the
 // reader accepts, and replaces the file atomically.

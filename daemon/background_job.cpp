@@ -13,21 +13,19 @@ BackgroundJob::~BackgroundJob()
 	if (thread_.joinable())
 		thread_.join();
 	source_.reset();
-	if (eventFd_ >= 0)
-		::close(eventFd_);
 }
 
 int BackgroundJob::start(EventLoop &loop, std::function<void()> work, std::function<void()> done)
 {
 	if (running_)
 		return -EBUSY;
-	if (eventFd_ < 0) {
-		eventFd_ = eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
-		if (eventFd_ < 0)
+	if (!eventFd_.isValid()) {
+		eventFd_.reset(eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC));
+		if (!eventFd_.isValid())
 			return -errno;
 	}
 	if (!source_.active()) {
-		int ret = loop.addIo(eventFd_, EPOLLIN, [this](uint32_t) { finish(); }, source_);
+		int ret = loop.addIo(eventFd_.get(), EPOLLIN, [this](uint32_t) { finish(); }, source_);
 		if (ret < 0)
 			return ret;
 	}
@@ -37,7 +35,7 @@ int BackgroundJob::start(EventLoop &loop, std::function<void()> work, std::funct
 		thread_ = std::thread([this, work = std::move(work)] {
 			work();
 			uint64_t one = 1;
-			(void)!::write(eventFd_, &one, sizeof(one));
+			(void)!::write(eventFd_.get(), &one, sizeof(one));
 		});
 	} catch (const std::system_error &e) {
 		return -(e.code().value() ? e.code().value() : EAGAIN);
@@ -49,7 +47,7 @@ int BackgroundJob::start(EventLoop &loop, std::function<void()> work, std::funct
 void BackgroundJob::finish()
 {
 	uint64_t count;
-	if (::read(eventFd_, &count, sizeof(count)) < 0)
+	if (::read(eventFd_.get(), &count, sizeof(count)) < 0)
 		return; // spurious wake-up: the worker has not written yet
 	thread_.join();
 	running_ = false;

@@ -9,6 +9,7 @@
 #pragma once
 
 #include "hal/event_loop.hpp"
+#include "hal/unique_fd.hpp"
 
 #include <atomic>
 #include <functional>
@@ -34,7 +35,7 @@ public:
 private:
 	void finish();
 
-	int eventFd_ = -1;
+	UniqueFd eventFd_; // declared before source_: closed after it leaves the loop
 	EventSource source_;
 	std::thread thread_;
 	std::function<void()> done_;

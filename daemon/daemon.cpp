@@ -1,23 +1,16 @@
 #include "daemon/daemon.hpp"
 
 #include "algo/composite.hpp"
-#include "algo/no_signal_frame.hpp"
-#include "config/config_loader.hpp"
 #include "daemon/log.hpp"
 #include "hal/depthkey_shm.h"
 #include "wiring/pipeline_setup.hpp"
 
 #include <csignal>
-#include <cstdio>
-#include <cmath>
 
 namespace depthkey {
 
 namespace {
 
-// Depth counts as delivering (DEPTH_OK on NO SIGNAL frames) while its newest
-// frame is younger than this; pairing itself uses pairing.max_skew_ms.
-constexpr int64_t kDepthStaleNs = 500'000'000;
 // Without a colour frame for this many frame periods, publish NO SIGNAL.
 constexpr uint64_t kColourStalePeriods = 3;
 // Reader heartbeats are sampled this often: a dead reader is gone within
@@ -26,24 +19,14 @@ constexpr uint64_t kReaderTickUs = 250'000;
 
 } // namespace
 
-void CommandLineOverrides::applyTo(Settings &settings) const
-{
-	if (!snapshotDir.empty())
-		settings.daemon.snapshotDir = snapshotDir;
-	if (!recordDir.empty())
-		settings.daemon.recordDir = recordDir;
-}
-
 Daemon::~Daemon()
 {
 	preview_.stop();
 	recorder_.stop();
 	stopCameras();
 	board_.stop();
-	if (sink_)
-		sink_->close();
-	if (leds_)
-		leds_->close();
+	outputs_.close();
+	lights_.close();
 }
 
 int Daemon::start(const Settings &settings)
@@ -66,28 +49,22 @@ int Daemon::start(const Settings &settings)
 		loop_.addSignal(SIGUSR2, [this] { injectTestFault(); }, sigusr2_);
 	loop_.addSignal(SIGTERM, [this] { stop(); }, sigterm_);
 	loop_.addSignal(SIGINT, [this] { stop(); }, sigint_);
-	loop_.addSignal(SIGHUP, [this] { reload(); }, sighup_);
-	loop_.addSignal(SIGUSR1, [this] { stageDumps_.writeSnapshot(queue_.pairer().newest(), pipelineView()); },
-			sigusr1_);
+	loop_.addSignal(SIGHUP, [this] { reloader_.reload(); }, sighup_);
+	loop_.addSignal(
+		SIGUSR1, [this] { stageDumps_.writeSnapshot(pairing_.queue().pairer().newest(), pipelineView()); },
+		sigusr1_);
 
 	status_.start(loop_);
 	stageDumps_.setFolders(settings_.daemon.snapshotDir, overrides_.previewDir);
 	applyPipelineFiles(loadPipelineFiles(settings_));
-	configurePairing();
-
-	leds_ = factory_.statusLeds(settings_);
-	if (leds_->open(loop_, settings_.leds) < 0)
-		logger().errorOnce("leds", "status LEDs unavailable, running without them",
-				   { { "DEVICE", "leds" } });
+	pairing_.configure(settings_);
+	lights_.open(loop_, settings_);
 
 	board_.start(
 		loop_, settings_, factory_.boardSource, pipeline_,
 		[this](const std::string &name, const DeviceStatus &s) { onDeviceStatus(name, s); },
 		[this] { // the composite's geometry or size changed
-			if (sink_) {
-				sink_->close();
-				openOutput();
-			}
+			outputs_.reopen(settings_, outputGeometry());
 		});
 	openOutput();
 	updateRecording();
@@ -110,8 +87,7 @@ int Daemon::run()
 	stopCameras();
 	board_.stop();
 	recorder_.stop();
-	if (sink_)
-		sink_->close();
+	outputs_.close();
 	logger().info("depthkeyd stopped");
 	return ret < 0 ? 1 : ret;
 }
@@ -124,17 +100,12 @@ void Daemon::stop()
 
 int Daemon::openOutput()
 {
-	if (!sink_)
-		sink_ = factory_.frameSink(settings_);
-	int ret = sink_->open(settings_.output, settings_.colour.width, settings_.colour.height,
-			      board_.outputWidth(), board_.outputHeight());
-	sinkOpen_ = ret >= 0;
-	if (ret < 0)
-		logger().errorOnce("output", "cannot open shared-memory output: " + sink_->describeError(),
-				   { { "DEVICE", "shm" }, { "ERROR", errnoText(ret) } });
-	else
-		logger().clearError("output", "shared-memory output open", { { "DEVICE", "shm" } });
-	return ret;
+	return outputs_.open(settings_, outputGeometry());
+}
+
+OutputGeometry Daemon::outputGeometry() const
+{
+	return { settings_.colour.width, settings_.colour.height, board_.outputWidth(), board_.outputHeight() };
 }
 
 void Daemon::startCameras()
@@ -165,39 +136,8 @@ void Daemon::stopCameras()
 	if (depth_)
 		depth_->stop();
 	haveColour_ = false;
-	queue_.clear();
+	pairing_.clear();
 	keyTimer_.reset();
-}
-
-void Daemon::configurePairing()
-{
-	configurePairingQueue(queue_, settings_, offsetNs());
-	latency_.configure(settings_.segmentation.nearMm, settings_.segmentation.farMm);
-}
-
-int64_t Daemon::offsetNs() const
-{
-	if (!settings_.pairing.offsetAuto)
-		return int64_t{ settings_.pairing.offsetMs } * 1'000'000;
-	return latencyEstimate_.valid ? int64_t(std::llround(latencyEstimate_.offsetMs * 1e6)) : 0;
-}
-
-void Daemon::updateLatency()
-{
-	latencyEstimate_ = latency_.estimate();
-	if (!latencyEstimate_.valid)
-		return;
-	if (settings_.pairing.offsetAuto)
-		queue_.setOffset(offsetNs());
-	if (std::abs(latencyEstimate_.offsetMs - latencyLoggedMs_) >= 5.0) {
-		latencyLoggedMs_ = latencyEstimate_.offsetMs;
-		char text[160];
-		std::snprintf(text, sizeof(text), "depth offset measured: %+.0f ms (correlation %.2f)%s",
-			      latencyEstimate_.offsetMs, latencyEstimate_.correlation,
-			      settings_.pairing.offsetAuto ? ", applied" : "; pairing.offset_ms is set, not applied");
-		logger().info(text, { { "DEVICE", depth_ ? depth_->name() : std::string("depth") },
-				      { "DEPTH_OFFSET_MS", std::to_string(std::lround(latencyEstimate_.offsetMs)) } });
-	}
 }
 
 void Daemon::onDeviceStatus(const std::string &device, const DeviceStatus &status)
@@ -208,16 +148,14 @@ void Daemon::onDeviceStatus(const std::string &device, const DeviceStatus &statu
 				   { { "DEVICE", device }, { "ERROR", errnoText(status.error) } });
 	else if (status.state == DeviceState::Streaming)
 		logger().clearError(device, device + " streaming again", { { "DEVICE", device } });
-	if (leds_)
-		leds_->show(summary());
+	lights_.show(summary());
 }
 
 void Daemon::onDepthFrame(const DepthFrame &frame)
 {
 	depthWidth_ = frame.depthMm.width();
 	depthHeight_ = frame.depthMm.height();
-	queue_.addDepth(frame); // same-size copy: no allocation after the first
-	latency_.addDepth(frame, frame.timestampNs);
+	pairing_.addDepth(frame);
 	recorder_.recordDepth(frame);
 	status_.countDepthFrame(frame.timestampNs, loop_.nowUs() * 1000u);
 	keyDueFrames();
@@ -231,24 +169,24 @@ void Daemon::onColourFrame(const ColourFrame &frame)
 	colourHeight_ = frame.rgb.height();
 	recorder_.recordColour(frame);
 	lastColourNs_ = loop_.nowUs() * 1000u; // when it came: a late camera clock must not look stale
-	latency_.addColour(frame.rgb, frame.timestampNs);
-	queue_.addColour(frame, loop_.nowUs() * 1000u);
+	pairing_.addColour(frame, loop_.nowUs() * 1000u);
 	keyDueFrames();
 }
 
 void Daemon::keyDueFrames()
 {
 	const uint64_t nowNs = loop_.nowUs() * 1000u;
+	PairingQueue &queue = pairing_.queue();
 	PairingQueue::Keying keying;
-	while (queue_.next(nowNs, keying)) {
+	while (queue.next(nowNs, keying)) {
 		keyFrame(keying);
-		queue_.pop();
+		queue.pop();
 	}
-	if (!queue_.held()) {
+	if (!queue.held()) {
 		keyTimer_.reset();
 		return;
 	}
-	const uint64_t deadlineNs = queue_.nextDeadlineNs();
+	const uint64_t deadlineNs = queue.nextDeadlineNs();
 	const uint64_t waitUs = deadlineNs > nowNs ? (deadlineNs - nowNs + 999) / 1000 : 0;
 	loop_.addTimer(waitUs, [this] { keyDueFrames(); }, keyTimer_);
 }
@@ -278,32 +216,14 @@ void Daemon::keyFrame(const PairingQueue::Keying &keying)
 	publish(frame.timestampNs, flags);
 }
 
-bool Daemon::depthFresh(uint64_t nowNs) const
-{
-	int64_t ts;
-	if (!queue_.pairer().newestNs(ts))
-		return false;
-	int64_t d = ts - static_cast<int64_t>(nowNs);
-	return d <= kDepthStaleNs && d >= -kDepthStaleNs;
-}
-
 void Daemon::publish(uint64_t captureNs, uint32_t flags)
 {
 	if (framesStalled_)
 		return;
-	if (!sinkOpen_ && openOutput() < 0)
-		return;
 	const bool board = board_.boardGeometry();
-	int ret = sink_->publishComposite(board ? board_.composite() : output_.composite, captureNs, flags);
-	if (ret >= 0)
-		ret = sink_->publishLecturer(output_.lecturer, captureNs, flags);
-	if (ret >= 0 && board)
-		ret = sink_->publishBoardLecturer(board_.lecturer(), captureNs, flags);
-	if (ret < 0) {
-		logger().errorOnce("output", "cannot publish: " + sink_->describeError(),
-				   { { "DEVICE", "shm" }, { "ERROR", errnoText(ret) } });
+	if (outputs_.publish({ board ? board_.composite() : output_.composite, output_.lecturer,
+			       board ? &board_.lecturer() : nullptr, captureNs, flags }) < 0)
 		return;
-	}
 	status_.countPublished(flags & DK_SHM_FLAG_ONLINE);
 }
 
@@ -315,28 +235,18 @@ void Daemon::onFrameTick()
 	uint64_t periodNs = 1'000'000'000u / settings_.colour.fps;
 	// Frames still held for pairing (pairing.delay_ms) are on their way out:
 	// a NO SIGNAL frame now would come between them, out of order.
-	if (haveColour_ && (queue_.held() > 0 || lastColourNs_ + kColourStalePeriods * periodNs > nowNs))
+	if (haveColour_ && (pairing_.queue().held() > 0 || lastColourNs_ + kColourStalePeriods * periodNs > nowNs))
 		return;
 	publishNoSignal(nowNs);
 }
 
 void Daemon::publishNoSignal(uint64_t nowNs)
 {
-	int w = settings_.colour.width, h = settings_.colour.height;
-	std::string text = "NO SIGNAL: " + (colour_ ? colour_->name() : std::string("colour camera"));
-	if (noSignal_.width() != w || noSignal_.height() != h || text != noSignalText_) {
-		noSignal_.resize(w, h);
-		renderNoSignalFrame(text, noSignal_);
-		noSignalText_ = text;
-	}
-	output_.composite = noSignal_;
-	output_.alpha.resize(w, h);
-	std::fill(output_.alpha.data(), output_.alpha.data() + output_.alpha.size(), 0);
-	output_.lecturer.resize(w, h);
-	std::fill(output_.lecturer.data(), output_.lecturer.data() + output_.lecturer.size(), Rgba8{ 0, 0, 0, 0 });
+	noSignal_.fill(colour_ ? colour_->name() : std::string("colour camera"), settings_.colour.width,
+		       settings_.colour.height, output_);
 	board_.showBoardOnly(); // in board geometry the board's picture goes on, marked offline
 	preview_.offer(nullptr, nullptr, nullptr, output_, nowNs, nowNs);
-	publish(nowNs, depthFresh(nowNs) ? DK_SHM_FLAG_DEPTH_OK : 0);
+	publish(nowNs, pairing_.depthFresh(nowNs) ? DK_SHM_FLAG_DEPTH_OK : 0);
 }
 
 StatusSummary Daemon::summary() const
@@ -348,25 +258,14 @@ StatusSummary Daemon::summary() const
 	s.error = logger().activeErrorCount() > 0;
 	s.boardOk = board_.sourceOk();
 	s.boardCalibrated = board_.boardGeometry();
-	s.readerAttached = readers_.total() > 0;
+	s.readerAttached = outputs_.readers().total() > 0;
 	return s;
 }
 
 void Daemon::onReaderTick()
 {
-	if (!sink_ || !sinkOpen_)
-		return;
-	ReaderCounts now = sink_->countReaders(loop_.nowUs() * 1000u);
-	if (now == readers_)
-		return;
-	bool attachedChanged = (now.total() > 0) != (readers_.total() > 0);
-	readers_ = now;
-	logger().info("readers: composite " + std::to_string(now.composite) + ", lecturer " +
-			      std::to_string(now.lecturer) + ", board-geometry lecturer " +
-			      std::to_string(now.boardLecturer),
-		      { { "DEVICE", "shm" } });
-	if (attachedChanged && leds_)
-		leds_->show(summary());
+	if (outputs_.sampleReaders(loop_.nowUs() * 1000u))
+		lights_.show(summary());
 }
 
 StatusSnapshot Daemon::statusSnapshot() const
@@ -383,10 +282,10 @@ StatusSnapshot Daemon::statusSnapshot() const
 	StatusSnapshot s;
 	s.colour = camera(colour_);
 	s.depth = camera(depth_);
-	s.pairing = queue_.pairer().stats();
-	s.latency = latencyEstimate_;
+	s.pairing = pairing_.queue().pairer().stats();
+	s.latency = pairing_.latency();
 	s.offsetAuto = settings_.pairing.offsetAuto;
-	s.readers = readers_;
+	s.readers = outputs_.readers();
 	s.calibrated = summary().calibrated;
 	s.calibrationLoaded = calibrated_;
 	s.calibrationFile = settings_.mapping.calibrationFile;
@@ -396,64 +295,14 @@ StatusSnapshot Daemon::statusSnapshot() const
 
 void Daemon::onStatusTick()
 {
-	updateLatency();
+	pairing_.updateLatency(depth_ ? depth_->name() : std::string("depth"));
 	std::optional<PreviewStatus> figures = status_.report(statusSnapshot());
 	if (!figures)
 		return;
 	preview_.setStatus(*figures);
 	checkCalibrationFits();
 	checkRecording();
-	if (leds_)
-		leds_->show(summary());
-}
-
-// Reading and parsing (the config, then the calibration and board image it
-// names) run on reloadJob_'s thread: a hostile 1 MiB file takes longer to
-// parse than several frame periods (background_job.hpp). The loop thread
-// only applies the result. A SIGHUP during a reload is folded into one more
-// reload after it.
-void Daemon::reload()
-{
-	if (reloadJob_.running()) {
-		reloadAgain_ = true;
-		return;
-	}
-	status_.reloading();
-	auto next = std::make_shared<PendingReload>();
-	int ret = reloadJob_.start(
-		loop_,
-		[next, path = configPath_, overrides = overrides_] {
-			next->config = loadConfig(path);
-			if (next->config.ok()) {
-				overrides.applyTo(next->config.settings);
-				next->files = loadPipelineFiles(next->config.settings);
-			}
-		},
-		[this, next] { finishReload(*next); });
-	if (ret < 0) {
-		logger().error("config reload failed: cannot start a worker: " + errnoText(ret),
-			       { { "CONFIG_FILE", configPath_ } });
-		status_.reloaded();
-	}
-}
-
-void Daemon::finishReload(const PendingReload &next)
-{
-	const ConfigResult &result = next.config;
-	if (!result.ok()) {
-		for (const ConfigError &e : result.errors)
-			logger().error("config reload refused: " + e.toString(),
-				       { { "CONFIG_FILE", e.file }, { "CONFIG_LINE", std::to_string(e.line) } });
-		logger().warning("keeping the previous configuration", { { "CONFIG_FILE", configPath_ } });
-	} else {
-		apply(result.settings, next.files);
-		logger().info("configuration reloaded", { { "CONFIG_FILE", configPath_ } });
-	}
-	status_.reloaded();
-	if (reloadAgain_) {
-		reloadAgain_ = false;
-		reload();
-	}
+	lights_.show(summary());
 }
 
 void Daemon::apply(const Settings &next, const PipelineFiles &files)
@@ -465,26 +314,13 @@ void Daemon::apply(const Settings &next, const PipelineFiles &files)
 		logger().setLevel(level);
 	applyPipelineFiles(files);
 	board_.apply(next);
-	configurePairing();
+	pairing_.configure(settings_);
 	stageDumps_.setFolders(next.daemon.snapshotDir, overrides_.previewDir);
 	if (previous.daemon.recordDir != next.daemon.recordDir ||
 	    previous.daemon.recordCompression != next.daemon.recordCompression)
 		updateRecording();
 
-	bool sizeChanged = previous.colour.width != next.colour.width ||
-			   previous.colour.height != next.colour.height;
-	if (!(previous.output == next.output) || sizeChanged) {
-		sink_->close();
-		// An [output] that cannot be opened (a group we may not chgrp to,
-		// a name another user holds) must not cost the recorder its stream.
-		if (openOutput() < 0 && !(previous.output == next.output)) {
-			logger().error("output settings not applied: " + sink_->describeError() +
-					       "; keeping the previous [output]",
-				       { { "DEVICE", "shm" }, { "CONFIG_FILE", configPath_ } });
-			settings_.output = previous.output;
-			openOutput();
-		}
-	}
+	outputs_.apply(previous, settings_, outputGeometry(), configPath_);
 	if (!(previous.colour == next.colour) || !(previous.depth == next.depth) ||
 	    !(previous.sim == next.sim)) {
 		stopCameras();
@@ -493,11 +329,7 @@ void Daemon::apply(const Settings &next, const PipelineFiles &files)
 	if (previous.colour.fps != next.colour.fps)
 		loop_.addPeriodic(1000000u / next.colour.fps, [this] { onFrameTick(); }, frameTick_);
 	preview_.apply(next.preview);
-	if (!(previous.leds == next.leds)) {
-		leds_->close();
-		leds_ = factory_.statusLeds(next);
-		leds_->open(loop_, next.leds);
-	}
+	lights_.apply(loop_, previous, next);
 }
 
 void Daemon::injectTestFault()

@@ -3,22 +3,22 @@
 // no algorithm; it decides what to run when, and degrades instead of dying.
 #pragma once
 
-#include "algo/latency_estimator.hpp"
-#include "algo/pairing_queue.hpp"
 #include "algo/pipeline.hpp"
-#include "config/config_loader.hpp"
-#include "daemon/background_job.hpp"
 #include "daemon/board_output.hpp"
+#include "daemon/command_line_overrides.hpp"
+#include "daemon/config_reloader.hpp"
 #include "daemon/device_factory.hpp"
+#include "daemon/frame_outputs.hpp"
+#include "daemon/frame_pairing.hpp"
 #include "daemon/frame_recorder.hpp"
+#include "daemon/no_signal_picture.hpp"
 #include "daemon/preview_feed.hpp"
 #include "daemon/stage_dumps.hpp"
+#include "daemon/status_lights.hpp"
 #include "daemon/status_reporter.hpp"
 #include "daemon/test_fault.hpp"
 #include "hal/camera.hpp"
 #include "hal/event_loop.hpp"
-#include "hal/frame_sink.hpp"
-#include "hal/status_leds.hpp"
 #include "settings/settings.hpp"
 #include "wiring/pipeline_setup.hpp"
 
@@ -28,20 +28,15 @@
 
 namespace depthkey {
 
-// Command-line options that win over the config file, on start and reload.
-struct CommandLineOverrides {
-	std::string snapshotDir;
-	std::string recordDir;   // --record DIR
-	std::string previewDir;  // --preview DIR: stage images of a few frames
-	void applyTo(Settings &settings) const;
-};
-
 class Daemon
 {
 public:
 	Daemon(std::string configPath, CommandLineOverrides overrides, DeviceFactory factory = {})
 		: configPath_(std::move(configPath)), overrides_(std::move(overrides)),
-		  factory_(std::move(factory)) {}
+		  factory_(std::move(factory)),
+		  reloader_(loop_, status_, configPath_, overrides_,
+			    [this](const Settings &s, const PipelineFiles &f) { apply(s, f); }),
+		  outputs_(factory_.frameSink), lights_(factory_.statusLeds) {}
 	~Daemon();
 
 	// Sets up the loop, signals, devices and output. A negative errno means
@@ -64,13 +59,6 @@ private:
 	void onFrameTick();
 	void onStatusTick();
 	void onReaderTick();
-	// What a reload's worker read, for the loop thread to apply.
-	struct PendingReload {
-		ConfigResult config;
-		PipelineFiles files;
-	};
-	void reload();
-	void finishReload(const PendingReload &next);
 	PipelineView pipelineView() const { return { pipeline_, output_, mapping_ }; }
 	void updateRecording();
 	void checkRecording();
@@ -78,6 +66,7 @@ private:
 	void stop();
 
 	int openOutput();
+	OutputGeometry outputGeometry() const;
 	void startCameras();
 	void stopCameras();
 	void apply(const Settings &settings, const PipelineFiles &files);
@@ -85,12 +74,6 @@ private:
 	void checkCalibrationFits();
 	void publish(uint64_t captureNs, uint32_t flags);
 	void publishNoSignal(uint64_t nowNs);
-	bool depthFresh(uint64_t nowNs) const;
-	void configurePairing();
-	// Once a second: the measured depth offset, applied when offset_ms is
-	// "auto", logged when it moved by 5 ms or more.
-	void updateLatency();
-	int64_t offsetNs() const;
 	StatusSummary summary() const;
 	StatusSnapshot statusSnapshot() const;
 
@@ -100,19 +83,16 @@ private:
 	Settings settings_;
 	EventLoop loop_;
 	StatusReporter status_; // STATUS=, READY, the watchdog, the counters
+	ConfigReloader reloader_; // SIGHUP
 
 	std::unique_ptr<ColourCamera> colour_;
 	std::unique_ptr<DepthCamera> depth_;
-	std::unique_ptr<FrameSink> sink_;
-	std::unique_ptr<StatusLeds> leds_;
-	bool sinkOpen_ = false;
+	FrameOutputs outputs_;  // the shared-memory streams; readers sampled every 250 ms
+	StatusLights lights_;
 
 	EventSource sigterm_, sigint_, sighup_, sigusr1_, sigusr2_;
 	EventSource keyTimer_;
 	EventSource frameTick_, statusTick_, readerTick_;
-	BackgroundJob reloadJob_;
-	bool reloadAgain_ = false;
-	ReaderCounts readers_; // recorders reading the output, sampled every 250 ms
 
 	// The live preview page and what only it reports.
 	PreviewFeed preview_;
@@ -127,14 +107,10 @@ private:
 	bool calibrated_ = false;
 	int colourWidth_ = 0, colourHeight_ = 0, depthWidth_ = 0, depthHeight_ = 0; // last frames
 	PipelineOutput output_;
-	PairingQueue queue_;       // colour frames waiting for depth from both sides
-	LatencyEstimator latency_; // the depth camera's offset, measured
-	LatencyEstimator::Estimate latencyEstimate_;
-	double latencyLoggedMs_ = 1e9;
+	FramePairing pairing_;     // colour frames waiting for depth, the depth camera's offset
 	bool haveColour_ = false;
 	uint64_t lastColourNs_ = 0;   // arrival (loop clock) of the last colour frame
-	RgbImage noSignal_;
-	std::string noSignalText_;
+	NoSignalPicture noSignal_;
 
 	TestFault testFault_ = TestFault::None;
 	bool framesStalled_ = false; // TEST-ONLY "stall" fault injected

@@ -25,7 +25,7 @@ void usage(FILE *out)
 		     "Without --config: %s, or config/depthkey.toml of the source tree\n"
 		     "when run from build/bin/. Signals: SIGHUP re-reads the config,\n"
 		     "SIGUSR1 writes stage snapshots, SIGTERM/SIGINT stop.\n"
-		     "--record DIR records the camera frames (see the README's format);\n"
+		     "--record DIR records the camera frames (format: docs/sequences.md);\n"
 		     "--preview DIR writes stage images of the first few keyed frames.\n",
 		     "/etc/depthkey/depthkey.toml");
 }

@@ -1,4 +1,4 @@
-// The status LED legend (README "Status LEDs") and the blink patterns.
+// The status LED legend (docs/devices.md, "Status LEDs") and the blink patterns.
 #include <gtest/gtest.h>
 
 #include "hal/gpio/led_patterns.hpp"

@@ -58,7 +58,7 @@ TEST(Pipeline, BeatsTheDepthOnlyKeyerOnTheSimulatedScene)
 {
 	SimFrames sim(640, 480);
 	Pipeline pipeline;
-	pipeline.configure(Settings{}, identity(640, 480));
+	pipeline.configure(PipelineSettings{}, identity(640, 480));
 	DepthRangeKeyer keyer;
 	keyer.configure(640, 480, 160, 124);
 	PipelineOutput out;
@@ -92,7 +92,7 @@ TEST(Pipeline, NoHeapAllocationPerFrameInSteadyState)
 		Pipeline pipeline;
 		Settings settings;
 		settings.learning.initialFrames = 30; // the first derivation falls in the counted frames
-		pipeline.configure(settings, identity(w, h));
+		pipeline.configure(PipelineSettings::from(settings), identity(w, h));
 		PipelineOutput out;
 		for (int frame = 0; frame < 25; ++frame) { // warm-up: buffers reach their sizes
 			sim.render(frame * 0.04);
@@ -124,7 +124,7 @@ TEST(Pipeline, NoHeapAllocationPerFrameOnTheSimulatedLecture)
 	SimSequence sequence;
 	sequence.configure(settings.sim, 640, 480, settings.colour.fps, settings.depth.fps);
 	Pipeline pipeline;
-	pipeline.configure(settings, identity(640, 480));
+	pipeline.configure(PipelineSettings::from(settings), identity(640, 480));
 	PipelineOutput out;
 	GroundTruth truth;
 	DepthFrame latest;
@@ -148,7 +148,7 @@ TEST(Pipeline, SeedsOncePerDepthFrameAndAgainAfterNewSettings)
 	SimFrames sim(320, 240);
 	Pipeline pipeline;
 	Settings settings;
-	pipeline.configure(settings, identity(320, 240));
+	pipeline.configure(PipelineSettings::from(settings), identity(320, 240));
 	PipelineOutput out;
 	sim.render(1.0);
 	sim.depth.timestampNs = 1'000'000'000;
@@ -169,12 +169,12 @@ TEST(Pipeline, SeedsOncePerDepthFrameAndAgainAfterNewSettings)
 	EXPECT_TRUE(std::equal(first.data(), first.data() + first.size(), pipeline.trimap().data()));
 	// New settings seed the same frame again.
 	settings.segmentation.dilatePx = 8;
-	pipeline.configure(settings, identity(320, 240));
+	pipeline.configure(PipelineSettings::from(settings), identity(320, 240));
 	pipeline.process(later, same, out);
 	EXPECT_FALSE(std::equal(first.data(), first.data() + first.size(), pipeline.trimap().data()));
 	// A new depth frame (the figure has moved by t = 2 s) is seeded.
 	settings.segmentation.dilatePx = Settings{}.segmentation.dilatePx;
-	pipeline.configure(settings, identity(320, 240));
+	pipeline.configure(PipelineSettings::from(settings), identity(320, 240));
 	same.sequence = 8;
 	pipeline.process(later, same, out);
 	const Gray8Image moved = pipeline.trimap();

@@ -390,22 +390,3 @@ TEST(ShmRing, MissingObject)
 	ShmName name;
 	EXPECT_EQ(openStatus(name.c_str()), -ENOENT);
 }
-
-// The reader header is for consumers written in C: it must build as C99.
-TEST(ShmRing, ReaderHeaderCompilesAsC99)
-{
-	if (system("command -v cc >/dev/null 2>&1") != 0)
-		GTEST_SKIP() << "no C compiler";
-	const std::string src = "/tmp/depthkey-shm-c99-" + std::to_string(getpid()) + ".c";
-	FILE *f = fopen(src.c_str(), "w");
-	ASSERT_NE(f, nullptr);
-	fputs("#include \"hal/depthkey_shm.h\"\n"
-	      "int main(void) { struct dk_shm_reader r; char b[4];\n"
-	      "  if (dk_shm_open(\"/x\", &r)) return 1;\n"
-	      "  return dk_shm_read_latest(&r, b, sizeof(b), NULL); }\n", f);
-	fclose(f);
-	const std::string cmd = "cc -std=c99 -D_POSIX_C_SOURCE=200809L -pedantic -Wall -Wextra "
-				"-Werror -fsyntax-only -I. " + src;
-	EXPECT_EQ(system(cmd.c_str()), 0) << cmd;
-	unlink(src.c_str());
-}

@@ -77,7 +77,7 @@ void configurePipeline(Pipeline &pipeline, const Settings &settings, const Mappi
 {
 	pipeline.setKernelPath(kernelPathFromEnvironment());
 	pipeline.setBoardImage(board);
-	pipeline.configure(settings, mapping);
+	pipeline.configure(PipelineSettings::from(settings), mapping);
 }
 
 } // namespace depthkey

@@ -1,6 +1,6 @@
 // The status LED legend as a pure function: which pattern each LED shows for
 // a daemon state, and whether a pattern is lit at a given tick. The legend is
-// what the technician reads (README, "Status LEDs"); tests pin it down.
+// what the technician reads (docs/devices.md, "Status LEDs"); tests pin it down.
 //
 //   LED          pattern                 meaning
 //   power        heartbeat (2 flashes/s) depthkeyd runs and its loop is alive

@@ -1,6 +1,7 @@
 #include "hal/preview/preview_server.hpp"
 
 #include "hal/preview/preview_page.hpp"
+#include "hal/unique_fd.hpp"
 
 #include <arpa/inet.h>
 #include <cerrno>
@@ -122,7 +123,7 @@ bool stageUrl(std::string_view url, std::string_view prefix, std::string_view su
 }
 
 // The listening socket is ours, so that a bind failure has its own errno.
-int listenOn(const ListenAddress &address, int &fd, std::string &error)
+int listenOn(const ListenAddress &address, UniqueFd &fd, std::string &error)
 {
 	sockaddr_storage storage{};
 	socklen_t length;
@@ -141,26 +142,24 @@ int listenOn(const ListenAddress &address, int &fd, std::string &error)
 	}
 	const std::string where = (address.ipv6 ? "[" + address.ip + "]" : address.ip) + ":" +
 				  std::to_string(address.port);
-	fd = socket(storage.ss_family, SOCK_STREAM | SOCK_CLOEXEC, 0);
+	fd = UniqueFd(socket(storage.ss_family, SOCK_STREAM | SOCK_CLOEXEC, 0));
 	int one = 1;
 	const char *step = nullptr;
-	if (fd < 0)
+	if (!fd.isValid())
 		step = "socket";
-	else if (setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof(one)) < 0)
+	else if (setsockopt(fd.get(), SOL_SOCKET, SO_REUSEADDR, &one, sizeof(one)) < 0)
 		step = "SO_REUSEADDR";
-	else if (address.ipv6 && setsockopt(fd, IPPROTO_IPV6, IPV6_V6ONLY, &one, sizeof(one)) < 0)
+	else if (address.ipv6 && setsockopt(fd.get(), IPPROTO_IPV6, IPV6_V6ONLY, &one, sizeof(one)) < 0)
 		step = "IPV6_V6ONLY";
-	else if (bind(fd, reinterpret_cast<sockaddr *>(&storage), length) < 0)
+	else if (bind(fd.get(), reinterpret_cast<sockaddr *>(&storage), length) < 0)
 		step = "bind";
-	else if (listen(fd, 16) < 0)
+	else if (listen(fd.get(), 16) < 0)
 		step = "listen";
 	if (!step)
 		return 0;
 	int ret = -errno;
 	error = "cannot listen on " + where + ": " + step + ": " + std::strerror(errno);
-	if (fd >= 0)
-		close(fd);
-	fd = -1;
+	fd.reset();
 	return ret;
 }
 
@@ -194,7 +193,7 @@ int PreviewServer::start(const PreviewServerOptions &options, PreviewEncoder &en
 		std::lock_guard lock(authMutex_);
 		verified_.clear();
 	}
-	int fd;
+	UniqueFd fd;
 	int ret = listenOn(options.address, fd, error);
 	if (ret < 0)
 		return ret;
@@ -202,17 +201,17 @@ int PreviewServer::start(const PreviewServerOptions &options, PreviewEncoder &en
 	maxClients_ = options.maxClients;
 	const unsigned flags = MHD_USE_THREAD_PER_CONNECTION | MHD_USE_INTERNAL_POLLING_THREAD |
 			       (options.address.ipv6 ? MHD_USE_IPv6 : 0);
-	daemon_ = MHD_start_daemon(flags, 0, nullptr, nullptr, &onRequest, this, MHD_OPTION_LISTEN_SOCKET, fd,
+	daemon_ = MHD_start_daemon(flags, 0, nullptr, nullptr, &onRequest, this, MHD_OPTION_LISTEN_SOCKET, fd.get(),
 				   MHD_OPTION_CONNECTION_LIMIT,
 				   static_cast<unsigned>(options.maxClients + kExtraConnections),
 				   MHD_OPTION_CONNECTION_TIMEOUT, kIdleTimeoutS, MHD_OPTION_END);
 	if (!daemon_) {
 		ret = errno ? -errno : -EIO;
 		error = "libmicrohttpd did not start";
-		close(fd);
-		return ret;
+		return ret; // fd closes here
 	}
-	port_ = boundPort(fd);
+	port_ = boundPort(fd.get());
+	fd.release(); // MHD owns it now: MHD_stop_daemon closes it
 	return 0;
 }
 

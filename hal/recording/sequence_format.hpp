@@ -1,4 +1,4 @@
-// The on-disk format of a recorded sequence (README "Recorded sequences"),
+// The on-disk format of a recorded sequence (docs/sequences.md),
 // in the manner of the TUM RGB-D benchmark, readable by common tools:
 //
 //   DIR/rgb.txt        "# timestamp filename" header, then one line a frame:

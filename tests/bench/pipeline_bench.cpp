@@ -94,7 +94,7 @@ void pipelineFrame(benchmark::State &state, const Inputs &in)
 {
 	const int w = int(state.range(0)), h = int(state.range(1));
 	auto pipeline = std::make_unique<Pipeline>();
-	pipeline->configure(Settings{}, identity(w, h));
+	pipeline->configure(PipelineSettings{}, identity(w, h));
 	pipeline->setKernelPath(kernelPathFromEnvironment());
 	PipelineOutput out;
 	for (int i = 0; i < 30; ++i) // past learning

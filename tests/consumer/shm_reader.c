@@ -1,6 +1,6 @@
 /*
  * A recorder as a consumer writes it: hal/depthkey_shm.h alone, compiled by
- * tests/shm_consumer_compile_test.cpp as strict C99 (gcc -std=c99 -pedantic,
+ * tests/process/shm_consumer_compile_test.cpp as strict C99 (gcc -std=c99 -pedantic,
  * no feature macros) and as C++17. It opens the stream named by argv[1],
  * copies one frame, prints "frame N bytes B sum S presence P" and keeps its
  * reader slot until stdin closes, so the test can count it.

@@ -37,20 +37,20 @@ void noop(int) {}
 
 int Sr2Function::open(const std::string &ffsDir)
 {
-	ep0_ = ::open((ffsDir + "/ep0").c_str(), O_RDWR | O_CLOEXEC);
-	if (ep0_ < 0)
+	ep0_ = UniqueFd(::open((ffsDir + "/ep0").c_str(), O_RDWR | O_CLOEXEC));
+	if (!ep0_.isValid())
 		return -errno;
-	int err = writeAll(ep0_, sr2FunctionFsDescriptors(sr2::kEndpointFramesIn, sr2::kEndpointRegistersOut));
+	int err = writeAll(ep0_.get(), sr2FunctionFsDescriptors(sr2::kEndpointFramesIn, sr2::kEndpointRegistersOut));
 	if (!err)
-		err = writeAll(ep0_, sr2FunctionFsStrings());
+		err = writeAll(ep0_.get(), sr2FunctionFsStrings());
 	if (err) {
 		std::fprintf(stderr, "sr2-emulator: FunctionFS refused the descriptors: %s\n", strerror(-err));
 		return err;
 	}
 	// Endpoint files in the order of the descriptors: IN, then OUT.
-	epIn_ = ::open((ffsDir + "/ep1").c_str(), O_RDWR | O_CLOEXEC);
-	epOut_ = ::open((ffsDir + "/ep2").c_str(), O_RDWR | O_CLOEXEC);
-	if (epIn_ < 0 || epOut_ < 0)
+	epIn_ = UniqueFd(::open((ffsDir + "/ep1").c_str(), O_RDWR | O_CLOEXEC));
+	epOut_ = UniqueFd(::open((ffsDir + "/ep2").c_str(), O_RDWR | O_CLOEXEC));
+	if (!epIn_.isValid() || !epOut_.isValid())
 		return -errno;
 
 	struct sigaction action = {};
@@ -77,17 +77,15 @@ void Sr2Function::close()
 		}
 		thread->join();
 	}
-	for (int *fd : { &epIn_, &epOut_, &ep0_ })
-		if (*fd >= 0) {
-			::close(*fd);
-			*fd = -1;
-		}
+	// Only now, with no thread left in a read or write on them.
+	for (UniqueFd *fd : { &epIn_, &epOut_, &ep0_ })
+		fd->reset();
 }
 
 void Sr2Function::handleEp0()
 {
 	usb_functionfs_event events[4];
-	ssize_t n = ::read(ep0_, events, sizeof(events));
+	ssize_t n = ::read(ep0_.get(), events, sizeof(events));
 	if (n < 0)
 		return;
 	for (size_t i = 0; i < static_cast<size_t>(n) / sizeof(events[0]); i++) {
@@ -127,13 +125,13 @@ void Sr2Function::onSetup(const usb_ctrlrequest &setup)
 	if (halt) {
 		// A transfer in the wrong direction makes FunctionFS STALL ep0.
 		if (setup.bRequestType & USB_DIR_IN)
-			(void)!::read(ep0_, nullptr, 0);
+			(void)!::read(ep0_.get(), nullptr, 0);
 		else
-			(void)!::write(ep0_, nullptr, 0);
+			(void)!::write(ep0_.get(), nullptr, 0);
 		return;
 	}
 	// No data stage: a zero-length read completes the status stage.
-	(void)!::read(ep0_, nullptr, 0);
+	(void)!::read(ep0_.get(), nullptr, 0);
 	std::lock_guard lock(mutex_);
 	counters_.requests++;
 	if (stalled_) {
@@ -180,7 +178,7 @@ void Sr2Function::frameLoop()
 		nextFrame = std::max(nextFrame + period, std::chrono::steady_clock::now());
 		scene_.renderDepth(secondsSince(start), frame);
 		size_t length = encodeSr2Frame(frame, fault, ++sequence, raw);
-		ssize_t n = ::write(epIn_, raw.data(), length);
+		ssize_t n = ::write(epIn_.get(), raw.data(), length);
 		std::lock_guard lock(mutex_);
 		if (n == static_cast<ssize_t>(length)) {
 			counters_.sent++;
@@ -196,7 +194,7 @@ void Sr2Function::registerLoop()
 {
 	uint8_t buffer[512];
 	while (!stopping_) {
-		ssize_t n = ::read(epOut_, buffer, sizeof(buffer));
+		ssize_t n = ::read(epOut_.get(), buffer, sizeof(buffer));
 		if (n < 0) {
 			if (errno != EINTR)
 				std::this_thread::sleep_for(std::chrono::milliseconds(50));

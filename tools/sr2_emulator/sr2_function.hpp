@@ -10,6 +10,7 @@
 #pragma once
 
 #include "hal/sim/simple_scene.hpp"
+#include "hal/unique_fd.hpp"
 #include "tools/sr2_emulator/sr2_frame_encoder.hpp"
 
 #include <atomic>
@@ -41,7 +42,7 @@ public:
 	// Writes descriptors and strings to ffsDir/ep0, opens the endpoint files
 	// and starts the endpoint threads. Then the gadget may be bound.
 	int open(const std::string &ffsDir);
-	int ep0Fd() const { return ep0_; }
+	int ep0Fd() const { return ep0_.get(); }
 	// Reads and answers the pending ep0 events.
 	void handleEp0();
 	void close();
@@ -61,7 +62,7 @@ private:
 
 	SimpleScene scene_;
 	int maxFps_;
-	int ep0_ = -1, epIn_ = -1, epOut_ = -1;
+	UniqueFd ep0_, epIn_, epOut_;
 	std::thread frameThread_, registerThread_;
 	std::atomic<bool> stopping_{ false };
 	std::atomic<bool> stalled_{ false };

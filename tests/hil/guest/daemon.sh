@@ -17,7 +17,7 @@ RECOVERY_LIMIT_MS=2000
 HIL_SANITIZER=${HIL_SANITIZER:-0}
 # Shared-memory flags (hal/depthkey_shm.h).
 ONLINE=0x7 COLOUR_OK=0x2 DEPTH_OK=0x4
-# LED lines on the simulated chip (the README's legend).
+# LED lines on the simulated chip (the legend in docs/devices.md).
 LED_POWER=0 LED_DEPTH=1 LED_COLOUR=2 LED_CALIBRATION=3 LED_READER=4 LED_ERROR=5 LED_BOARD=6
 
 cat >"$DK_CONFIG" <<TOML

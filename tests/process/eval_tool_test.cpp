@@ -1,6 +1,6 @@
 // depthkey-eval as scripts use it: its summary line, the same scores from
 // the simulator and from the sequence it saved, clear errors.
-#include "tests/shell_command.hpp"
+#include "tests/process/shell_command.hpp"
 #include "tests/test_paths.hpp"
 
 #include <cstdio>

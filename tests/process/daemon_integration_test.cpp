@@ -2,7 +2,7 @@
 // the recorder would see: the notify protocol, frames in shared memory,
 // reload with a broken config, clean stop.
 #include "hal/depthkey_shm.h"
-#include "tests/daemon_process.hpp"
+#include "tests/process/daemon_process.hpp"
 #include "tests/wait_until.hpp"
 
 #include <gtest/gtest.h>

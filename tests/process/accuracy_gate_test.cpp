@@ -15,8 +15,8 @@
 //     a little below, per run and for the mean.
 // The targets (mean IoU >= 0.97 and BF >= 0.90, every seed IoU >=
 // 0.95; clean IoU >= 0.98 and BF >= 0.93) are printed, not asserted: they
-// are not met yet (README, "Segmentation accuracy").
-#include "tests/shell_command.hpp"
+// are not met yet (docs/accuracy.md).
+#include "tests/process/shell_command.hpp"
 #include "tests/test_paths.hpp"
 
 #include <cstdio>

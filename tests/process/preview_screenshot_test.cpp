@@ -2,9 +2,9 @@
 // chromium package) screenshots the page of a running depthkeyd, and the
 // picture must show the stage images, not empty boxes or broken-image icons.
 // Skipped, and reported so, where chromium is not installed.
-#include "tests/daemon_process.hpp"
-#include "tests/preview_test_util.hpp"
-#include "tests/shell_command.hpp"
+#include "tests/process/daemon_process.hpp"
+#include "tests/process/preview_test_util.hpp"
+#include "tests/process/shell_command.hpp"
 
 #include <gtest/gtest.h>
 

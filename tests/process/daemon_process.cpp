@@ -1,4 +1,4 @@
-#include "tests/daemon_process.hpp"
+#include "tests/process/daemon_process.hpp"
 
 #include "tests/test_paths.hpp"
 #include "tests/wait_until.hpp"

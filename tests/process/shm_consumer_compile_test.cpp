@@ -1,9 +1,10 @@
 // hal/depthkey_shm.h as a consumer compiles it: tests/consumer/shm_reader.c
 // built with gcc -std=c99 -pedantic (no feature macros) and g++ -std=c++17,
 // warnings as errors, then run against a ShmRingWriter: it reads the frame
-// that was written and is counted as a reader while it runs.
+// that was written and is counted as a reader while it runs. And the header
+// alone under cc -std=c99 -pedantic with _POSIX_C_SOURCE (ShmRing's check).
 #include "hal/shm_ring_writer.hpp"
-#include "tests/shell_command.hpp"
+#include "tests/process/shell_command.hpp"
 #include "tests/shm_test_util.hpp"
 #include "tests/test_paths.hpp"
 
@@ -12,7 +13,9 @@
 #include <csignal>
 #include <cstdio>
 #include <ctime>
+#include <string>
 #include <sys/wait.h>
+#include <unistd.h>
 #include <vector>
 
 using namespace depthkey;
@@ -98,3 +101,22 @@ INSTANTIATE_TEST_SUITE_P(Languages, ShmConsumer,
 			 [](const ::testing::TestParamInfo<Consumer> &info) {
 				 return std::string(info.param.compiler) == "gcc" ? "StrictC99" : "Cxx17";
 			 });
+
+// The reader header is for consumers written in C: it must build as C99.
+TEST(ShmRing, ReaderHeaderCompilesAsC99)
+{
+	if (system("command -v cc >/dev/null 2>&1") != 0)
+		GTEST_SKIP() << "no C compiler";
+	const std::string src = "/tmp/depthkey-shm-c99-" + std::to_string(getpid()) + ".c";
+	FILE *f = fopen(src.c_str(), "w");
+	ASSERT_NE(f, nullptr);
+	fputs("#include \"hal/depthkey_shm.h\"\n"
+	      "int main(void) { struct dk_shm_reader r; char b[4];\n"
+	      "  if (dk_shm_open(\"/x\", &r)) return 1;\n"
+	      "  return dk_shm_read_latest(&r, b, sizeof(b), NULL); }\n", f);
+	fclose(f);
+	const std::string cmd = "cc -std=c99 -D_POSIX_C_SOURCE=200809L -pedantic -Wall -Wextra "
+				"-Werror -fsyntax-only -I. " + src;
+	EXPECT_EQ(system(cmd.c_str()), 0) << cmd;
+	unlink(src.c_str());
+}

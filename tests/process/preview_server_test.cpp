@@ -4,7 +4,7 @@
 #include "hal/preview/preview_encoder.hpp"
 #include "hal/preview/preview_server.hpp"
 #include "hal/v4l2/mjpeg_decoder.hpp"
-#include "tests/preview_test_util.hpp"
+#include "tests/process/preview_test_util.hpp"
 
 #include <gtest/gtest.h>
 

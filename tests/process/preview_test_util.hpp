@@ -2,7 +2,7 @@
 // parts of a multipart MJPEG stream.
 #pragma once
 
-#include "tests/shell_command.hpp"
+#include "tests/process/shell_command.hpp"
 
 #include <cstdio>
 #include <fstream>

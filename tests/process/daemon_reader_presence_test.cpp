@@ -1,7 +1,7 @@
 // The real depthkeyd counts the recorders reading its output: depthkey-shmcat
 // reading the composite shows up in STATUS ("readers 1") and the journal, and
 // when it is killed it is counted gone within 2 s of its last heartbeat.
-#include "tests/daemon_process.hpp"
+#include "tests/process/daemon_process.hpp"
 #include "tests/test_paths.hpp"
 
 #include <gtest/gtest.h>

@@ -14,7 +14,7 @@
 #include "hal/sim/board_display.hpp"
 #include "config/config_loader.hpp"
 #include "hal/sim/lecture_simulator.hpp"
-#include "tests/shell_command.hpp"
+#include "tests/process/shell_command.hpp"
 #include "tests/test_paths.hpp"
 
 namespace depthkey {

@@ -6,7 +6,7 @@
 #include "config/calibration_file.hpp"
 #include "hal/depthkey_shm.h"
 #include "hal/shm_ring_writer.hpp"
-#include "tests/daemon_process.hpp"
+#include "tests/process/daemon_process.hpp"
 #include "tests/sample_calibration.hpp"
 
 #include <gtest/gtest.h>

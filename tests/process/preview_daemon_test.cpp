@@ -6,8 +6,8 @@
 // an ephemeral port (listen = "127.0.0.1:0"), read from the daemon's log.
 #include "hal/depthkey_shm.h"
 #include "hal/v4l2/mjpeg_decoder.hpp"
-#include "tests/daemon_process.hpp"
-#include "tests/preview_test_util.hpp"
+#include "tests/process/daemon_process.hpp"
+#include "tests/process/preview_test_util.hpp"
 #include "tests/wait_until.hpp"
 
 #include <gtest/gtest.h>

@@ -1,0 +1,96 @@
+#include "daemon/frame_outputs.hpp"
+
+#include "daemon/log.hpp"
+
+#include <cerrno>
+
+namespace depthkey {
+
+int FrameOutputs::open(const Settings &settings, const OutputGeometry &geometry)
+{
+	settings_ = settings.output;
+	geometry_ = geometry;
+	if (!sink_)
+		sink_ = makeSink_(settings);
+	return openSink();
+}
+
+int FrameOutputs::openSink()
+{
+	int ret = sink_->open(settings_, geometry_.width, geometry_.height, geometry_.boardWidth,
+			      geometry_.boardHeight);
+	sinkOpen_ = ret >= 0;
+	if (ret < 0)
+		logger().errorOnce("output", "cannot open shared-memory output: " + sink_->describeError(),
+				   { { "DEVICE", "shm" }, { "ERROR", errnoText(ret) } });
+	else
+		logger().clearError("output", "shared-memory output open", { { "DEVICE", "shm" } });
+	return ret;
+}
+
+int FrameOutputs::reopen(const Settings &settings, const OutputGeometry &geometry)
+{
+	if (!sink_)
+		return 0;
+	sink_->close();
+	return open(settings, geometry);
+}
+
+void FrameOutputs::apply(const Settings &previous, Settings &next, const OutputGeometry &geometry,
+			 const std::string &configPath)
+{
+	const bool sizeChanged = previous.colour.width != next.colour.width ||
+				 previous.colour.height != next.colour.height;
+	const bool outputChanged = !(previous.output == next.output);
+	if (!outputChanged && !sizeChanged)
+		return;
+	if (reopen(next, geometry) >= 0 || !outputChanged)
+		return;
+	logger().error("output settings not applied: " + sink_->describeError() + "; keeping the previous [output]",
+		       { { "DEVICE", "shm" }, { "CONFIG_FILE", configPath } });
+	next.output = previous.output;
+	open(next, geometry);
+}
+
+void FrameOutputs::close()
+{
+	if (sink_)
+		sink_->close();
+}
+
+int FrameOutputs::publish(const OutputFrame &frame)
+{
+	if (!sink_)
+		return -EBADF;
+	if (!sinkOpen_) {
+		if (int ret = openSink(); ret < 0)
+			return ret;
+	}
+	int ret = sink_->publishComposite(frame.composite, frame.captureNs, frame.flags);
+	if (ret >= 0)
+		ret = sink_->publishLecturer(frame.lecturer, frame.captureNs, frame.flags);
+	if (ret >= 0 && frame.boardLecturer)
+		ret = sink_->publishBoardLecturer(*frame.boardLecturer, frame.captureNs, frame.flags);
+	if (ret < 0)
+		logger().errorOnce("output", "cannot publish: " + sink_->describeError(),
+				   { { "DEVICE", "shm" }, { "ERROR", errnoText(ret) } });
+	return ret;
+}
+
+bool FrameOutputs::sampleReaders(uint64_t nowNs)
+{
+	if (!sink_ || !sinkOpen_)
+		return false;
+	ReaderCounts now = sink_->countReaders(nowNs);
+	if (now == readers_)
+		return false;
+	const bool attachedChanged = (now.total() > 0) != (readers_.total() > 0);
+	readers_ = now;
+	logger().info("readers: composite " + std::to_string(now.composite) + ", lecturer " +
+			      std::to_string(now.lecturer) + ", board-geometry lecturer " +
+			      std::to_string(now.boardLecturer),
+		      { { "DEVICE", "shm" } });
+	return attachedChanged;
+}
+
+} // namespace depthkey

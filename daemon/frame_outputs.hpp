@@ -1,0 +1,75 @@
+// Where every frame the daemon makes goes out: today the shared-memory
+// streams for the recorder (a FrameSink). A keyed frame and a NO SIGNAL
+// frame reach every output through publish(); one more output (a virtual
+// webcam) is one more member opened, published to and closed here, and the
+// event loop's code does not change. A failed open or publish is logged once
+// (DEVICE=shm) and retried with the next frame; the daemon runs on.
+#pragma once
+
+#include "algo/image.hpp"
+#include "hal/frame_sink.hpp"
+#include "settings/settings.hpp"
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+
+namespace depthkey {
+
+// One frame for every output, borrowed for the call.
+struct OutputFrame {
+	const RgbImage &composite;       // in the board's geometry when it is calibrated
+	const RgbaImage &lecturer;       // in the colour camera's geometry
+	const RgbaImage *boardLecturer;  // the layer in the board's geometry, or null
+	uint64_t captureNs;
+	uint32_t flags;                  // DK_SHM_FLAG_*
+};
+
+// The geometry the outputs are opened at.
+struct OutputGeometry {
+	int width = 0, height = 0;           // the colour camera's
+	int boardWidth = 0, boardHeight = 0; // 0 x 0: not in board geometry
+};
+
+class FrameOutputs
+{
+public:
+	using SinkFactory = std::function<std::unique_ptr<FrameSink>(const Settings &)>;
+	explicit FrameOutputs(SinkFactory makeSink) : makeSink_(std::move(makeSink)) {}
+
+	// Opens (the first time, creates) the outputs; 0 or a negative errno.
+	int open(const Settings &settings, const OutputGeometry &geometry);
+	// Marks them offline and opens them again, e.g. at a new geometry; a
+	// no-op before the first open().
+	int reopen(const Settings &settings, const OutputGeometry &geometry);
+	// After a reload: re-opens when [output] or the colour size changed. An
+	// [output] that cannot be opened (a group we may not chgrp to, a name
+	// another user holds) must not cost the recorder its stream: next.output
+	// is set back to previous.output, which is opened again. configPath is
+	// for the journal.
+	void apply(const Settings &previous, Settings &next, const OutputGeometry &geometry,
+		   const std::string &configPath);
+	void close();
+
+	// Opens again first when the last open failed. The result of the first
+	// output that failed, else 0.
+	int publish(const OutputFrame &frame);
+
+	// Every 250 ms: samples the readers (logged when their counts change);
+	// true when the first came or the last left (the LEDs show that).
+	bool sampleReaders(uint64_t nowNs);
+	const ReaderCounts &readers() const { return readers_; }
+
+private:
+	int openSink();
+
+	SinkFactory makeSink_;
+	std::unique_ptr<FrameSink> sink_;
+	bool sinkOpen_ = false;
+	OutputSettings settings_;   // what open() was given, for the retry in publish()
+	OutputGeometry geometry_;
+	ReaderCounts readers_;      // recorders reading the shared memory
+};
+
+} // namespace depthkey
