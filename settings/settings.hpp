@@ -117,7 +117,7 @@ struct SioxSettings {
 struct DecisionSettings {
 	int depthWeight = 64;               // 0..255: the depth evidence (DepthSeeder::depthEvidence)
 	int depthPivot = 144;               // 1..254: the depth evidence value that is neutral
-	int boardWeight = 160;              // 0..255: a match with the board model
+	int boardWeight = 240;              // 0..255: a match with the board model
 	int boardMatch = 10;                // 1..255: L1 RGB distance below which the board model matches
 	int temporalWeight = 64;            // 0..255: the previous frame's alpha where colour did not change
 	int stillColour = 24;               // 1..255: L1 RGB change below which a pixel did not change
