@@ -90,6 +90,7 @@ int Daemon::start(const Settings &settings)
 			}
 		});
 	openOutput();
+	startWebcam();
 	updateRecording();
 	preview_.apply(settings_.preview);
 	startCameras();
@@ -135,6 +136,16 @@ int Daemon::openOutput()
 	else
 		logger().clearError("output", "shared-memory output open", { { "DEVICE", "shm" } });
 	return ret;
+}
+
+void Daemon::startWebcam()
+{
+	webcam_.start(loop_, settings_.output.v4l2Device, [this](const DeviceStatus &s) {
+		if (s.state == DeviceState::Stopped)
+			logger().clearError("v4l2-output", "v4l2-output off", { { "DEVICE", "v4l2-output" } });
+		else
+			onDeviceStatus("v4l2-output", s);
+	});
 }
 
 void Daemon::startCameras()
@@ -291,9 +302,11 @@ void Daemon::publish(uint64_t captureNs, uint32_t flags)
 {
 	if (framesStalled_)
 		return;
+	const bool board = board_.boardGeometry();
+	// Never waits; a full or lost device is its own status (hal/v4l2/v4l2_output.hpp).
+	webcam_.write(board ? board_.composite() : output_.composite);
 	if (!sinkOpen_ && openOutput() < 0)
 		return;
-	const bool board = board_.boardGeometry();
 	int ret = sink_->publishComposite(board ? board_.composite() : output_.composite, captureNs, flags);
 	if (ret >= 0)
 		ret = sink_->publishLecturer(output_.lecturer, captureNs, flags);
@@ -391,6 +404,7 @@ StatusSnapshot Daemon::statusSnapshot() const
 	s.calibrationLoaded = calibrated_;
 	s.calibrationFile = settings_.mapping.calibrationFile;
 	s.board = board_.statusText();
+	s.webcam = { webcam_.path(), webcam_.status(), webcam_.framesWritten() };
 	return s;
 }
 
@@ -473,18 +487,20 @@ void Daemon::apply(const Settings &next, const PipelineFiles &files)
 
 	bool sizeChanged = previous.colour.width != next.colour.width ||
 			   previous.colour.height != next.colour.height;
-	if (!(previous.output == next.output) || sizeChanged) {
+	if (!sameSharedMemory(previous.output, next.output) || sizeChanged) {
 		sink_->close();
 		// An [output] that cannot be opened (a group we may not chgrp to,
 		// a name another user holds) must not cost the recorder its stream.
-		if (openOutput() < 0 && !(previous.output == next.output)) {
+		if (openOutput() < 0 && !sameSharedMemory(previous.output, next.output)) {
 			logger().error("output settings not applied: " + sink_->describeError() +
 					       "; keeping the previous [output]",
 				       { { "DEVICE", "shm" }, { "CONFIG_FILE", configPath_ } });
 			settings_.output = previous.output;
+			settings_.output.v4l2Device = next.output.v4l2Device;
 			openOutput();
 		}
 	}
+	startWebcam(); // a new output.v4l2_device, or nothing
 	if (!(previous.colour == next.colour) || !(previous.depth == next.depth) ||
 	    !(previous.sim == next.sim)) {
 		stopCameras();

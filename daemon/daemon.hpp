@@ -19,6 +19,7 @@
 #include "hal/event_loop.hpp"
 #include "hal/frame_sink.hpp"
 #include "hal/status_leds.hpp"
+#include "hal/v4l2/v4l2_output.hpp"
 #include "settings/settings.hpp"
 #include "wiring/pipeline_setup.hpp"
 
@@ -78,6 +79,7 @@ private:
 	void stop();
 
 	int openOutput();
+	void startWebcam(); // output.v4l2_device
 	void startCameras();
 	void stopCameras();
 	void apply(const Settings &settings, const PipelineFiles &files);
@@ -106,6 +108,7 @@ private:
 	std::unique_ptr<FrameSink> sink_;
 	std::unique_ptr<StatusLeds> leds_;
 	bool sinkOpen_ = false;
+	V4l2Output webcam_; // the composite to a v4l2loopback node, when configured
 
 	EventSource sigterm_, sigint_, sighup_, sigusr1_, sigusr2_;
 	EventSource keyTimer_;
