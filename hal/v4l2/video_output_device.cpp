@@ -1,5 +1,7 @@
 #include "hal/v4l2/video_output_device.hpp"
 
+#include "hal/v4l2/v4l2_video_device.hpp"
+
 #include <cerrno>
 #include <cstring>
 #include <fcntl.h>
@@ -56,10 +58,15 @@ int V4l2OutputDevice::open(const std::string &path, int width, int height, size_
 	f.fmt.pix.colorspace = V4L2_COLORSPACE_SMPTE170M; // BT.601, limited range
 	if ((ret = ioctlRetry(fd.get(), VIDIOC_S_FMT, &f)) < 0)
 		return failed("set format YUYV", ret);
+	// v4l2loopback rounds sizeimage up to whole pages (640x360 YUYV: 462848
+	// for 460800); the rows must be packed as ours are, and a frame is one
+	// write of frameBytes, which readers take as the frame.
 	if (f.fmt.pix.pixelformat != V4L2_PIX_FMT_YUYV || f.fmt.pix.width != static_cast<uint32_t>(width) ||
-	    f.fmt.pix.height != static_cast<uint32_t>(height) || f.fmt.pix.sizeimage != frameBytes) {
-		detail = path + " takes " + std::to_string(f.fmt.pix.width) + "x" + std::to_string(f.fmt.pix.height) +
-			 " (" + std::to_string(f.fmt.pix.sizeimage) + " bytes a frame), not YUYV " +
+	    f.fmt.pix.height != static_cast<uint32_t>(height) ||
+	    f.fmt.pix.bytesperline != static_cast<uint32_t>(width) * 2 || f.fmt.pix.sizeimage < frameBytes) {
+		detail = path + " takes " + fourccName(f.fmt.pix.pixelformat) + " " + std::to_string(f.fmt.pix.width) +
+			 "x" + std::to_string(f.fmt.pix.height) + " (" + std::to_string(f.fmt.pix.bytesperline) +
+			 " bytes a row, " + std::to_string(f.fmt.pix.sizeimage) + " a frame), not YUYV " +
 			 std::to_string(width) + "x" + std::to_string(height) +
 			 ": another program holds it in another format?";
 		return -EINVAL;
