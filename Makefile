@@ -156,8 +156,8 @@ $(SR2EMU): $(call obj,$(SR2EMU_SRCS)) $(LIB)
 	@mkdir -p $(dir $@)
 	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -o $@
 
-# depthkey-calibrate --board lives in its own folder (one file per mode).
-CALIBRATE_BOARD_SRCS := $(wildcard tools/calibrate_board/*.cpp)
+# depthkey-calibrate --board and --live live in their own folders.
+CALIBRATE_BOARD_SRCS := $(wildcard tools/calibrate_board/*.cpp) $(wildcard tools/calibrate_live/*.cpp)
 $(BIN)/depthkey-calibrate: $(OBJ)/tools/calibrate.o $(call obj,$(CALIBRATE_BOARD_SRCS)) $(LIB)
 	@mkdir -p $(dir $@)
 	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -o $@
