@@ -1,7 +1,8 @@
 // RGB -> YUYV (hal/v4l2/rgb_to_yuyv.hpp) against BT.601 limited range in
 // doubles. Tolerance: within 1 level per component (Q16 coefficients, one
 // rounding: the fixed point is off the double by at most 0.5 + 510 x 2^-17
-// before rounding). The error histogram is printed.
+// before rounding). The error histogram is printed. The SSE2 row against the
+// C row bit for bit, odd widths and unaligned pointers.
 #include <gtest/gtest.h>
 
 #include "hal/v4l2/rgb_to_yuyv.hpp"
@@ -44,7 +45,7 @@ TEST(RgbToYuyv, EveryColourWithinOneLevelOfDouble)
 				const Rgb8 pair[2] = { { uint8_t(r), uint8_t(g), uint8_t(b) },
 						       { uint8_t(r), uint8_t(g), uint8_t(b) } };
 				uint8_t out[4];
-				rgbToYuyvRow(pair, out, 2);
+				rgbToYuyvRow_C(pair, out, 2);
 				Ycc want = referenceYcc(r, g, b);
 				for (auto [got, w] : { std::pair<int, double>{ out[0], want.y }, { out[1], want.cb },
 						       { out[2], want.y }, { out[3], want.cr } }) {
@@ -70,7 +71,7 @@ TEST(RgbToYuyv, ChromaIsThePairsMeanColour)
 		for (Rgb8 &p : pair)
 			p = { uint8_t(level(rng)), uint8_t(level(rng)), uint8_t(level(rng)) };
 		uint8_t out[4];
-		rgbToYuyvRow(pair, out, 2);
+		rgbToYuyvRow_C(pair, out, 2);
 		Ycc a = referenceYcc(pair[0].r, pair[0].g, pair[0].b);
 		Ycc b = referenceYcc(pair[1].r, pair[1].g, pair[1].b);
 		worst = std::max({ worst, std::fabs(out[0] - a.y), std::fabs(out[2] - b.y),
@@ -83,7 +84,7 @@ TEST(RgbToYuyv, BlackWhiteAndGreyAreExact)
 {
 	const Rgb8 row[4] = { { 0, 0, 0 }, { 0, 0, 0 }, { 255, 255, 255 }, { 128, 128, 128 } };
 	uint8_t out[8];
-	rgbToYuyvRow(row, out, 4);
+	rgbToYuyvRow_C(row, out, 4);
 	EXPECT_EQ(out[0], 16);
 	EXPECT_EQ(out[1], 128);
 	EXPECT_EQ(out[2], 16);
@@ -119,4 +120,35 @@ TEST(RgbToYuyv, OddWidthRepeatsTheLastPixelAndFramesRoundTrip)
 		for (int x = 0; x < 5; x++)
 			EXPECT_LE(std::abs(back[x].r - image.at(x, y).r), 1) << x << "," << y;
 	}
+}
+
+TEST(RgbToYuyv, Sse2RowEqualsTheCRowBitForBit)
+{
+	std::mt19937 rng(5);
+	size_t compared = 0;
+	for (int width : { 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 15, 16, 17, 31, 33, 100, 639, 640, 641, 1919, 1920 }) {
+		for (int offset = 0; offset < 3; ++offset) { // Rgb8 offsets 1, 2 and odd output bytes: unaligned
+			std::vector<Rgb8> in(static_cast<size_t>(width) + 3);
+			for (Rgb8 &p : in)
+				p = { uint8_t(rng()), uint8_t(rng()), uint8_t(rng()) };
+			if (offset == 2) // the extremes too
+				for (size_t i = 0; i < in.size(); i++)
+					in[i] = i % 3 ? Rgb8{ 255, 255, 255 } : Rgb8{ 0, 255, 0 };
+			std::vector<uint8_t> outC(static_cast<size_t>(yuyvWidth(width)) * 2 + 4, 0x55);
+			std::vector<uint8_t> outSse(outC.size(), 0x55);
+			rgbToYuyvRow_C(in.data() + offset, outC.data() + offset, width);
+			rgbToYuyvRow_SSE2(in.data() + offset, outSse.data() + offset, width);
+			ASSERT_EQ(outC, outSse) << "width " << width << " offset " << offset;
+			compared += static_cast<size_t>(width);
+		}
+	}
+	EXPECT_GT(compared, 10000u);
+	// Whole frames on both paths.
+	RgbImage image(641, 7);
+	for (size_t i = 0; i < image.size(); i++)
+		image.data()[i] = { uint8_t(rng()), uint8_t(rng()), uint8_t(rng()) };
+	std::vector<uint8_t> c(yuyvFrameBytes(641, 7)), sse(c.size());
+	ASSERT_EQ(rgbToYuyv(image, c.data(), c.size(), KernelPath::C), 0);
+	ASSERT_EQ(rgbToYuyv(image, sse.data(), sse.size(), KernelPath::Sse2), 0);
+	EXPECT_EQ(c, sse);
 }

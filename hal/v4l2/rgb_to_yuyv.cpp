@@ -1,30 +1,14 @@
 #include "hal/v4l2/rgb_to_yuyv.hpp"
 
+#include "hal/v4l2/rgb_to_yuyv_coefficients.hpp"
+
 #include <cerrno>
 
 namespace depthkey {
 
 namespace {
 
-// BT.601 limited range, coefficients in Q16 (x 65536, rounded):
-//   Y  = 16  + 219/255 (0.299 R + 0.587 G + 0.114 B)
-//        219/255 = 0.858824: R 0.256788 -> 16829, G 0.504129 -> 33039, B 0.097906 -> 6416
-//   Cb = 128 + 224/255 (-0.168736 R - 0.331264 G + 0.5 B)
-//        224/255 = 0.878431: R -0.148223 -> -9714, G -0.290993 -> -19070, B 0.439216 -> 28784
-//   Cr = 128 + 224/255 (0.5 R - 0.418688 G - 0.081312 B)
-//        R 0.439216 -> 28784, G -0.367788 -> -24103, B -0.071427 -> -4681
-// Each row of chroma coefficients sums to 0 (grey has no colour) and the luma
-// row to 56284 = 219/255 x 65536, so white is 235 and black 16 exactly.
-// Chroma is computed from the pair's sum (R0 + R1, ...), i.e. scaled by 2^17:
-// |sum| <= 510 x 28784 + 128 x 2^17 < 2^25, plenty of room in int. The
-// offsets (16, 128) are added before the shift, so the value shifted is never
-// negative and >> rounds like floor; + half a step rounds to nearest.
-// Results stay in 16..235 / 16..240 for any 8-bit input: no clamp.
-constexpr int kYr = 16829, kYg = 33039, kYb = 6416;
-constexpr int kUr = -9714, kUg = -19070, kUb = 28784;
-constexpr int kVr = 28784, kVg = -24103, kVb = -4681;
-constexpr int kLumaBias = (16 << 16) + (1 << 15);
-constexpr int kChromaBias = (128 << 17) + (1 << 16);
+using namespace yuyv;
 
 inline uint8_t luma(const Rgb8 &p)
 {
@@ -33,7 +17,7 @@ inline uint8_t luma(const Rgb8 &p)
 
 } // namespace
 
-void rgbToYuyvRow(const Rgb8 *rgb, uint8_t *yuyv, int width)
+void rgbToYuyvRow_C(const Rgb8 *rgb, uint8_t *yuyv, int width)
 {
 	for (int x = 0; x < width; x += 2, yuyv += 4) {
 		const Rgb8 &a = rgb[x];
@@ -46,14 +30,15 @@ void rgbToYuyvRow(const Rgb8 *rgb, uint8_t *yuyv, int width)
 	}
 }
 
-int rgbToYuyv(const RgbImage &image, uint8_t *yuyv, size_t bytes)
+int rgbToYuyv(const RgbImage &image, uint8_t *yuyv, size_t bytes, KernelPath path)
 {
+	auto row = path == KernelPath::Sse2 ? rgbToYuyvRow_SSE2 : rgbToYuyvRow_C;
 	const int width = image.width(), height = image.height();
 	if (bytes < yuyvFrameBytes(width, height))
 		return -EMSGSIZE;
 	const size_t rowBytes = static_cast<size_t>(yuyvWidth(width)) * 2;
 	for (int y = 0; y < height; y++)
-		rgbToYuyvRow(image.row(y), yuyv + rowBytes * static_cast<size_t>(y), width);
+		row(image.row(y), yuyv + rowBytes * static_cast<size_t>(y), width);
 	return 0;
 }
 

@@ -92,7 +92,7 @@ int V4l2Output::write(const RgbImage &image)
 	}
 	if (!open_)
 		return -ENODEV;
-	rgbToYuyv(image, yuyv_.data(), yuyv_.size());
+	rgbToYuyv(image, yuyv_.data(), yuyv_.size(), kernelPath_);
 	ssize_t n = device_->write(yuyv_.data(), yuyv_.size());
 	if (n == -EAGAIN || (n >= 0 && static_cast<size_t>(n) < yuyv_.size())) {
 		status_.droppedFrames++;

@@ -14,6 +14,7 @@
 #include "algo/image.hpp"
 #include "hal/camera.hpp"
 #include "hal/event_loop.hpp"
+#include "hal/kernel_path_env.hpp"
 #include "hal/reconnect_backoff.hpp"
 #include "hal/v4l2/video_output_device.hpp"
 
@@ -60,6 +61,8 @@ public:
 	// (-EAGAIN or a short write).
 	const DeviceStatus &status() const { return status_; }
 	uint64_t framesWritten() const { return written_; }
+	// The conversion's rows: SSE2 unless DEPTHKEY_FORCE_C=1 (hal/kernel_path_env.hpp).
+	void setKernelPath(KernelPath path) { kernelPath_ = path; }
 
 private:
 	void tryOpen();
@@ -78,6 +81,7 @@ private:
 	int width_ = 0, height_ = 0; // of the frames; the device's width is yuyvWidth(width_)
 	std::vector<uint8_t> yuyv_;  // one frame, resized only when the size changes
 	uint64_t written_ = 0;
+	KernelPath kernelPath_ = kernelPathFromEnvironment();
 };
 
 } // namespace depthkey
