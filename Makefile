@@ -169,8 +169,8 @@ $(SR2EMU): $(call obj,$(SR2EMU_SRCS)) $(LIB)
 	@mkdir -p $(dir $@)
 	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -o $@
 
-# depthkey-calibrate --board lives in its own folder (one file per mode).
-CALIBRATE_BOARD_SRCS := $(wildcard tools/calibrate_board/*.cpp)
+# depthkey-calibrate --board and --live live in their own folders.
+CALIBRATE_BOARD_SRCS := $(wildcard tools/calibrate_board/*.cpp) $(wildcard tools/calibrate_live/*.cpp)
 $(BIN)/depthkey-calibrate: $(OBJ)/tools/calibrate.o $(call obj,$(CALIBRATE_BOARD_SRCS)) $(LIB)
 	@mkdir -p $(dir $@)
 	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -o $@
@@ -225,6 +225,8 @@ install: all $(CONFIG_MAN)
 	install -D -m 0644 packaging/depthkey.sysusers $(DESTDIR)$(SYSUSERSDIR)/depthkey.conf
 	install -D -m 0644 packaging/depthkey.metainfo.xml $(DESTDIR)$(PREFIX)/share/metainfo/depthkey.metainfo.xml
 	install -D -m 0644 packaging/depthkey.tmpfiles $(DESTDIR)$(TMPFILESDIR)/depthkey.conf
+	install -D -m 0644 packaging/depthkey-v4l2loopback.conf \
+	    $(DESTDIR)$(PREFIX)/share/doc/depthkey/examples/depthkey-v4l2loopback.conf
 	install -d $(DESTDIR)$(MANDIR)/man1 $(DESTDIR)$(MANDIR)/man5 $(DESTDIR)$(MANDIR)/man8
 	install -m 0644 $(CONFIG_MAN) $(DESTDIR)$(MANDIR)/man5/
 	for page in man/depthkeyd.8 $(TOOL_MANS); do \

@@ -287,6 +287,27 @@ void bindBoard(TomlSection &sec, BoardSettings &s)
 	sec.string("homography_file", s.homographyFile, checkOptionalAbsolutePath);
 }
 
+// The virtual webcam's node: "" or an absolute path under /dev (a
+// v4l2loopback node, e.g. /dev/video10), not a camera the daemon captures from.
+void bindV4l2Output(TomlSection &sec, const Settings &all, OutputSettings &s)
+{
+	bool ok = sec.string("v4l2_device", s.v4l2Device, [](std::string_view path) {
+		if (path.empty())
+			return std::string();
+		if (!checkAbsolutePath(path).empty() || path.substr(0, 5) != "/dev/" || path.size() == 5)
+			return std::string("must be \"\" (off) or a device path under /dev, e.g. \"/dev/video10\"");
+		return std::string();
+	});
+	if (!ok || s.v4l2Device.empty())
+		return;
+	sec.require(!(all.colour.backend == "v4l2" && all.colour.device == s.v4l2Device), "v4l2_device",
+		    "is colour.device, the camera the daemon captures from; use a v4l2loopback node");
+	sec.require(!(all.board.backend == "v4l2" && all.board.device == s.v4l2Device), "v4l2_device",
+		    "is board.device, the capture stick; use a v4l2loopback node");
+	sec.require(!(all.depth.backend == "v4l2" && all.depth.device == s.v4l2Device), "v4l2_device",
+		    "is depth.device, the depth camera; use a v4l2loopback node");
+}
+
 void bindOutput(TomlSection &sec, OutputSettings &s)
 {
 	bool ok = sec.string("composite_name", s.compositeName, checkShmName);
@@ -400,7 +421,10 @@ void bindSettings(TomlSection &root, Settings &s)
 	root.table("decision", [&](TomlSection &sec) { bindDecision(sec, s.decision); });
 	root.table("composite", [&](TomlSection &sec) { bindComposite(sec, s.composite); });
 	root.table("board", [&](TomlSection &sec) { bindBoard(sec, s.board); });
-	root.table("output", [&](TomlSection &sec) { bindOutput(sec, s.output); });
+	root.table("output", [&](TomlSection &sec) {
+		bindOutput(sec, s.output);
+		bindV4l2Output(sec, s, s.output);
+	});
 	root.table("preview", [&](TomlSection &sec) { bindPreview(sec, s.preview); });
 	root.table("leds", [&](TomlSection &sec) { bindLeds(sec, s.leds); });
 	root.table("sim", [&](TomlSection &sec) { bindSim(sec, s.sim); });

@@ -67,6 +67,7 @@ int Daemon::start(const Settings &settings)
 			outputs_.reopen(settings_, outputGeometry());
 		});
 	openOutput();
+	startWebcam();
 	updateRecording();
 	preview_.apply(settings_.preview);
 	startCameras();
@@ -106,6 +107,16 @@ int Daemon::openOutput()
 OutputGeometry Daemon::outputGeometry() const
 {
 	return { settings_.colour.width, settings_.colour.height, board_.outputWidth(), board_.outputHeight() };
+}
+
+void Daemon::startWebcam()
+{
+	webcam_.start(loop_, settings_.output.v4l2Device, [this](const DeviceStatus &s) {
+		if (s.state == DeviceState::Stopped)
+			logger().clearError("v4l2-output", "v4l2-output off", { { "DEVICE", "v4l2-output" } });
+		else
+			onDeviceStatus("v4l2-output", s);
+	});
 }
 
 void Daemon::startCameras()
@@ -221,6 +232,8 @@ void Daemon::publish(uint64_t captureNs, uint32_t flags)
 	if (framesStalled_)
 		return;
 	const bool board = board_.boardGeometry();
+	// Never waits; a full or lost device is its own status (hal/v4l2/v4l2_output.hpp).
+	webcam_.write(board ? board_.composite() : output_.composite);
 	if (outputs_.publish({ board ? board_.composite() : output_.composite, output_.lecturer,
 			       board ? &board_.lecturer() : nullptr, captureNs, flags }) < 0)
 		return;
@@ -290,6 +303,7 @@ StatusSnapshot Daemon::statusSnapshot() const
 	s.calibrationLoaded = calibrated_;
 	s.calibrationFile = settings_.mapping.calibrationFile;
 	s.board = board_.statusText();
+	s.webcam = { webcam_.path(), webcam_.status(), webcam_.framesWritten() };
 	return s;
 }
 
@@ -321,6 +335,7 @@ void Daemon::apply(const Settings &next, const PipelineFiles &files)
 		updateRecording();
 
 	outputs_.apply(previous, settings_, outputGeometry(), configPath_);
+	startWebcam(); // a new output.v4l2_device, or nothing
 	if (!(previous.colour == next.colour) || !(previous.depth == next.depth) ||
 	    !(previous.sim == next.sim)) {
 		stopCameras();

@@ -19,6 +19,7 @@
 #include "daemon/test_fault.hpp"
 #include "hal/camera.hpp"
 #include "hal/event_loop.hpp"
+#include "hal/v4l2/v4l2_output.hpp"
 #include "settings/settings.hpp"
 #include "wiring/pipeline_setup.hpp"
 
@@ -67,6 +68,7 @@ private:
 
 	int openOutput();
 	OutputGeometry outputGeometry() const;
+	void startWebcam(); // output.v4l2_device
 	void startCameras();
 	void stopCameras();
 	void apply(const Settings &settings, const PipelineFiles &files);
@@ -88,6 +90,7 @@ private:
 	std::unique_ptr<ColourCamera> colour_;
 	std::unique_ptr<DepthCamera> depth_;
 	FrameOutputs outputs_;  // the shared-memory streams; readers sampled every 250 ms
+	V4l2Output webcam_;     // the composite to a v4l2loopback node, when configured
 	StatusLights lights_;
 
 	EventSource sigterm_, sigint_, sighup_, sigusr1_, sigusr2_;

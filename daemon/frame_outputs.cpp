@@ -41,14 +41,18 @@ void FrameOutputs::apply(const Settings &previous, Settings &next, const OutputG
 {
 	const bool sizeChanged = previous.colour.width != next.colour.width ||
 				 previous.colour.height != next.colour.height;
-	const bool outputChanged = !(previous.output == next.output);
+	// The virtual webcam (output.v4l2_device) is no shared memory: changing
+	// it alone must not re-create the objects under their readers.
+	const bool outputChanged = !sameSharedMemory(previous.output, next.output);
 	if (!outputChanged && !sizeChanged)
 		return;
 	if (reopen(next, geometry) >= 0 || !outputChanged)
 		return;
 	logger().error("output settings not applied: " + sink_->describeError() + "; keeping the previous [output]",
 		       { { "DEVICE", "shm" }, { "CONFIG_FILE", configPath } });
+	const std::string webcam = next.output.v4l2Device;
 	next.output = previous.output;
+	next.output.v4l2Device = webcam;
 	open(next, geometry);
 }
 

@@ -1,6 +1,7 @@
 #include "daemon/status_reporter.hpp"
 
 #include "daemon/log.hpp"
+#include "hal/v4l2/v4l2_output.hpp"
 
 #include <cstdio>
 #include <cstdlib>
@@ -114,7 +115,13 @@ std::string StatusReporter::statusLine(const StatusSnapshot &s, const Rates &rat
 		      : s.calibrationLoaded ? "calibration for other frame sizes (identity mapping)"
 					    : "not calibrated (identity mapping)",
 		      s.board.c_str());
-	return text;
+	if (s.webcam.device.empty())
+		return text;
+	char webcam[256];
+	std::snprintf(webcam, sizeof(webcam), "; webcam %s %s %llu dropped", s.webcam.device.c_str(),
+		      v4l2OutputStateName(s.webcam.status.state),
+		      static_cast<unsigned long long>(s.webcam.status.droppedFrames));
+	return std::string(text) + webcam;
 }
 
 // What the preview page (/status.json, /metrics) shows: the figures of the
@@ -137,6 +144,14 @@ PreviewStatus StatusReporter::previewStatus(const StatusSnapshot &snapshot, cons
 	s.readersComposite = snapshot.readers.composite;
 	s.readersLecturer = snapshot.readers.lecturer;
 	s.readersBoardLecturer = snapshot.readers.boardLecturer;
+	s.webcam.device = snapshot.webcam.device;
+	s.webcam.state = v4l2OutputStateName(snapshot.webcam.status.state);
+	s.webcam.frames = snapshot.webcam.written;
+	s.webcam.dropped = snapshot.webcam.status.droppedFrames;
+	if (auto it = deviceCounters_.find("v4l2-output"); it != deviceCounters_.end()) {
+		s.webcam.faults = it->second.faults;
+		s.webcam.reconnects = it->second.reconnects;
+	}
 	return s;
 }
 

@@ -27,6 +27,13 @@ struct StatusCamera {
 	DeviceStatus status;
 };
 
+// The virtual webcam (output.v4l2_device) as the status line names it.
+struct StatusWebcam {
+	std::string device; // "" = off
+	DeviceStatus status;
+	uint64_t written = 0;
+};
+
 // What the daemon knows once a second that the status line says.
 struct StatusSnapshot {
 	StatusCamera colour, depth;
@@ -38,6 +45,7 @@ struct StatusSnapshot {
 	bool calibrationLoaded = false;     // a calibration, maybe for other frame sizes
 	std::string calibrationFile;
 	std::string board;                  // BoardOutput::statusText()
+	StatusWebcam webcam;
 };
 
 class StatusReporter

@@ -155,8 +155,21 @@ struct OutputSettings {
 	std::string boardLecturerName = "/depthkey.lecturer.board"; // the layer in board geometry
 	int slots = 3;                      // 2..8 ring slots per stream
 	std::string group = "";             // group owning the objects (mode 0660); "" = own group
+	// The virtual webcam: the composite as YUYV to this v4l2loopback node
+	// (hal/v4l2/v4l2_output.hpp); "" = off. Not part of the shared memory:
+	// see sameSharedMemory().
+	std::string v4l2Device = "";
 	bool operator==(const OutputSettings &) const = default;
 };
+
+// Whether two [output]s describe the same shared-memory streams (a change of
+// v4l2Device alone must not re-create them under their readers).
+inline bool sameSharedMemory(const OutputSettings &a, const OutputSettings &b)
+{
+	OutputSettings x = a;
+	x.v4l2Device = b.v4l2Device;
+	return x == b;
+}
 
 // The live preview page (hal/preview/preview_server.hpp).
 struct PreviewSettings {

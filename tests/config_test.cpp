@@ -138,6 +138,7 @@ lecturer_name = "/room12.lecturer"
 board_lecturer_name = "/room12.lecturer.board"
 slots = 5
 group = "video"
+v4l2_device = "/dev/video10"
 [leds]
 backend = "gpiod"
 chip = "/dev/gpiochip1"
@@ -193,7 +194,8 @@ loop = false
 	expected.composite = { 1.0 };
 	expected.board = { "v4l2", 0xff8000, "/srv/board.png", "/dev/video4", 1280, 720, 30, "mjpeg", 3000,
 			   1920, 1080, "/var/lib/depthkey/board.toml" };
-	expected.output = { "/room12.composite", "/room12.lecturer", "/room12.lecturer.board", 5, "video" };
+	expected.output = { "/room12.composite", "/room12.lecturer", "/room12.lecturer.board", 5, "video",
+			    "/dev/video10" };
 	expected.leds = { "gpiod", "/dev/gpiochip1", true, 10, 11, 12, 13, -1, 15, 7 };
 	expected.sim = { 9007199254740993u, 2400, 1.5, false, false, false, 0.3, 60.0, 0.0, 0.0, false, 80,
 			 false, 9000.0, 0.2, 1000.0, 0, 0.25, 0, false, 10.0, 0.0, 0.0 };
@@ -356,6 +358,29 @@ TEST(ConfigLoader, SharedMemoryNames)
 				"composite_name and lecturer_name must differ" }));
 	EXPECT_EQ(onlyError("[output]\ngroup = \"video staff\"\n").message,
 		  "\"video staff\" is not a group name");
+}
+
+TEST(ConfigLoader, V4l2OutputIsADeviceNodeThatNoCameraUses)
+{
+	EXPECT_EQ(parseConfig("[output]\nv4l2_device = \"/dev/video10\"\n", kFile).settings.output.v4l2Device,
+		  "/dev/video10");
+	EXPECT_EQ(Settings{}.output.v4l2Device, "") << "off by default";
+	EXPECT_EQ(onlyError("[output]\nv4l2_device = \"video10\"\n"),
+		  (ConfigError{ kFile, 2, 15, "output.v4l2_device",
+				"\"video10\" must be \"\" (off) or a device path under /dev, e.g. \"/dev/video10\"" }));
+	EXPECT_EQ(onlyError("[output]\n\nv4l2_device = \"/tmp/video10\"\n").line, 3);
+	EXPECT_EQ(onlyError("[colour]\nbackend = \"v4l2\"\ndevice = \"/dev/video10\"\n"
+			    "[output]\nv4l2_device = \"/dev/video10\"\n"),
+		  (ConfigError{ kFile, 5, 15, "output.v4l2_device",
+				"is colour.device, the camera the daemon captures from; use a v4l2loopback node" }));
+	// The sim colour camera has no device: /dev/video0 is free for the webcam.
+	EXPECT_TRUE(parseConfig("[output]\nv4l2_device = \"/dev/video0\"\n", kFile).ok());
+	// Only the webcam changed: the shared memory stays as it is.
+	OutputSettings a, b;
+	b.v4l2Device = "/dev/video10";
+	EXPECT_TRUE(sameSharedMemory(a, b));
+	b.slots = 4;
+	EXPECT_FALSE(sameSharedMemory(a, b));
 }
 
 TEST(ConfigLoader, AllErrorsAreReportedInFileOrder)

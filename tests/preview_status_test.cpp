@@ -86,3 +86,22 @@ TEST(PreviewStatus, MetricsAreInTheExpositionFormat)
 	}
 	EXPECT_GE(declared.size(), 15u);
 }
+
+TEST(PreviewStatus, TheVirtualWebcamIsReportedWhenConfigured)
+{
+	PreviewStatus s = sample();
+	EXPECT_EQ(previewStatusMetrics(s).find("depthkey_webcam"), std::string::npos) << "off: no webcam series";
+	EXPECT_EQ(nlohmann::json::parse(previewStatusJson(s))["webcam"]["state"], "off");
+	s.webcam = { "/dev/video10", "lost", 250, 7, 2, 1 };
+	nlohmann::json j = nlohmann::json::parse(previewStatusJson(s));
+	EXPECT_EQ(j["webcam"]["device"], "/dev/video10");
+	EXPECT_EQ(j["webcam"]["state"], "lost");
+	EXPECT_EQ(j["webcam"]["frames"], 250);
+	EXPECT_EQ(j["webcam"]["dropped"], 7);
+	EXPECT_EQ(j["webcam"]["faults"], 2);
+	EXPECT_EQ(j["webcam"]["reconnects"], 1);
+	const std::string text = previewStatusMetrics(s);
+	EXPECT_NE(text.find("depthkey_webcam_frames_total{device=\"/dev/video10\"} 250\n"), std::string::npos) << text;
+	EXPECT_NE(text.find("depthkey_webcam_dropped_frames_total{device=\"/dev/video10\"} 7\n"), std::string::npos);
+	EXPECT_NE(text.find("depthkey_webcam_up{device=\"/dev/video10\"} 0\n"), std::string::npos);
+}

@@ -1,7 +1,7 @@
 // depthkey-calibrate: fits the depth -> colour mapping from views of a
 // circle pattern seen by both cameras and writes the calibration file.
 //
-//   depthkey-calibrate (--sim | --sequence DIR) --output FILE [options]
+//   depthkey-calibrate (--sim | --sequence DIR | --live [--config FILE]) --output FILE [options]
 //
 // For each step of the plan (or each frame of a sequence) it says where the
 // pattern should be, finds the grid in both cameras, and says whether the
@@ -32,6 +32,7 @@
 #include "hal/recording/sequence_writer.hpp"
 #include "hal/sim/calibration_pattern.hpp"
 #include "tools/calibrate_board/board_command.hpp"
+#include "tools/calibrate_live/live_view_source.hpp"
 
 using namespace depthkey;
 
@@ -53,12 +54,16 @@ struct Options {
 	std::string record;
 	double maxRmsPx = 2.0;
 	bool interactive = false;
+	bool live = false;            // the configured cameras (tools/calibrate_live/)
+	std::string config;           // --config: the daemon's config to take them from
+	double viewTimeoutS = 60;
 };
 
 void usage(FILE *out)
 {
 	std::fprintf(out,
-		     "usage: depthkey-calibrate (--sim [--seed N] [--no-depth-noise] | --sequence DIR [--step N])\n"
+		     "usage: depthkey-calibrate (--sim [--seed N] [--no-depth-noise] | --sequence DIR [--step N] |\n"
+		     "                           --live [--config FILE] [--view-timeout S])\n"
 		     "                          --output FILE [--model paper|parallax]\n"
 		     "                          [--hold-out-every K | --hold-out-depth METRES]\n"
 		     "                          [--depths M,M,...] [--grid COLSxROWS] [--max-rms PX]\n"
@@ -99,6 +104,8 @@ int parseOptions(int argc, char **argv, Options &o)
 			o.depthNoise = false;
 		else if (a == "--interactive")
 			o.interactive = true;
+		else if (a == "--live")
+			o.live = true;
 		else if (a == "-h" || a == "--help") {
 			usage(stdout);
 			std::exit(0);
@@ -108,6 +115,10 @@ int parseOptions(int argc, char **argv, Options &o)
 			o.seed = std::strtoull(v, nullptr, 10);
 		else if (a == "--sequence")
 			o.sequence = v;
+		else if (a == "--config")
+			o.config = v;
+		else if (a == "--view-timeout")
+			ok = (o.viewTimeoutS = std::atof(v)) > 0;
 		else if (a == "--step")
 			ok = (o.step = std::atoi(v)) > 0;
 		else if (a == "--output")
@@ -142,8 +153,10 @@ int parseOptions(int argc, char **argv, Options &o)
 			return 2;
 		}
 	}
-	if (o.sim == !o.sequence.empty() || o.output.empty()) {
-		std::fprintf(stderr, "depthkey-calibrate: give one of --sim, --sequence DIR, and --output FILE\n");
+	if (int(o.sim) + int(!o.sequence.empty()) + int(o.live) != 1 || o.output.empty() ||
+	    (!o.config.empty() && !o.live)) {
+		std::fprintf(stderr, "depthkey-calibrate: give one of --sim, --sequence DIR, --live [--config FILE], "
+				     "and --output FILE\n");
 		usage(stderr);
 		return 2;
 	}
@@ -221,6 +234,8 @@ public:
 	int open(const Options &o, std::string &error)
 	{
 		options_ = &o;
+		if (o.live)
+			return live_.open({ o.config, o.grid, o.depths, o.viewTimeoutS }, error);
 		if (!o.sim)
 			return openSequence(o.sequence, error);
 		rig_.configure(640, 480, true, 60);
@@ -233,10 +248,20 @@ public:
 		plan_ = calibrationPlan(o.depths);
 		return 0;
 	}
-	size_t views() const { return options_->sim ? plan_.size() : sequence_.colour().size() / options_->step; }
-	const PatternStep *step(size_t i) const { return options_->sim ? &plan_[i] : nullptr; }
+	size_t views() const
+	{
+		return options_->live  ? live_.views()
+		       : options_->sim ? plan_.size()
+				       : sequence_.colour().size() / options_->step;
+	}
+	const PatternStep *step(size_t i) const
+	{
+		return options_->live ? &live_.step(i) : options_->sim ? &plan_[i] : nullptr;
+	}
 	int read(size_t i, ColourFrame &colour, DepthFrame &depth, std::string &error)
 	{
+		if (options_->live)
+			return live_.read(i, colour, depth, error);
 		if (!options_->sim)
 			return readSequence(i * options_->step, colour, depth, error);
 		renderer_.render(renderer_.poseFor(plan_[i], static_cast<int>(i)), i, colour, depth);
@@ -247,11 +272,15 @@ public:
 	}
 	std::string colourName() const
 	{
+		if (options_->live)
+			return live_.colourName();
 		return options_->sim ? "sim colour 640x480 seed " + std::to_string(options_->seed)
 				     : "sequence " + options_->sequence + " rgb";
 	}
 	std::string tofName() const
 	{
+		if (options_->live)
+			return live_.tofName();
 		return options_->sim ? "sim tof 160x124 seed " + std::to_string(options_->seed)
 				     : "sequence " + options_->sequence + " depth+amplitude";
 	}
@@ -289,6 +318,7 @@ private:
 	CameraRig rig_;
 	sim::PatternRenderer renderer_;
 	std::vector<PatternStep> plan_;
+	LiveViewSource live_;
 };
 
 } // namespace
@@ -324,6 +354,7 @@ int main(int argc, char **argv)
 		if (const PatternStep *step = source.step(i)) {
 			std::printf("view %2zu/%zu: hold the pattern %.1f m from the camera, %s of the image\n",
 				    i + 1, source.views(), step->depthM, step->where().c_str());
+			std::fflush(stdout); // live: the technician reads it now
 			if (o.interactive) {
 				std::printf("        press Enter when it is there ");
 				std::fflush(stdout);
@@ -351,10 +382,13 @@ int main(int argc, char **argv)
 			continue;
 		}
 		// The plan's depth groups the views; a sequence has only the
-		// measured depth, grouped to 10 cm.
+		// measured depth, grouped to 10 cm, and so has a live view held
+		// elsewhere than the plan asked.
 		double measured = view.depthM;
 		const PatternStep *step = source.step(i);
-		view.depthM = step ? step->depthM : std::round(measured * 10.0) / 10.0;
+		view.depthM = step && (!o.live || std::abs(measured - step->depthM) < 0.15)
+				      ? step->depthM
+				      : std::round(measured * 10.0) / 10.0;
 		std::printf("        accepted: %d circles, pattern at %.2f m\n", o.grid.count(), measured);
 		views.push_back(std::move(view));
 		sizes.colourWidth = colour.rgb.width();

@@ -58,6 +58,10 @@ async function refresh() {
     body.append(row("readers", "composite " + s.readers.composite + ", lecturer " + s.readers.lecturer +
                     ", board-geometry lecturer " + s.readers.board_lecturer,
                     s.readers.composite + s.readers.lecturer + s.readers.board_lecturer > 0));
+    if (s.webcam.device !== "")
+      body.append(row("webcam (" + s.webcam.device + ")", s.webcam.state + ", " + s.webcam.frames + " frames, " +
+                      s.webcam.dropped + " dropped, " + s.webcam.faults + " faults, " +
+                      s.webcam.reconnects + " reconnects", s.webcam.state === "writing"));
     body.append(row("preview", s.preview.clients + " streams, " + s.preview.encode_ms.toFixed(1) + " ms per JPEG"));
     body.append(row("uptime", Math.round(s.uptime_s) + " s"));
   } catch (e) {

@@ -26,6 +26,13 @@ std::string previewStatusJson(const PreviewStatus &s)
 		{ "depth_latency_ms", s.depthLatencyMs },
 		{ "readers", { { "composite", s.readersComposite }, { "lecturer", s.readersLecturer },
 				  { "board_lecturer", s.readersBoardLecturer } } },
+		{ "webcam",
+		  { { "device", s.webcam.device },
+		    { "state", s.webcam.state },
+		    { "frames", s.webcam.frames },
+		    { "dropped", s.webcam.dropped },
+		    { "faults", s.webcam.faults },
+		    { "reconnects", s.webcam.reconnects } } },
 		{ "preview",
 		  { { "clients", s.previewClients },
 		    { "encoded", s.previewEncoded },
@@ -112,6 +119,18 @@ std::string previewStatusMetrics(const PreviewStatus &s)
 	e.sample("depthkey_readers", "stream=\"composite\"", s.readersComposite);
 	e.sample("depthkey_readers", "stream=\"lecturer\"", s.readersLecturer);
 	e.sample("depthkey_readers", "stream=\"lecturer.board\"", s.readersBoardLecturer);
+	if (!s.webcam.device.empty()) {
+		const std::string label = "device=\"" + labelValue(s.webcam.device) + "\"";
+		e.family("depthkey_webcam_frames_total", "counter", "Frames written to the virtual webcam.");
+		e.sample("depthkey_webcam_frames_total", label, static_cast<double>(s.webcam.frames));
+		e.family("depthkey_webcam_dropped_frames_total", "counter",
+			 "Frames the virtual webcam's device could not take.");
+		e.sample("depthkey_webcam_dropped_frames_total", label, static_cast<double>(s.webcam.dropped));
+		e.family("depthkey_webcam_faults_total", "counter", "Times the virtual webcam's device was lost.");
+		e.sample("depthkey_webcam_faults_total", label, static_cast<double>(s.webcam.faults));
+		e.family("depthkey_webcam_up", "gauge", "1 while frames are written to the virtual webcam.");
+		e.sample("depthkey_webcam_up", label, s.webcam.state == "writing" ? 1 : 0);
+	}
 	e.family("depthkey_preview_clients", "gauge", "Preview streams being sent.");
 	e.sample("depthkey_preview_clients", "", s.previewClients);
 	e.family("depthkey_preview_jpegs_total", "counter", "Preview JPEGs encoded.");

@@ -20,6 +20,16 @@ struct PreviewDevice {
 	uint64_t reconnects = 0; // times it streamed again after being lost
 };
 
+// The virtual webcam (output.v4l2_device).
+struct PreviewWebcam {
+	std::string device;      // "" = off
+	std::string state = "off"; // "writing", "lost", "off"
+	uint64_t frames = 0;     // written
+	uint64_t dropped = 0;    // the device took nothing (full): not written
+	uint64_t faults = 0;     // times it was lost
+	uint64_t reconnects = 0; // times it was written again after being lost
+};
+
 struct PreviewStatus {
 	double uptimeS = 0;
 	std::vector<PreviewDevice> devices;
@@ -30,6 +40,7 @@ struct PreviewStatus {
 	std::string calibrationFile;
 	double depthLatencyMs = 0;       // arrival after the depth frame's capture time
 	int readersComposite = 0, readersLecturer = 0, readersBoardLecturer = 0;
+	PreviewWebcam webcam;
 	// Filled in by the server when it formats.
 	int previewClients = 0;
 	uint64_t previewEncoded = 0, previewSkipped = 0;

@@ -51,6 +51,19 @@ uint16_t clampU16(double v)
 
 } // namespace
 
+CalibrationTarget calibrationTarget(const PatternPose &pose, const PatternBoard &board)
+{
+	CalibrationTarget target;
+	target.rotation = boardRotation(pose);
+	target.centre = pose.centre;
+	target.columns = board.grid.cols;
+	target.rows = board.grid.rows;
+	target.spacingM = board.spacingM;
+	target.diameterM = board.diameterM;
+	target.marginM = board.marginM;
+	return target;
+}
+
 void PatternRenderer::configure(const CameraRig &rig, const PatternBoard &board,
 				const PatternConditions &conditions)
 {

@@ -14,6 +14,7 @@
 #include "algo/circle_grid_detector.hpp"
 #include "algo/frames.hpp"
 #include "hal/sim/camera_rig.hpp"
+#include "hal/sim/scene_geometry.hpp"
 
 namespace depthkey::sim {
 
@@ -39,6 +40,10 @@ struct PatternConditions {
 	double colourNoise = 3.0;       // sigma, 8-bit levels
 	uint64_t seed = 1;
 };
+
+// The board at pose as the lecture simulator's scene object
+// (LectureSimulator::setCalibrationTarget), the same geometry render() draws.
+CalibrationTarget calibrationTarget(const PatternPose &pose, const PatternBoard &board);
 
 class PatternRenderer
 {

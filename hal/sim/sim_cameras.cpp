@@ -9,6 +9,8 @@ void SimColourCamera::prepare()
 
 void SimColourCamera::render(uint64_t nowUs, ColourFrame &frame)
 {
+	if (technician_)
+		simulator_.setCalibrationTarget(technician_->targetAt(nowUs / 1e6));
 	simulator_.renderColour(nowUs / 1e6, frame);
 }
 
@@ -24,6 +26,8 @@ void SimDepthCamera::render(uint64_t nowUs, DepthFrame &frame)
 	// The frame shows the scene latency (and jitter) before it arrives.
 	double shown = nowUs / 1e6 - sim_.depthLatencyMs / 1000.0 -
 		       sim_.depthJitterMs / 1000.0 * timing_.jitterUnit(2, frame.sequence);
+	if (technician_)
+		simulator_.setCalibrationTarget(technician_->targetAt(shown));
 	simulator_.renderDepth(shown, frame);
 }
 

@@ -7,8 +7,11 @@
 
 #include "hal/camera.hpp"
 #include "hal/sim/lecture_simulator.hpp"
+#include "hal/sim/sim_technician.hpp"
 #include "hal/sim/sim_timing.hpp"
 #include "settings/settings.hpp"
+
+#include <memory>
 
 namespace depthkey {
 
@@ -71,6 +74,9 @@ public:
 	SimColourCamera(const ColourCameraSettings &settings, const SimSettings &sim)
 		: settings_(settings), sim_(sim) {}
 	std::string name() const override { return "sim-colour"; }
+	// A calibration session (depthkey-calibrate --live): the technician's
+	// pattern instead of the lecture. Shared with the depth camera.
+	void setTechnician(std::shared_ptr<const sim::SimTechnician> technician) { technician_ = std::move(technician); }
 
 private:
 	int fps() const override { return settings_.fps; }
@@ -80,6 +86,7 @@ private:
 	ColourCameraSettings settings_;
 	SimSettings sim_;
 	LectureSimulator simulator_;
+	std::shared_ptr<const sim::SimTechnician> technician_;
 };
 
 class SimDepthCamera : public PeriodicSimCamera<DepthFrame>
@@ -88,6 +95,7 @@ public:
 	SimDepthCamera(const DepthCameraSettings &settings, const SimSettings &sim)
 		: settings_(settings), sim_(sim) {}
 	std::string name() const override { return "sim-depth"; }
+	void setTechnician(std::shared_ptr<const sim::SimTechnician> technician) { technician_ = std::move(technician); }
 
 	static constexpr int kWidth = LectureSimulator::kTofWidth;  // the SR-2's sensor
 	static constexpr int kHeight = LectureSimulator::kTofHeight;
@@ -101,6 +109,7 @@ private:
 	SimSettings sim_;
 	LectureSimulator simulator_;
 	sim::SimTiming timing_;
+	std::shared_ptr<const sim::SimTechnician> technician_;
 };
 
 } // namespace depthkey

@@ -28,13 +28,18 @@ for tool in depthkeyd depthkey-calibrate depthkey-sr2-emulator depthkey-hil-sr2-
 done
 "$tree/tests/vm/prepare.sh" >/dev/null || fail_setup "cannot prepare the VM kernel (tests/vm/prepare.sh)"
 "$here/kmod/build.sh" >/dev/null || fail_setup "cannot build gpio-sim/dummy_hcd (tests/hil/kmod/build.sh)"
+# v4l2loopback (the virtual webcam's device) from Debian's DKMS source: when
+# it cannot be built, the webcam section reports skipped with the reason.
+v4l2loopback_error=$("$here/kmod/v4l2loopback.sh" 2>&1 >/dev/null) && v4l2loopback_error=""
 . "$tree/tests/vm/lib.sh"
-vm_host_packages v4l-utils gpiod usbutils || fail_setup "cannot install the guest's tools"
+vm_host_packages v4l-utils gpiod usbutils ffmpeg || fail_setup "cannot install the guest's tools"
 udev=$("$tree/tests/vm/layer.sh" udev udev libsystemd-shared) || fail_setup "cannot unpack udev"
 prepared=$(date +%s)
 
 rm -rf "$results"
 mkdir -p "$results"
+[ -z "$v4l2loopback_error" ] ||
+	echo "v4l2loopback.ko could not be built: $(echo "$v4l2loopback_error" | tail -n1)" >"$results/v4l2loopback-missing"
 # The daemon in the VM runs calibrated, as a set-up box would: the mapping of
 # the simulator's camera rig, which the emulated devices render.
 "$bin/depthkey-calibrate" --sim --output "$results/calibration.toml" >"$results/calibrate.log" 2>&1 ||

@@ -230,3 +230,27 @@ TEST_F(DaemonReload, ParsingALargeConfigDoesNotStallFrames)
 #endif
 	EXPECT_LT(worstGapMs.load(), kMaxGapMs) << "frames stalled during a reload";
 }
+
+// output.v4l2_device on reload: a node that is no v4l2loopback output
+// (/dev/null) is reported lost once (not once per retry or frame), the status
+// line says so, the shared memory is not re-created under its readers, and
+// "" turns the webcam off again.
+TEST_F(DaemonReload, V4l2OutputIsAppliedWithoutReopeningTheSharedMemory)
+{
+	startDaemon();
+	dk_shm_reader reader{};
+	ASSERT_EQ(dk_shm_open((prefix_ + ".composite").c_str(), &reader), 0);
+	daemon_.writeFile("depthkey.toml", configText(prefix_, "v4l2_device = \"/dev/null\"\n"));
+	reloadAndExpectFrames("output.v4l2_device = /dev/null");
+	std::this_thread::sleep_for(1500ms); // several retries (0.1, 0.2, 0.4, 0.5 s)
+	EXPECT_EQ(count(daemon_.log(), "v4l2-output lost: /dev/null: not a V4L2 device"), 1u) << daemon_.log();
+	EXPECT_TRUE(daemon_.waitForNotify("webcam /dev/null lost", 3s)) << daemon_.log();
+	uint64_t frame = 0;
+	EXPECT_EQ(dk_shm_latest(&reader, &frame), 0) << "the composite was re-created under its reader";
+
+	daemon_.writeFile("depthkey.toml", configText(prefix_));
+	reloadAndExpectFrames("output.v4l2_device = \"\"");
+	EXPECT_NE(daemon_.log().find("v4l2-output off"), std::string::npos) << daemon_.log();
+	EXPECT_EQ(dk_shm_latest(&reader, &frame), 0);
+	dk_shm_close(&reader);
+}

@@ -190,6 +190,62 @@ kill -KILL "$SHMCAT_PID"
 wait "$SHMCAT_PID" 2>/dev/null
 check_led led-reader-off-after-reader-killed $LED_READER off
 
+# --- virtual webcam ---------------------------------------------------------------
+# ffmpeg reads the v4l2loopback device as a camera; its frame must be the
+# shared-memory composite: both scaled to 64x36 (the composite is the board
+# geometry's 640x360), mean absolute difference per channel under 12 levels
+# (they are taken a few frames apart, and the lecturer moves; a wrong
+# conversion, e.g. U and V swapped or luma off by its range, gives 20-60 on
+# this picture). The same measure against the composite mirrored is printed
+# as what an unrelated picture scores. The webcam is switched on by a reload
+# (SIGHUP) for this section and off again after it, so that the fault
+# sections' recovery times are measured as before, without the conversion
+# (slow under TCG) on the loop.
+webcam_mad() { # FILE FILE: mean absolute difference of two raw RGB24 files
+	# (temporary files: the VM has no /dev/fd for process substitution)
+	od -An -v -tu1 -w1 "$1" >/run/webcam-mad.a && od -An -v -tu1 -w1 "$2" >/run/webcam-mad.b &&
+		paste /run/webcam-mad.a /run/webcam-mad.b |
+		awk '{ d = $1 - $2; s += d < 0 ? -d : d; n++ } END { if (n != 64 * 36 * 3) exit 1; printf "%.2f", s / n }'
+}
+if hil_section webcam-output; then
+	if [ -n "${WEBCAM_MISSING:-}" ]; then
+		hil_skip webcam-output "$WEBCAM_MISSING"
+	else
+		cp "$DK_CONFIG" "$DK_CONFIG.before-webcam"
+		printf '\n[output]\nv4l2_device = "/dev/video10"\n' >>"$DK_CONFIG"
+		kill -HUP "$DK_PID"
+		hil_check webcam-status-writing hil_wait 20 grep -q 'webcam /dev/video10 writing' "$DK_LOG"
+		scale="scale=64:36:flags=area"
+		if ! out=$(timeout 60 ffmpeg -nostdin -loglevel error -f v4l2 -i /dev/video10 -frames:v 3 \
+			-vf "$scale" -f rawvideo -pix_fmt rgb24 -y /run/webcam3.rgb 2>&1 9<&-) ||
+			! tail -c $((64 * 36 * 3)) /run/webcam3.rgb >/run/webcam.rgb; then
+			hil_fail webcam-ffmpeg-reads "$(echo "$out" | tail -n2 | tr '\n' ' ')"
+		elif ! out=$("$HIL_BIN/depthkey-shmcat" --frames 1 --timeout 10 9<&- 2>&1 >/run/composite.y4m) ||
+			! ffmpeg -nostdin -loglevel error -y -i /run/composite.y4m -vf "$scale" -f rawvideo -pix_fmt rgb24 \
+				/run/composite.rgb ||
+			! ffmpeg -nostdin -loglevel error -y -i /run/composite.y4m -vf "hflip,$scale" -f rawvideo \
+				-pix_fmt rgb24 /run/composite-mirrored.rgb; then
+			hil_fail webcam-ffmpeg-reads "the shared-memory composite could not be read: $out"
+		else
+			hil_pass webcam-ffmpeg-reads "ffmpeg -f v4l2 -i /dev/video10: $(stat -c %s /run/webcam.rgb) bytes at 64x36"
+			mad=$(webcam_mad /run/webcam.rgb /run/composite.rgb)
+			unrelated=$(webcam_mad /run/webcam.rgb /run/composite-mirrored.rgb)
+			if [[ ! $mad =~ ^[0-9]+\.[0-9]+$ ]]; then
+				hil_fail webcam-matches-composite "no difference measured (${mad:-empty}): $(stat -c %s /run/webcam.rgb /run/composite.rgb | tr '\n' ' ')"
+			elif awk -v m="$mad" 'BEGIN { exit !(m + 0 < 12) }'; then
+				hil_pass webcam-matches-composite "mean abs difference $mad levels (< 12; mirrored composite $unrelated)"
+			else
+				hil_fail webcam-matches-composite "mean abs difference $mad levels, limit 12 (mirrored composite $unrelated)"
+			fi
+		fi
+		mv "$DK_CONFIG.before-webcam" "$DK_CONFIG"
+		kill -HUP "$DK_PID"
+		# The status line, printed every few seconds, no longer names it.
+		hil_check webcam-off-after-reload hil_wait 30 sh -c \
+			"grep 'fps; readers' '$DK_LOG' | tail -n 1 | grep -v -q 'webcam /dev/video10'"
+	fi
+fi
+
 # --- SR-2 faults ----------------------------------------------------------------
 sr2() { sr2_cmd "$@"; }
 if hil_section sr2; then

@@ -24,6 +24,17 @@ hil_check gpio-sim-module modprobe gpio-sim
 # capture stick (board.backend = "v4l2").
 hil_check vivid-module modprobe vivid n_devs=2 node_types=0x1,0x1 input_types=0x0,0x0
 hil_check usb-gadget-modules modprobe -a libcomposite usb_f_fs dummy_hcd
+# The virtual webcam's device, as README "Virtual webcam" sets it up on a box
+# (built from Debian's v4l2loopback-dkms by tests/hil/kmod/v4l2loopback.sh).
+WEBCAM_MISSING=""
+if [ -f "$VM_RESULTS/v4l2loopback-missing" ]; then
+	WEBCAM_MISSING=$(cat "$VM_RESULTS/v4l2loopback-missing")
+elif ! out=$(modprobe v4l2loopback video_nr=10 card_label=depthkey exclusive_caps=1 2>&1); then
+	WEBCAM_MISSING="modprobe v4l2loopback failed: $out"
+elif ! hil_wait 10 test -c /dev/video10; then
+	WEBCAM_MISSING="v4l2loopback loaded but /dev/video10 did not appear"
+fi
+[ -z "$WEBCAM_MISSING" ] && hil_pass v4l2loopback-module "/dev/video10 $(cat /sys/class/video4linux/video10/name)"
 
 led_chip=$(gpio_sim_create)
 hil_check gpio-sim-chip test -c "/dev/$led_chip"

@@ -1,0 +1,181 @@
+#include "tools/calibrate_live/live_view_source.hpp"
+
+#include "config/config_loader.hpp"
+#include "daemon/device_factory.hpp"
+#include "hal/sim/lecture_simulator.hpp"
+#include "hal/sim/sim_cameras.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <systemd/sd-event.h>
+
+namespace depthkey {
+
+namespace {
+
+constexpr double kStillS = 0.5;
+constexpr double kColourStillPx = 1.0;
+constexpr double kTofStillPx = 0.5;
+
+double largestMove(const std::vector<ImagePoint> &a, const std::vector<ImagePoint> &b)
+{
+	double worst = 0;
+	for (size_t i = 0; i < a.size() && i < b.size(); i++)
+		worst = std::max(worst, std::hypot(a[i].x - b[i].x, a[i].y - b[i].y));
+	return worst;
+}
+
+} // namespace
+
+void LiveViewSource::Stillness::update(bool found, uint64_t timeNs, double limitPx)
+{
+	if (!found) {
+		seen = false;
+		return;
+	}
+	if (!seen || reference.size() != centres.size() || largestMove(reference, centres) > limitPx) {
+		reference = centres;
+		sinceNs = timeNs;
+	}
+	seen = true;
+	lastNs = timeNs;
+}
+
+int LiveViewSource::open(const LiveOptions &options, std::string &error)
+{
+	options_ = options;
+	const std::string path = options.configPath.empty() ? findDefaultConfig() : options.configPath;
+	ConfigResult config = loadConfig(path);
+	if (!config.ok()) {
+		error = config.errors.front().toString();
+		return -EINVAL;
+	}
+	settings_ = config.settings;
+	plan_ = calibrationPlan(options.depths);
+	int ret = loop_.open();
+	if (ret < 0) {
+		error = "cannot create the event loop";
+		return ret;
+	}
+
+	// The cameras as depthkeyd makes them; the simulated ones with a
+	// technician who holds the pattern where the plan says.
+	if (settings_.colour.backend == "sim" || settings_.depth.backend == "sim") {
+		LectureSimulator scene;
+		scene.configure(settings_.sim, settings_.colour.width, settings_.colour.height);
+		sim::PatternBoard board;
+		board.grid = options.grid;
+		technician_ = std::make_shared<sim::SimTechnician>();
+		technician_->configure(scene.rig(), board);
+	}
+	if (settings_.colour.backend == "sim") {
+		auto camera = std::make_unique<SimColourCamera>(settings_.colour, settings_.sim);
+		camera->setTechnician(technician_);
+		colour_ = std::move(camera);
+	} else {
+		colour_ = createColourCamera(settings_);
+	}
+	if (settings_.depth.backend == "sim") {
+		auto camera = std::make_unique<SimDepthCamera>(settings_.depth, settings_.sim);
+		camera->setTechnician(technician_);
+		depth_ = std::move(camera);
+	} else {
+		depth_ = createDepthCamera(settings_);
+	}
+	colourName_ = colour_->name() + (settings_.colour.backend == "sim" ? " seed " + std::to_string(settings_.sim.seed)
+									 : " " + settings_.colour.device) +
+		      " " + std::to_string(settings_.colour.width) + "x" + std::to_string(settings_.colour.height);
+	tofName_ = depth_->name() + (settings_.depth.backend == "sim" ? " seed " + std::to_string(settings_.sim.seed)
+								     : settings_.depth.backend == "v4l2" ? " " + settings_.depth.device
+													     : "");
+
+	auto onColour = [this](const ColourFrame &frame) {
+		lastColour_ = frame; // same size each time: no allocation after the first
+		newColour_ = haveColour_ = true;
+	};
+	auto onDepth = [this](const DepthFrame &frame) {
+		lastDepth_ = frame;
+		newDepth_ = haveDepth_ = true;
+	};
+	std::string colourName = colour_->name(), depthName = depth_->name();
+	if ((ret = colour_->start(loop_, onColour, [this, colourName](const DeviceStatus &s) {
+		     onStatus("colour", colourName, s);
+	     })) < 0 ||
+	    (ret = depth_->start(loop_, onDepth, [this, depthName](const DeviceStatus &s) {
+		     onStatus("depth", depthName, s);
+	     })) < 0) {
+		error = "cannot start the cameras: check [colour] and [depth] in " + path;
+		return ret;
+	}
+	return 0;
+}
+
+void LiveViewSource::close()
+{
+	if (colour_)
+		colour_->stop();
+	if (depth_)
+		depth_->stop();
+	colour_.reset();
+	depth_.reset();
+}
+
+void LiveViewSource::onStatus(const char *role, const std::string &name, const DeviceStatus &status)
+{
+	if (status.state == DeviceState::Lost)
+		std::printf("        %s camera %s lost: %s (is depthkeyd running? it holds the cameras: "
+			    "systemctl stop depthkeyd)\n",
+			    role, name.c_str(), status.detail.c_str());
+	else if (status.state == DeviceState::Streaming)
+		std::printf("        %s camera %s streaming\n", role, name.c_str());
+	std::fflush(stdout);
+}
+
+int LiveViewSource::read(size_t i, ColourFrame &colour, DepthFrame &depth, std::string &error)
+{
+	const uint64_t startUs = loop_.nowUs();
+	if (technician_)
+		technician_->holdAt(plan_[i], static_cast<int>(i), startUs / 1e6);
+	const uint64_t deadlineUs = startUs + static_cast<uint64_t>(options_.viewTimeoutS * 1e6);
+	Stillness colourGrid, tofGrid;
+	while (loop_.nowUs() < deadlineUs) {
+		int ret = sd_event_run(loop_.handle(), 100'000);
+		if (ret < 0) {
+			error = "event loop failed";
+			return ret;
+		}
+		// A frame that came while the technician was told to move on is
+		// not this view's: only frames after the instruction count.
+		if (newColour_) {
+			newColour_ = false;
+			bool found = lastColour_.timestampNs >= startUs * 1000u &&
+				     findColourGrid(lastColour_.rgb, options_.grid, colourGrid.centres) == 0;
+			colourGrid.update(found, lastColour_.timestampNs, kColourStillPx);
+		}
+		if (newDepth_) {
+			newDepth_ = false;
+			bool found = lastDepth_.timestampNs >= startUs * 1000u &&
+				     findAmplitudeGrid(lastDepth_.amplitude, options_.grid, tofGrid.centres) == 0;
+			tofGrid.update(found, lastDepth_.timestampNs, kTofStillPx); // ToF pixels
+		}
+		if (colourGrid.stillS() >= kStillS && tofGrid.stillS() >= kStillS) {
+			colour = lastColour_;
+			depth = lastDepth_;
+			return 0;
+		}
+	}
+	if (!haveColour_ || !haveDepth_) {
+		error = std::string("no frame from the ") + (!haveColour_ ? "colour" : "depth") + " camera in " +
+			std::to_string(static_cast<int>(options_.viewTimeoutS)) + " s";
+		return -ENODATA;
+	}
+	std::printf("        not still in both cameras within %.0f s (colour %s, depth %s)\n", options_.viewTimeoutS,
+		    colourGrid.seen ? "sees the grid" : "does not see the grid",
+		    tofGrid.seen ? "sees the grid" : "does not see the grid");
+	colour = lastColour_;
+	depth = lastDepth_;
+	return 0;
+}
+
+} // namespace depthkey
