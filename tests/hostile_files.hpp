@@ -5,6 +5,8 @@
 #include <atomic>
 #include <cerrno>
 #include <chrono>
+#include <csignal>
+#include <pthread.h>
 #include <cstdlib>
 #include <fcntl.h>
 #include <filesystem>
@@ -62,6 +64,15 @@ private:
 	void feed()
 	{
 		using namespace std::chrono_literals;
+		// The reader under test opens the FIFO and closes it at once
+		// (refused): a write in between gets EPIPE and a SIGPIPE, which
+		// would kill the whole test binary (seen: 1 run in 6). Blocked in
+		// this thread only, the signal stays pending here and write()
+		// just fails.
+		sigset_t pipe;
+		sigemptyset(&pipe);
+		sigaddset(&pipe, SIGPIPE);
+		pthread_sigmask(SIG_BLOCK, &pipe, nullptr);
 		while (!stop_) {
 			// Non-blocking: fails with ENXIO while no reader has it open.
 			int fd = ::open(path_.c_str(), O_WRONLY | O_NONBLOCK | O_CLOEXEC);
