@@ -58,23 +58,30 @@ int SeedMapper::colourPixelsPerTofPixel() const
 	return std::max(1, std::max<int>(centre.w, centre.h) - 1); // without the one pixel of overlap
 }
 
+void MappedSeeds::clear(int width, int height)
+{
+	if (trimap.width() != width || trimap.height() != height || evidence.width() != width ||
+	    evidence.height() != height) {
+		trimap.resize(width, height);
+		std::memset(trimap.data(), kTrimapBoard, trimap.size());
+		evidence.resize(width, height);
+		std::memset(evidence.data(), 0, evidence.size());
+	} else {
+		for (int y = roi.y0; y < roi.y1; ++y) {
+			std::memset(trimap.row(y) + roi.x0, kTrimapBoard, size_t(roi.x1 - roi.x0));
+			std::memset(evidence.row(y) + roi.x0, 0, size_t(roi.x1 - roi.x0));
+		}
+	}
+	roi = {};
+}
+
 void SeedMapper::map(const DepthSeeds &seeds, MappedSeeds &out) const
 {
 	const int cw = mapper_->colourWidth(), ch = mapper_->colourHeight();
 	const int tw = mapper_->tofWidth(), th = mapper_->tofHeight();
 	Gray8Image &trimap = out.trimap;
 	Roi &roi = out.roi;
-	if (trimap.width() != cw || trimap.height() != ch) {
-		trimap.resize(cw, ch);
-		std::memset(trimap.data(), kTrimapBoard, trimap.size());
-		out.evidence.resize(cw, ch);
-		std::memset(out.evidence.data(), 0, out.evidence.size());
-		roi = {};
-	}
-	for (int y = roi.y0; y < roi.y1; ++y) {
-		std::memset(trimap.row(y) + roi.x0, kTrimapBoard, size_t(roi.x1 - roi.x0));
-		std::memset(out.evidence.row(y) + roi.x0, 0, size_t(roi.x1 - roi.x0));
-	}
+	out.clear(cw, ch);
 
 	roi = { cw, ch, 0, 0 };
 	out.lecturerBeyondBorder = false;

@@ -31,6 +31,11 @@ struct MappedSeeds {
 	Gray8Image evidence;     // DepthSeeds::evidence, colour size; 0 outside roi
 	Roi roi;                 // the painted region (empty: no lecturer)
 	bool lecturerBeyondBorder = false;
+
+	// Board everywhere again at width x height, for the next painting:
+	// only the last ROI is cleared (all of it when the size changed), and
+	// roi becomes empty.
+	void clear(int width, int height);
 };
 
 class SeedMapper

@@ -3,7 +3,6 @@
 #include "algo/trimap.hpp"
 
 #include <algorithm>
-#include <cstring>
 
 namespace depthkey {
 
@@ -57,17 +56,7 @@ void uniteTrimaps(const MappedSeeds &a, const MappedSeeds &b, int laterQ8, Mappe
 {
 	const int w = a.trimap.width(), h = a.trimap.height();
 	Roi &roi = out.roi;
-	if (out.trimap.width() != w || out.trimap.height() != h) {
-		out.trimap.resize(w, h);
-		std::memset(out.trimap.data(), kTrimapBoard, out.trimap.size());
-		out.evidence.resize(w, h);
-		std::memset(out.evidence.data(), 0, out.evidence.size());
-		roi = {};
-	}
-	for (int y = roi.y0; y < roi.y1; ++y) {
-		std::memset(out.trimap.row(y) + roi.x0, kTrimapBoard, size_t(roi.x1 - roi.x0));
-		std::memset(out.evidence.row(y) + roi.x0, 0, size_t(roi.x1 - roi.x0));
-	}
+	out.clear(w, h);
 	out.lecturerBeyondBorder = a.lecturerBeyondBorder || b.lecturerBeyondBorder;
 	if (a.roi.empty() || b.roi.empty()) {
 		// One side saw no lecturer: he may be where the other saw him (as
