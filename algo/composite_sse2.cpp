@@ -4,7 +4,7 @@
 #include "algo/composite.hpp"
 
 #if defined(__SSE2__)
-#include <emmintrin.h>
+#include "algo/rgb_lanes_sse2.hpp"
 #endif
 
 namespace depthkey {
@@ -30,18 +30,6 @@ inline __m128i blend16(__m128i board, __m128i lecturer, __m128i w, __m128i wb)
 
 inline __m128i load(const void *p) { return _mm_loadu_si128(static_cast<const __m128i *>(p)); }
 inline void store(void *p, __m128i v) { _mm_storeu_si128(static_cast<__m128i *>(p), v); }
-
-// 4 RGB pixels (the low 12 bytes of v) spread to 4 RGBA lanes with alpha 0:
-// pixel k moves up k bytes, then each lane keeps its low three bytes.
-inline __m128i rgbToRgbx(__m128i v)
-{
-	const __m128i lane0 = _mm_setr_epi32(0x00ffffff, 0, 0, 0), lane1 = _mm_setr_epi32(0, 0x00ffffff, 0, 0);
-	const __m128i lane2 = _mm_setr_epi32(0, 0, 0x00ffffff, 0), lane3 = _mm_setr_epi32(0, 0, 0, 0x00ffffff);
-	__m128i p = _mm_and_si128(v, lane0);
-	p = _mm_or_si128(p, _mm_and_si128(_mm_slli_si128(v, 1), lane1));
-	p = _mm_or_si128(p, _mm_and_si128(_mm_slli_si128(v, 2), lane2));
-	return _mm_or_si128(p, _mm_and_si128(_mm_slli_si128(v, 3), lane3));
-}
 
 } // namespace
 

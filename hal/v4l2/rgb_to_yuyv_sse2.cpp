@@ -16,7 +16,7 @@
 #include "hal/v4l2/rgb_to_yuyv_coefficients.hpp"
 
 #if defined(__SSE2__)
-#include <emmintrin.h>
+#include "algo/rgb_lanes_sse2.hpp"
 #endif
 
 namespace depthkey {
@@ -33,12 +33,7 @@ static_assert(kYg1 <= 32767 && kYg2 <= 32767);
 // 4 RGB pixels (the low 12 bytes of v) spread to 4 lanes R G B G.
 inline __m128i rgbToRgbg(__m128i v)
 {
-	const __m128i lane0 = _mm_setr_epi32(0x00ffffff, 0, 0, 0), lane1 = _mm_setr_epi32(0, 0x00ffffff, 0, 0);
-	const __m128i lane2 = _mm_setr_epi32(0, 0, 0x00ffffff, 0), lane3 = _mm_setr_epi32(0, 0, 0, 0x00ffffff);
-	__m128i p = _mm_and_si128(v, lane0);
-	p = _mm_or_si128(p, _mm_and_si128(_mm_slli_si128(v, 1), lane1));
-	p = _mm_or_si128(p, _mm_and_si128(_mm_slli_si128(v, 2), lane2));
-	p = _mm_or_si128(p, _mm_and_si128(_mm_slli_si128(v, 3), lane3));
+	const __m128i p = rgbToRgbx(v);
 	return _mm_or_si128(p, _mm_slli_epi32(_mm_and_si128(p, _mm_set1_epi32(0x0000ff00)), 16));
 }
 
