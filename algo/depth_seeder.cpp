@@ -31,12 +31,11 @@ void DepthSeeder::seed(const DepthFrame &depth, DepthSeeds &out)
 	const uint16_t *d = depth.depthMm.data();
 	const uint16_t *a = amplitudeOk ? depth.amplitude.data() : nullptr;
 	const unsigned nearU = unsigned(settings_.nearMm), spanU = unsigned(settings_.farMm - settings_.nearMm);
-	const unsigned minA = unsigned(settings_.minAmplitude), spanA = unsigned(settings_.maxAmplitude - settings_.minAmplitude);
 	uint8_t *t = trusted_.data();
 	for (size_t i = 0; i < n; ++i) {
 		// One unsigned compare per interval: near <= d <= far, minA <= a < maxA.
 		bool inRange = unsigned(d[i]) - nearU <= spanU;
-		bool trusted = a && unsigned(a[i]) - minA < spanA;
+		bool trusted = a && trustedEcho(a[i]);
 		t[i] = inRange && trusted ? 255 : 0;
 	}
 
@@ -113,7 +112,7 @@ void DepthSeeder::weighDepth(const DepthFrame &depth, DepthSeeds &out) const
 		}
 		const int a = haveAmplitude ? depth.amplitude.data()[i] : 0;
 		// No measurement, a weak or a saturated echo: depth says nothing.
-		if (d[i] == 0 || (haveAmplitude && (a < settings_.minAmplitude || a >= settings_.maxAmplitude))) {
+		if (d[i] == 0 || (haveAmplitude && !trustedEcho(unsigned(a)))) {
 			evidence[i] = 128;
 			continue;
 		}

@@ -77,6 +77,12 @@ private:
 	KernelPath path_ = bestKernelPath();
 	void smoothSurface(const Gray16Image &depthMm, DepthSeeds &out);
 	void weighDepth(const DepthFrame &depth, DepthSeeds &out) const;
+	// min_amplitude <= a < max_amplitude in one unsigned compare: a weak
+	// echo says nothing, a saturated one lies.
+	bool trustedEcho(unsigned a) const
+	{
+		return a - unsigned(settings_.minAmplitude) < unsigned(settings_.maxAmplitude - settings_.minAmplitude);
+	}
 
 	Gray8Image trusted_, subset_, reach_, superset_, core_, moving_;
 	std::vector<uint32_t> depthSums_, counts_; // integral images, (w+1) x (h+1)
