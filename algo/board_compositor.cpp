@@ -62,6 +62,7 @@ void BoardCompositor::tileSources()
 	warpedTiles_.assign(tileSources_.size(), 0);
 	lastWarpedTiles_.assign(tileSources_.size(), 0);
 	clearTiles_.assign(tileSources_.size(), 0);
+	copyTiles_.assign(tileSources_.size(), 0);
 	runs_.reserve(size_t(tilesX_));
 	for (int y = 0; y < outputHeight_; ++y)
 		for (int x = 0; x < outputWidth_; ++x) {
@@ -126,9 +127,10 @@ void BoardCompositor::clear()
 	warpedTiles_.clear();
 	lastWarpedTiles_.clear();
 	clearTiles_.clear();
+	copyTiles_.clear();
 	runs_.clear();
 	warped_ = Roi{};
-	layerValid_ = false;
+	layerValid_ = compositeValid_ = false;
 }
 
 // The board pixels whose bilinear footprint can touch the colour ROI: the
@@ -170,6 +172,12 @@ void BoardCompositor::compose(const RgbaImage &source, const Roi &roi, const Rgb
 	const int w = outputWidth_, h = outputHeight_;
 	composite.resize(w, h);
 	lecturer.resize(w, h);
+	// Another buffer (or a reallocated one) holds nothing we wrote.
+	if (composite.data() != lastComposite_ || lecturer.data() != lastLecturer_) {
+		layerValid_ = compositeValid_ = false;
+		lastComposite_ = composite.data();
+		lastLecturer_ = lecturer.data();
+	}
 	if (!configured() || source.width() != colourWidth_ || source.height() != colourHeight_ ||
 	    board.width() != w || board.height() != h) {
 		// Sizes that do not fit the map: the board alone (the caller
@@ -177,7 +185,7 @@ void BoardCompositor::compose(const RgbaImage &source, const Roi &roi, const Rgb
 		if (board.width() == w && board.height() == h)
 			std::memcpy(composite.data(), board.data(), composite.size() * sizeof(Rgb8));
 		std::fill(lecturer.data(), lecturer.data() + lecturer.size(), Rgba8{ 0, 0, 0, 0 });
-		layerValid_ = false;
+		layerValid_ = compositeValid_ = false;
 		return;
 	}
 	const Roi clampedRoi{ std::max(roi.x0, 0), std::max(roi.y0, 0), std::min(roi.x1, colourWidth_),
@@ -198,6 +206,12 @@ void BoardCompositor::compose(const RgbaImage &source, const Roi &roi, const Rgb
 	// The layer is transparent but where last frame's tiles were warped:
 	// clear those this frame does not warp over (a whole 1920x1080 RGBA
 	// clear would cost a third of the warp).
+	// The composite likewise, with the board: copied where last frame
+	// warped (or all of it, after forgetBoard()), before a layer reset
+	// forgets where that was.
+	for (size_t t = 0; t < copyTiles_.size(); ++t)
+		copyTiles_[t] = !warpedTiles_[t] && (!compositeValid_ || lastWarpedTiles_[t]);
+	compositeValid_ = true;
 	if (!layerValid_) {
 		std::fill(lecturer.data(), lecturer.data() + lecturer.size(), Rgba8{ 0, 0, 0, 0 });
 		std::fill(lastWarpedTiles_.begin(), lastWarpedTiles_.end(), uint8_t(0));
@@ -212,14 +226,16 @@ void BoardCompositor::compose(const RgbaImage &source, const Roi &roi, const Rgb
 			if (run.on)
 				for (int y = y0; y < y1; ++y)
 					std::memset(lecturer.row(y) + run.x0, 0, size_t(run.x1 - run.x0) * sizeof(Rgba8));
-		// The composite: the board copied, or warped over, each byte once.
-		// One kernel call per pixel row and run of warped tiles.
-		for (const Run &run : runsOf(warpedTiles_.data() + size_t(ty) * tilesX_)) {
-			if (!run.on) {
+		// The composite: the board copied where it is not there yet, or
+		// warped over, each byte at most once. One kernel call per pixel
+		// row and run of warped tiles.
+		for (const Run &run : runsOf(copyTiles_.data() + size_t(ty) * tilesX_))
+			if (run.on)
 				for (int y = y0; y < y1; ++y)
 					std::memcpy(composite.row(y) + run.x0, board.row(y) + run.x0, size_t(run.x1 - run.x0) * sizeof(Rgb8));
+		for (const Run &run : runsOf(warpedTiles_.data() + size_t(ty) * tilesX_)) {
+			if (!run.on)
 				continue;
-			}
 			warpedPixels_ += size_t(run.x1 - run.x0) * (y1 - y0);
 			for (int y = y0; y < y1; ++y) {
 				const size_t k = size_t(y) * w + run.x0;

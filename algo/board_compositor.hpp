@@ -14,10 +14,13 @@
 // into 16x16 tiles, each knowing (from the map) the 8x8 colour tiles it
 // reads, and a tile is warped only when one of those holds some alpha in
 // this frame. Elsewhere the composite is the board and the board-geometry
-// lecturer layer is transparent: the board is copied and the layer cleared
-// only around the warped tiles (the warp writes its pixels whole), the
-// layer only where last frame's warped tiles were. Nothing is allocated per
-// frame (tests/board_compositor_test.cpp counts).
+// lecturer layer is transparent. Both outputs keep what they held: the
+// layer is cleared, and the board copied into the composite, only where
+// last frame's warped tiles were (the warp writes its pixels whole). A new
+// board picture (forgetBoard()) is copied whole once: at 1920x1080 that copy
+// is about a sixth of the frame's warp time, and the board's picture
+// changes far less often than the camera's. Nothing is allocated per frame
+// (tests/board_compositor_test.cpp counts).
 #pragma once
 
 #include "algo/homography.hpp"
@@ -53,13 +56,19 @@ public:
 	// colour size), its alpha 0 outside roi (the pipeline's ROI). board must
 	// be the output size. composite (RGB) and lecturer (RGBA) are resized to
 	// the output size; lecturer is transparent outside the warped region.
-	// Pass the same lecturer image every frame (see forgetLayer()).
+	// Pass the same composite and lecturer images every frame (another
+	// buffer, or a new size, is written whole), and say when the board
+	// picture changed (forgetBoard()).
 	void compose(const RgbaImage &source, const Roi &roi, const RgbImage &board, int opacityQ8,
 		     RgbImage &composite, RgbaImage &lecturer);
 
 	// compose() clears only the tiles it warped into lecturer last time: call this
 	// when lecturer was written by anyone else (the next compose clears all).
 	void forgetLayer() { layerValid_ = false; }
+	// compose() copies the board only where it warped last time: call this
+	// when the board picture changed, or composite was written by anyone
+	// else (the next compose copies all of it).
+	void forgetBoard() { compositeValid_ = false; }
 
 	// The board pixels the last compose() warped (for tests and previews).
 	const Roi &warpedRoi() const { return warped_; }
@@ -90,13 +99,15 @@ private:
 	int tilesX_ = 0, tilesY_ = 0, colourTilesX_ = 0, colourTilesY_ = 0;
 	std::vector<TileSources> tileSources_; // per board tile
 	std::vector<uint8_t> occupied_;        // per colour tile: some alpha this frame
-	std::vector<uint8_t> warpedTiles_, lastWarpedTiles_, clearTiles_; // per board tile
+	std::vector<uint8_t> warpedTiles_, lastWarpedTiles_, clearTiles_, copyTiles_; // per board tile
 	std::vector<Run> runs_;                // runsOf()'s, capacity tilesX_
 	std::vector<int32_t> index_;       // per output pixel: top-left source pixel, kOutsideView = unseen
 	std::vector<uint16_t> frac_;       // per output pixel: Q8 fx | fy << 8
 	Roi warped_;
 	size_t warpedPixels_ = 0;
 	bool layerValid_ = false;          // lecturer is transparent outside lastWarpedTiles_
+	bool compositeValid_ = false;      // composite is the board outside lastWarpedTiles_
+	const void *lastComposite_ = nullptr, *lastLecturer_ = nullptr; // the buffers those hold for
 };
 
 } // namespace depthkey

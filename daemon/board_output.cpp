@@ -160,6 +160,7 @@ void BoardOutput::updateGeometry()
 // Nearest neighbour, pixel centres kept; a plain copy at the same size.
 void BoardOutput::scalePicture()
 {
+	compositor_.forgetBoard(); // the next composite copies the new picture whole
 	const int sw = picture_.width(), sh = picture_.height(), dw = scaled_.width(), dh = scaled_.height();
 	if (sw == dw && sh == dh) {
 		std::memcpy(scaled_.data(), picture_.data(), picture_.size() * sizeof(Rgb8));
@@ -187,6 +188,7 @@ void BoardOutput::showBoardOnly()
 	lecturer_.resize(scaled_.width(), scaled_.height());
 	std::fill(lecturer_.data(), lecturer_.data() + lecturer_.size(), Rgba8{ 0, 0, 0, 0 });
 	compositor_.forgetLayer();
+	compositor_.forgetBoard();
 }
 
 bool BoardOutput::sourceOk() const

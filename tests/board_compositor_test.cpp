@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <random>
 
 using namespace depthkey;
@@ -226,6 +227,49 @@ TEST(BoardCompositor, ClearsWhereTheLecturerWasAndKeepsTheBoardElsewhere)
 			lit += lecturer.at(x, y).a == 255;
 		}
 	EXPECT_GT(lit, size_t(100)); // the 8x8 box at about 1.7x
+}
+
+// The outputs are kept between frames (the board copied and the layer
+// cleared only where he was): frame by frame, as he moves and the board
+// picture changes, they are byte for byte what a fresh compositor writes
+// into fresh buffers. A buffer it did not write last is written whole.
+TEST(BoardCompositor, KeptOutputsEqualFreshOnesAsHeMovesAndTheBoardChanges)
+{
+	Scene s = makeScene(21);
+	BoardCompositor kept;
+	ASSERT_TRUE(kept.configure(tiltedView(), kCw, kCh, kBw, kBh));
+	RgbImage composite;
+	RgbaImage lecturer;
+	for (int frame = 0; frame < 12; ++frame) {
+		// A box that walks right and down, and a new board at frame 5.
+		Gray8Image alpha(kCw, kCh, 0);
+		Roi box{ 2 + 5 * frame, 3 + 3 * (frame % 4), 22 + 5 * frame, 25 + 3 * (frame % 4) };
+		box.x1 = std::min(box.x1, kCw);
+		for (int y = box.y0; y < box.y1; ++y)
+			for (int x = box.x0; x < box.x1; ++x)
+				alpha.at(x, y) = s.alpha.at(x, y) | 64;
+		if (frame == 5) {
+			s.board = makeScene(22).board;
+			kept.forgetBoard();
+		}
+		RgbaImage source = layerOf(s.colour, alpha);
+		kept.compose(source, box, s.board, 200, composite, lecturer);
+		if (frame == 9) {
+			// Someone else's buffers: garbage, which must all be overwritten.
+			composite = RgbImage(kBw, kBh, Rgb8{ 1, 2, 3 });
+			lecturer = RgbaImage(kBw, kBh, Rgba8{ 9, 9, 9, 9 });
+			kept.compose(source, box, s.board, 200, composite, lecturer);
+		}
+		BoardCompositor fresh;
+		ASSERT_TRUE(fresh.configure(tiltedView(), kCw, kCh, kBw, kBh));
+		RgbImage freshComposite;
+		RgbaImage freshLecturer;
+		fresh.compose(source, box, s.board, 200, freshComposite, freshLecturer);
+		ASSERT_EQ(0, std::memcmp(composite.data(), freshComposite.data(), composite.size() * sizeof(Rgb8)))
+			<< "frame " << frame;
+		ASSERT_EQ(0, std::memcmp(lecturer.data(), freshLecturer.data(), lecturer.size() * sizeof(Rgba8)))
+			<< "frame " << frame;
+	}
 }
 
 TEST(BoardCompositor, RefusesASingularHomographyAndMismatchedSizes)
