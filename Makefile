@@ -9,6 +9,8 @@
 #                   daemon, the tools, curl, chromium, a C compiler
 #   make hil        the hardware-in-the-loop suite alone (QEMU VM, tests/hil/)
 #   make bench      run the Google Benchmark suite (medians)
+#   make soak       a million frames through depthkeyd on a replayed sequence, as
+#                   fast as it goes, VmRSS, fds and keying time sampled (tests/soak/)
 #   make deps       install missing Debian 12 packages (idempotent, quiet when all there)
 #   make deb        build the Debian package into build/deb/ (see debian/)
 #   make boot-test  boot the package with systemd in the QEMU VM (in `make test` too)
@@ -87,7 +89,7 @@ JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 # Keep tool objects (intermediates of the pattern rule) so nothing rebuilds twice.
 .SECONDARY:
 
-.PHONY: all run test check process-check hil bench deps deb deb-deps package-test boot-test install clean fuzz fuzz-build
+.PHONY: all run test check process-check hil bench soak deps deb deb-deps package-test boot-test install clean fuzz fuzz-build
 .DEFAULT_GOAL := all
 
 # The SR-2 emulator is built (for the HIL tests) but not installed.
@@ -146,6 +148,11 @@ bench: deps
 	@$(MAKE) --no-print-directory -j$(JOBS) $(BENCH)
 	@$(BENCH) --benchmark_repetitions=9 --benchmark_report_aggregates_only=true \
 	    --benchmark_display_aggregates_only=true $(BENCH_ARGS)
+
+# Not in `make test`: it takes half an hour to an hour (SOAK_FRAMES=N for fewer).
+soak: deps
+	@$(MAKE) --no-print-directory -j$(JOBS) all
+	@tests/soak/run.sh $(BIN) $(BUILD)
 
 $(OBJ)/%.o: %.cpp
 	@mkdir -p $(dir $@)

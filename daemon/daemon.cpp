@@ -204,6 +204,7 @@ void Daemon::keyDueFrames()
 
 void Daemon::keyFrame(const PairingQueue::Keying &keying)
 {
+	const uint64_t startUs = loop_.nowUs();
 	const ColourFrame &frame = *keying.colour;
 	uint32_t flags = DK_SHM_FLAG_COLOUR_OK;
 	const DepthFrame *depth = keying.depth.before ? keying.depth.before : keying.depth.after;
@@ -225,6 +226,7 @@ void Daemon::keyFrame(const PairingQueue::Keying &keying)
 	preview_.offer(&frame, depth, depth ? &pipeline_.trimap() : nullptr, output_, frame.timestampNs,
 		       loop_.nowUs() * 1000u);
 	publish(frame.timestampNs, flags);
+	status_.countKeying(loop_.nowUs() - startUs);
 }
 
 void Daemon::publish(uint64_t captureNs, uint32_t flags)

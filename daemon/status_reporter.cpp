@@ -104,13 +104,14 @@ std::string StatusReporter::statusLine(const StatusSnapshot &s, const Rates &rat
 	char text[768];
 	std::snprintf(text, sizeof(text),
 		      "colour %s %s %.1f fps %llu dropped; depth %s %s %.1f fps %llu dropped; "
-		      "paired %llu unpaired %llu; %s; output %.1f fps; readers %d; %s; %s",
+		      "paired %llu unpaired %llu; %s; output %.1f fps, keying %.1f ms (p99 %.1f); readers %d; %s; %s",
 		      s.colour.present ? s.colour.name.c_str() : "-", deviceStateName(cs.state), rates.colourFps,
 		      static_cast<unsigned long long>(cs.droppedFrames),
 		      s.depth.present ? s.depth.name.c_str() : "-", deviceStateName(ds.state), rates.depthFps,
 		      static_cast<unsigned long long>(ds.droppedFrames),
 		      static_cast<unsigned long long>(s.pairing.paired),
-		      static_cast<unsigned long long>(s.pairing.unpaired), offset, rates.outputFps, s.readers.total(),
+		      static_cast<unsigned long long>(s.pairing.unpaired), offset, rates.outputFps,
+		      double(keying_.quantileUs(0.5)) / 1000.0, double(keying_.quantileUs(0.99)) / 1000.0, s.readers.total(),
 		      s.calibrated		? "calibrated"
 		      : s.calibrationLoaded ? "calibration for other frame sizes (identity mapping)"
 					    : "not calibrated (identity mapping)",
@@ -134,6 +135,12 @@ PreviewStatus StatusReporter::previewStatus(const StatusSnapshot &snapshot, cons
 	s.devices.push_back(previewDevice("depth", snapshot.depth, rates.depthFps, depthFrames_));
 	s.outputFps = rates.outputFps;
 	s.published = published_;
+	s.keying.count = keying_.count();
+	s.keying.sumS = double(keying_.sumUs()) / 1e6;
+	s.keying.medianMs = double(keying_.quantileUs(0.5)) / 1000.0;
+	s.keying.p99Ms = double(keying_.quantileUs(0.99)) / 1000.0;
+	s.keying.p999Ms = double(keying_.quantileUs(0.999)) / 1000.0;
+	s.keying.maxMs = double(keying_.maxUs()) / 1000.0;
 	s.paired = snapshot.pairing.paired;
 	s.unpaired = snapshot.pairing.unpaired;
 	s.calibrated = snapshot.calibrated;

@@ -7,6 +7,7 @@
 
 #include "algo/frame_pairer.hpp"
 #include "algo/latency_estimator.hpp"
+#include "daemon/keying_times.hpp"
 #include "daemon/service_notifier.hpp"
 #include "hal/camera.hpp"
 #include "hal/event_loop.hpp"
@@ -63,6 +64,8 @@ public:
 	void countDeviceStatus(const std::string &device, const DeviceStatus &status);
 	// A frame went out; the first online one (both cameras) sends READY=1.
 	void countPublished(bool online);
+	// How long a colour frame took from the pairing queue to its publication.
+	void countKeying(uint64_t us) { keying_.add(us); }
 	uint64_t colourFrames() const { return colourFrames_; }
 
 	// Once a second: the status line to systemd, to the terminal every
@@ -95,6 +98,7 @@ private:
 	uint64_t startedUs_ = 0;
 	uint64_t reports_ = 0;
 	uint64_t colourFrames_ = 0, depthFrames_ = 0, published_ = 0;
+	KeyingTimes keying_;
 	uint64_t colourFramesAtReport_ = 0, depthFramesAtReport_ = 0, publishedAtReport_ = 0;
 	uint64_t reportedAtUs_ = 0;
 	uint64_t publishedAtWatchdog_ = 0;

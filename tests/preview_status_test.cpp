@@ -21,6 +21,7 @@ PreviewStatus sample()
 		      { "depth", "sr2 \"usb\"\\1", "lost", 0.0, 90, 4, 2, 1 } };
 	s.outputFps = 24.5;
 	s.published = 299;
+	s.keying = { 299, 1.0465, 3.5, 15.625, 31.25, 62.5 }; // ms that are exact binary fractions in s
 	s.paired = 280;
 	s.unpaired = 19;
 	s.calibrated = true;
@@ -46,6 +47,10 @@ TEST(PreviewStatus, JsonCarriesEveryFigure)
 	EXPECT_EQ(j["devices"][1]["reconnects"], 1);
 	EXPECT_EQ(j["devices"][1]["dropped"], 4);
 	EXPECT_EQ(j["output"]["frames"], 299);
+	EXPECT_EQ(j["keying"]["frames"], 299);
+	EXPECT_EQ(j["keying"]["median_ms"], 3.5);
+	EXPECT_EQ(j["keying"]["p999_ms"], 31.25);
+	EXPECT_EQ(j["keying"]["max_ms"], 62.5);
 	EXPECT_EQ(j["pairing"]["paired"], 280);
 	EXPECT_EQ(j["pairing"]["unpaired"], 19);
 	EXPECT_EQ(j["calibration"]["calibrated"], true);
@@ -67,6 +72,9 @@ TEST(PreviewStatus, MetricsAreInTheExpositionFormat)
 		<< text;
 	EXPECT_NE(text.find("depthkey_device_up{device=\"depth\",name=\"sr2 \\\"usb\\\"\\\\1\"} 0\n"), std::string::npos);
 	EXPECT_NE(text.find("# TYPE depthkey_output_fps gauge\ndepthkey_output_fps 24.5\n"), std::string::npos);
+	EXPECT_NE(text.find("# TYPE depthkey_keying_seconds summary\n"), std::string::npos);
+	EXPECT_NE(text.find("depthkey_keying_seconds{quantile=\"0.99\"} 0.015625\n"), std::string::npos) << text;
+	EXPECT_NE(text.find("depthkey_keying_seconds_count 299\n"), std::string::npos);
 	EXPECT_NE(text.find("depthkey_readers{stream=\"composite\"} 1\n"), std::string::npos);
 	EXPECT_NE(text.find("depthkey_readers{stream=\"lecturer.board\"} 2\n"), std::string::npos);
 	EXPECT_NE(text.find("depthkey_depth_latency_seconds 0.040000000000000001\n"), std::string::npos);

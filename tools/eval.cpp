@@ -392,7 +392,7 @@ int main(int argc, char **argv)
 		std::fprintf(csv, "frame,colour_timestamp_ns,depth_timestamp_ns,iou,bf,boundary_precision,"
 				  "boundary_recall,fnr,fpr\n");
 	}
-	SequenceWriter saver(1);
+	SequenceWriter saver(settings.daemon.recordCompression); // the recorder's level, from the config
 	if (!o.saveSequence.empty() && saver.open(o.saveSequence) < 0) {
 		std::fprintf(stderr, "depthkey-eval: %s\n", saver.describeError().c_str());
 		return 1;

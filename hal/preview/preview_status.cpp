@@ -22,6 +22,12 @@ std::string previewStatusJson(const PreviewStatus &s)
 		{ "devices", devices },
 		{ "output", { { "fps", s.outputFps }, { "frames", s.published } } },
 		{ "pairing", { { "paired", s.paired }, { "unpaired", s.unpaired } } },
+		{ "keying",
+		  { { "frames", s.keying.count },
+		    { "median_ms", s.keying.medianMs },
+		    { "p99_ms", s.keying.p99Ms },
+		    { "p999_ms", s.keying.p999Ms },
+		    { "max_ms", s.keying.maxMs } } },
 		{ "calibration", { { "calibrated", s.calibrated }, { "file", s.calibrationFile } } },
 		{ "depth_latency_ms", s.depthLatencyMs },
 		{ "readers", { { "composite", s.readersComposite }, { "lecturer", s.readersLecturer },
@@ -107,6 +113,15 @@ std::string previewStatusMetrics(const PreviewStatus &s)
 	e.sample("depthkey_output_frames_total", "", static_cast<double>(s.published));
 	e.family("depthkey_output_fps", "gauge", "Frames published per second.");
 	e.sample("depthkey_output_fps", "", s.outputFps);
+	e.family("depthkey_keying_seconds", "summary",
+		 "Time from a colour frame leaving the pairing queue to its publication, since the start.");
+	e.sample("depthkey_keying_seconds", "quantile=\"0.5\"", s.keying.medianMs / 1000.0);
+	e.sample("depthkey_keying_seconds", "quantile=\"0.99\"", s.keying.p99Ms / 1000.0);
+	e.sample("depthkey_keying_seconds", "quantile=\"0.999\"", s.keying.p999Ms / 1000.0);
+	e.sample("depthkey_keying_seconds_sum", "", s.keying.sumS);
+	e.sample("depthkey_keying_seconds_count", "", static_cast<double>(s.keying.count));
+	e.family("depthkey_keying_max_seconds", "gauge", "The longest keying of a frame since the start.");
+	e.sample("depthkey_keying_max_seconds", "", s.keying.maxMs / 1000.0);
 	e.family("depthkey_paired_frames_total", "counter", "Colour frames keyed with a depth frame.");
 	e.sample("depthkey_paired_frames_total", "", static_cast<double>(s.paired));
 	e.family("depthkey_unpaired_frames_total", "counter", "Colour frames without a depth frame near in time.");

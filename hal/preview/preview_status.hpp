@@ -30,11 +30,19 @@ struct PreviewWebcam {
 	uint64_t reconnects = 0; // times it was written again after being lost
 };
 
+// How long keying a frame took since the start (daemon/keying_times.hpp).
+struct PreviewKeying {
+	uint64_t count = 0;
+	double sumS = 0;
+	double medianMs = 0, p99Ms = 0, p999Ms = 0, maxMs = 0;
+};
+
 struct PreviewStatus {
 	double uptimeS = 0;
 	std::vector<PreviewDevice> devices;
 	double outputFps = 0;
 	uint64_t published = 0;          // frames published to shared memory
+	PreviewKeying keying;
 	uint64_t paired = 0, unpaired = 0;
 	bool calibrated = false;
 	std::string calibrationFile;
