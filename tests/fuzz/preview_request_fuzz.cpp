@@ -1,0 +1,150 @@
+// libFuzzer harness: the preview server's request handling
+// (hal/preview/preview_server.hpp), end to end as a misbehaving HTTP client
+// meets it: the input is the raw bytes a client sends on a loopback
+// connection to a running PreviewServer (libmicrohttpd's parser, then our
+// routing, method check and HTTP Basic authentication against a password
+// file). The server must answer or close, never crash or hang: the client
+// half-closes after its bytes and reads the reply for at most 300 ms
+// (streams never end by themselves; closing our end ends them). A feeder
+// thread offers a small picture of every stage, so snapshots have frames.
+//
+// The password file has one account, fuzz:secret (sha512crypt); the seed
+// corpus carries requests with and without its Authorization header.
+#include "algo/image.hpp"
+#include "algo/stage_images.hpp"
+#include "config/listen_address.hpp"
+#include "hal/preview/preview_encoder.hpp"
+#include "hal/preview/preview_server.hpp"
+
+#include <arpa/inet.h>
+#include <atomic>
+#include <chrono>
+#include <crypt.h>
+#include <cstdio>
+#include <cstdlib>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <string>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <thread>
+#include <time.h>
+#include <unistd.h>
+
+using namespace depthkey;
+
+namespace {
+
+struct Server {
+	PreviewEncoder encoder;
+	PreviewServer server;
+	std::thread feeder;
+	std::atomic<bool> stop{ false };
+	int port = 0;
+
+	Server()
+	{
+		char dir[] = "/tmp/depthkey-fuzz-preview-XXXXXX";
+		if (!mkdtemp(dir))
+			std::abort();
+		const std::string passwords = std::string(dir) + "/passwords";
+		const char *hash = crypt("secret", "$6$depthkeyfuzz$");
+		if (!hash)
+			std::abort();
+		FILE *f = std::fopen(passwords.c_str(), "w");
+		if (!f)
+			std::abort();
+		std::fprintf(f, "# the fuzz harness's account\nfuzz:%s\n", hash);
+		std::fclose(f);
+		chmod(passwords.c_str(), 0600);
+		std::string error;
+		if (encoder.start(50, 1000) < 0)
+			std::abort();
+		PreviewServerOptions options;
+		if (!parseListenAddress("127.0.0.1:0", options.address).empty())
+			std::abort();
+		options.passwordFile = passwords;
+		options.maxClients = 4;
+		if (server.start(options, encoder, error) < 0) {
+			std::fprintf(stderr, "preview_request_fuzz: %s\n", error.c_str());
+			std::abort();
+		}
+		port = server.port();
+		feeder = std::thread([this] { feed(); });
+	}
+	~Server()
+	{
+		stop = true;
+		feeder.join();
+		server.stop();
+		encoder.stop();
+	}
+
+	// Small pictures of every stage, every 5 ms.
+	void feed()
+	{
+		RgbImage rgb(32, 24, Rgb8{ 40, 90, 160 });
+		Gray16Image depth(16, 12, 1500);
+		Gray8Image gray(32, 24, 128);
+		const StageImage images[kPreviewStageCount] = {
+			{ "colour", StageKind::Colour, &rgb },      { "depth", StageKind::Depth, nullptr, &depth },
+			{ "seeds", StageKind::Seeds, nullptr, nullptr, &gray }, { "alpha", StageKind::Mask, nullptr, nullptr, &gray },
+			{ "composite", StageKind::Colour, &rgb },
+		};
+		while (!stop) {
+			timespec ts;
+			clock_gettime(CLOCK_MONOTONIC, &ts);
+			const uint64_t now = uint64_t(ts.tv_sec) * 1000000000u + uint64_t(ts.tv_nsec);
+			for (size_t s = 0; s < kPreviewStageCount; ++s)
+				encoder.offer(PreviewStage(s), images[s], now, now);
+			std::this_thread::sleep_for(std::chrono::milliseconds(5));
+		}
+	}
+};
+
+Server &server()
+{
+	static Server s;
+	return s;
+}
+
+} // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+	const int port = server().port;
+	const int fd = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+	if (fd < 0)
+		return 0;
+	sockaddr_in address{};
+	address.sin_family = AF_INET;
+	address.sin_port = htons(uint16_t(port));
+	address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+	if (connect(fd, reinterpret_cast<sockaddr *>(&address), sizeof(address)) == 0) {
+		// The bytes as sent, then our half closed: the server sees the end.
+		size_t sent = 0;
+		while (sent < size) {
+			const ssize_t n = send(fd, data + sent, size - sent, MSG_NOSIGNAL);
+			if (n <= 0)
+				break;
+			sent += size_t(n);
+		}
+		shutdown(fd, SHUT_WR);
+		// Read the answer until the server closes or 300 ms pass.
+		char buffer[4096];
+		const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(300);
+		for (;;) {
+			const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+			if (left.count() <= 0)
+				break;
+			pollfd p{ fd, POLLIN, 0 };
+			if (poll(&p, 1, int(left.count())) <= 0)
+				break;
+			if (recv(fd, buffer, sizeof(buffer), 0) <= 0)
+				break;
+		}
+	}
+	close(fd);
+	return 0;
+}
