@@ -18,7 +18,7 @@
 #   make clean
 #   make SAN=1 ... build with AddressSanitizer + UndefinedBehaviorSanitizer (in build/san/)
 #   make SAN=thread ... build with ThreadSanitizer (in build/tsan/)
-#   make fuzz [FUZZ_SECONDS=N] [FUZZ_TARGETS="config image ..."]
+#   make fuzz [FUZZ_SECONDS=N | FUZZ_RUNS=N] [FUZZ_TARGETS="config image ..."]
 #                   build the libFuzzer harnesses (tests/fuzz/) with clang, ASan and
 #                   UBSan into build/fuzz/ and run each N seconds (default 30)
 #
@@ -266,6 +266,7 @@ clean:
 # for libFuzzer), the harnesses and the few library sources they reach,
 # built apart in build/fuzz/ with coverage for libFuzzer, ASan and UBSan.
 FUZZ_SECONDS ?= 30
+FUZZ_RUNS ?=
 FUZZ_CXX ?= clang++
 FUZZ_DIR := $(BUILDROOT)/fuzz
 FUZZ_ALL := $(patsubst tests/fuzz/%_fuzz.cpp,%,$(wildcard tests/fuzz/*_fuzz.cpp))
@@ -287,7 +288,7 @@ FUZZ_BINS := $(patsubst %,$(FUZZ_DIR)/bin/%_fuzz,$(FUZZ_TARGETS))
 
 fuzz: deps
 	@$(MAKE) --no-print-directory -j$(JOBS) fuzz-build
-	@tests/fuzz/run.sh $(FUZZ_DIR) $(FUZZ_SECONDS) $(FUZZ_TARGETS)
+	@FUZZ_RUNS=$(FUZZ_RUNS) tests/fuzz/run.sh $(FUZZ_DIR) $(FUZZ_SECONDS) $(FUZZ_TARGETS)
 
 fuzz-build: $(FUZZ_BINS)
 
