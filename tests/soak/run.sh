@@ -89,13 +89,14 @@ status() { # FIELD: kB or count from /proc/PID/status
 }
 sample() {
 	kill -0 "$daemon" 2>/dev/null || { tail -n 20 "$log"; fail "depthkeyd died"; }
+	# fds before asking /metrics: its connection's socket may outlive curl a moment.
+	fds=$(ls "/proc/$daemon/fd" | wc -l)
+	rss=$(status VmRSS)
+	hwm=$(status VmHWM)
 	curl -s --max-time 5 "http://127.0.0.1:$port/metrics" >"$dir/metrics" || fail "no /metrics on 127.0.0.1:$port"
 	published=$(metric depthkey_output_frames_total)
 	sum=$(metric depthkey_keying_seconds_sum)
 	count=$(metric depthkey_keying_seconds_count)
-	rss=$(status VmRSS)
-	hwm=$(status VmHWM)
-	fds=$(ls "/proc/$daemon/fd" | wc -l)
 }
 
 # Wait for the first frames, then start the reader.
