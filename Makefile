@@ -55,7 +55,15 @@ BIN := $(BUILD)/bin
 OBJ := $(BUILD)/obj
 
 PKGS := libsystemd tomlplusplus libusb-1.0 libgpiodcxx libturbojpeg libpng eigen3 libmicrohttpd libxcrypt
-OPENCV_LIBS := -lopencv_calib3d -lopencv_features2d -lopencv_imgcodecs -lopencv_imgproc -lopencv_core
+# Every binary may use OpenCV's core and imgproc. Only depthkey-calibrate
+# fits homographies and finds circle grids (calib3d, features2d), and only
+# the tests use imgcodecs: an independent PNG/JPEG codec to check
+# hal/png_codec against (Debian's imgcodecs maps GDAL, poppler, HDF5 and
+# ~130 more libraries: issue 15). Those go on the link lines that need them,
+# below; --as-needed records in each binary only the libraries it calls.
+OPENCV_LIBS := -lopencv_imgproc -lopencv_core
+OPENCV_CALIB_LIBS := -lopencv_calib3d -lopencv_features2d
+OPENCV_CODEC_LIBS := -lopencv_imgcodecs
 
 # Recursive (=) so pkg-config runs only when a recipe needs it, i.e. after `deps`.
 # No -march=native: the binaries must run on any x86-64 CPU (and under QEMU TCG).
@@ -63,7 +71,7 @@ CXXFLAGS ?= -O2 -g
 CXXFLAGS += -std=c++20 -Wall -Wextra -Werror -MMD -MP -I. -isystem /usr/include/opencv4 $(SANFLAGS)
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS))
 LDLIBS = $(shell pkg-config --libs $(PKGS)) $(OPENCV_LIBS) -lpthread -lrt
-LDFLAGS += $(SANFLAGS)
+LDFLAGS += -Wl,--as-needed $(SANFLAGS)
 
 LIB_SRCS := $(filter-out daemon/main.cpp,$(wildcard algo/*.cpp hal/*.cpp hal/*/*.cpp config/*.cpp wiring/*.cpp daemon/*.cpp))
 TOOL_SRCS := $(wildcard tools/*.cpp)
@@ -173,7 +181,7 @@ $(SR2EMU): $(call obj,$(SR2EMU_SRCS)) $(LIB)
 CALIBRATE_BOARD_SRCS := $(wildcard tools/calibrate_board/*.cpp) $(wildcard tools/calibrate_live/*.cpp)
 $(BIN)/depthkey-calibrate: $(OBJ)/tools/calibrate.o $(call obj,$(CALIBRATE_BOARD_SRCS)) $(LIB)
 	@mkdir -p $(dir $@)
-	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -o $@
+	$(CXX) $(LDFLAGS) $^ $(OPENCV_CALIB_LIBS) $(LDLIBS) -o $@
 
 # Helpers of the HIL suite (tests/hil/NAME.cpp -> depthkey-hil-NAME, with _
 # as -): a bare libusb SR-2 client, a shared-memory flag watcher.
@@ -189,11 +197,11 @@ $(UNIT_TESTS): $(call obj,$(UNIT_TEST_SRCS)) $(LIB)
 $(PROCESS_TESTS): $(call obj,$(PROCESS_TEST_SRCS)) $(LIB)
 $(UNIT_TESTS) $(PROCESS_TESTS):
 	@mkdir -p $(dir $@)
-	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -lgmock -lgtest -o $@
+	$(CXX) $(LDFLAGS) $^ $(OPENCV_CALIB_LIBS) $(OPENCV_CODEC_LIBS) $(LDLIBS) -lgmock -lgtest -o $@
 
 $(BENCH): $(call obj,$(BENCH_SRCS)) $(LIB)
 	@mkdir -p $(dir $@)
-	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -lbenchmark -o $@
+	$(CXX) $(LDFLAGS) $^ $(OPENCV_CALIB_LIBS) $(OPENCV_CODEC_LIBS) $(LDLIBS) -lbenchmark -o $@
 
 # Where the system files go; the defaults are Debian 12's (pkg-config's
 # systemd.pc and udev.pc say the same). The unit names $(PREFIX)/sbin/depthkeyd.
@@ -264,7 +272,7 @@ FUZZ_DIR := $(BUILDROOT)/fuzz
 FUZZ_ALL := $(patsubst tests/fuzz/%_fuzz.cpp,%,$(wildcard tests/fuzz/*_fuzz.cpp))
 FUZZ_TARGETS ?= $(FUZZ_ALL)
 FUZZ_LIB_SRCS := $(wildcard config/*.cpp) algo/mapping_model.cpp algo/homography.cpp algo/radial_lens.cpp hal/sr2/sr2_frame_parser.cpp \
-	hal/recording/sequence_reader.cpp hal/recording/sequence_format.cpp hal/image_file_reader.cpp \
+	hal/recording/sequence_reader.cpp hal/recording/sequence_format.cpp hal/image_file_reader.cpp hal/png_codec.cpp \
 	hal/v4l2/yuv_to_rgb.cpp hal/v4l2/mjpeg_decoder.cpp hal/v4l2/depth16_to_frame.cpp
 # toml++ 3.3.0 reaches __builtin_unreachable() in its own inline code, a
 # UBSan "unreachable" report that is the library's (tomlplusplus#190, fixed
