@@ -9,6 +9,8 @@
 #                   daemon, the tools, curl, chromium, a C compiler
 #   make hil        the hardware-in-the-loop suite alone (QEMU VM, tests/hil/)
 #   make bench      run the Google Benchmark suite (medians)
+#   make bench-process  whole-process figures: libraries mapped, depthkeyd's RSS and
+#                   time to READY=1 on the simulator, depthkey-siox's start
 #   make deps       install missing Debian 12 packages (idempotent, quiet when all there)
 #   make deb        build the Debian package into build/deb/ (see debian/)
 #   make boot-test  boot the package with systemd in the QEMU VM (in `make test` too)
@@ -95,7 +97,7 @@ JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 # Keep tool objects (intermediates of the pattern rule) so nothing rebuilds twice.
 .SECONDARY:
 
-.PHONY: all run test check process-check hil bench deps deb deb-deps package-test boot-test install clean fuzz fuzz-build
+.PHONY: all run test check process-check hil bench bench-process deps deb deb-deps package-test boot-test install clean fuzz fuzz-build
 .DEFAULT_GOAL := all
 
 # The SR-2 emulator is built (for the HIL tests) but not installed.
@@ -154,6 +156,14 @@ bench: deps
 	@$(MAKE) --no-print-directory -j$(JOBS) $(BENCH)
 	@$(BENCH) --benchmark_repetitions=9 --benchmark_report_aggregates_only=true \
 	    --benchmark_display_aggregates_only=true $(BENCH_ARGS)
+
+# Whole-process figures (issue 15): ldd lines per binary, depthkeyd's time to
+# READY=1 and its VmRSS (anonymous / file-backed / shared memory) on the
+# simulated cameras, depthkey-siox's process start; medians, no verdict.
+#   make bench-process [BENCH_PROCESS_ARGS="--seconds 10 --runs 3 --siox IMAGE TRIMAP"]
+bench-process: deps
+	@$(MAKE) --no-print-directory -j$(JOBS) all $(SIM_CALIBRATION) $(SIM_BOARD_CALIBRATION)
+	@python3 tests/bench/process_bench.py $(BIN) $(BUILD) $(BENCH_PROCESS_ARGS)
 
 $(OBJ)/%.o: %.cpp
 	@mkdir -p $(dir $@)

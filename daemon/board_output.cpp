@@ -141,7 +141,12 @@ void BoardOutput::updateGeometry()
 	int before = outputWidth() * 100000 + outputHeight();
 	if (notCalibrated_.empty() &&
 	    compositor_.configure(c.colourToBoard.then(boardScaling(pw, ph, ow, oh)), cw, ch, ow, oh, c.lens())) {
-		scaled_.resize(ow, oh);
+		// At the source's size the picture itself is the output's: no
+		// second copy of it (4.5 MB for the simulated board's 1920x780).
+		if (ow == pw && oh == ph)
+			scaled_ = RgbImage();
+		else
+			scaled_.resize(ow, oh);
 		scalePicture();
 		showBoardOnly();
 		if (pipeline_)
@@ -157,14 +162,13 @@ void BoardOutput::updateGeometry()
 		onGeometry_();
 }
 
-// Nearest neighbour, pixel centres kept; a plain copy at the same size.
+// Nearest neighbour, pixel centres kept; nothing to do at the same size
+// (outputPicture() is the picture then).
 void BoardOutput::scalePicture()
 {
-	const int sw = picture_.width(), sh = picture_.height(), dw = scaled_.width(), dh = scaled_.height();
-	if (sw == dw && sh == dh) {
-		std::memcpy(scaled_.data(), picture_.data(), picture_.size() * sizeof(Rgb8));
+	if (scaled_.empty())
 		return;
-	}
+	const int sw = picture_.width(), sh = picture_.height(), dw = scaled_.width(), dh = scaled_.height();
 	for (int y = 0; y < dh; ++y) {
 		const Rgb8 *src = picture_.row(int((2 * int64_t(y) + 1) * sh / (2 * dh)));
 		Rgb8 *dst = scaled_.row(y);
@@ -176,15 +180,15 @@ void BoardOutput::scalePicture()
 void BoardOutput::compose(const RgbaImage &cameraLayer, const Roi &roi, int opacityQ8)
 {
 	if (boardGeometry())
-		compositor_.compose(cameraLayer, roi, scaled_, opacityQ8, composite_, lecturer_);
+		compositor_.compose(cameraLayer, roi, outputPicture(), opacityQ8, composite_, lecturer_);
 }
 
 void BoardOutput::showBoardOnly()
 {
 	if (!boardGeometry())
 		return;
-	composite_ = scaled_;
-	lecturer_.resize(scaled_.width(), scaled_.height());
+	composite_ = outputPicture();
+	lecturer_.resize(composite_.width(), composite_.height());
 	std::fill(lecturer_.data(), lecturer_.data() + lecturer_.size(), Rgba8{ 0, 0, 0, 0 });
 	compositor_.forgetLayer();
 }
