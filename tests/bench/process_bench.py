@@ -40,8 +40,10 @@ def ldd_counts(bin_dir):
     return rows
 
 
-def bench_config(build, bin_dir, work):
-    """BUILD/run.toml (as daemon/run-sim.sh makes it) with our own names."""
+def bench_config(build, bin_dir, work, colour_board=False):
+    """BUILD/run.toml (as daemon/run-sim.sh makes it) with our own names;
+    colour_board: the board a solid colour, composited in the colour
+    camera's geometry (640x480) instead of the simulated board's 1920x780."""
     config = subprocess.run(["sh", "daemon/run-sim.sh", bin_dir, build], check=True, capture_output=True,
                             text=True, env=dict(os.environ, RUN_SIM_PREPARE_ONLY="1")).stdout.strip()
     tag = "bench%d" % os.getpid()
@@ -53,14 +55,19 @@ def bench_config(build, bin_dir, work):
         "snapshot_dir": '""',
         "record_dir": '""',
     }
-    lines = []
+    board = {"backend": '"colour"', "homography_file": '""'} if colour_board else {}
+    lines, section = [], None
     with open(config) as f:
         for line in f:
+            if line.startswith("["):
+                section = line.strip().strip("[]")
             key = line.split("=", 1)[0].strip()
-            if "=" in line and key in replace:
+            if "=" in line and section == "board" and key in board:
+                line = "%s = %s\n" % (key, board[key])
+            elif "=" in line and key in replace:
                 line = "%s = %s\n" % (key, replace[key])
             lines.append(line)
-    path = os.path.join(work, "bench.toml")
+    path = os.path.join(work, "bench-colour-board.toml" if colour_board else "bench.toml")
     with open(path, "w") as f:
         f.writelines(lines)
     return path, tag
@@ -140,25 +147,27 @@ def main():
         print("  %4d  %s" % (count, name))
 
     with tempfile.TemporaryDirectory(prefix="depthkey-bench-") as work:
-        config, tag = bench_config(args.build, bin_dir, work)
-        ready, rss = [], {}
-        for _ in range(args.runs):
-            ms, status = run_daemon(bin_dir, config, work, args.seconds)
-            ready.append(ms)
-            for key in ("VmRSS", "VmHWM", "RssAnon", "RssFile", "RssShmem"):
-                rss.setdefault(key, []).append(status.get(key, 0) / 1024.0)
-        for name in ("composite", "lecturer", "lecturer.board"):
-            try:
-                os.unlink("/dev/shm/depthkey-%s.%s" % (tag, name))
-            except FileNotFoundError:
-                pass
-        print("depthkeyd on the simulated cameras (%s):" % os.path.basename(config))
-        print("  exec to READY=1: %s" % spread(ready, "ms"))
-        for key, label in (("VmRSS", "VmRSS after %gs" % args.seconds), ("VmHWM", "VmHWM (peak)"),
-                           ("RssAnon", "  of it anonymous (heap, buffers)"),
-                           ("RssFile", "  of it file-backed (code, libraries)"),
-                           ("RssShmem", "  of it shared memory (output rings)")):
-            print("  %-38s %s" % (label + ":", spread(rss[key], "MB")))
+        for colour_board, title in ((False, "make run's config: the simulated board, composite at 1920x780"),
+                                    (True, "the board a solid colour, composite at the cameras' 640x480")):
+            config, tag = bench_config(args.build, bin_dir, work, colour_board)
+            ready, rss = [], {}
+            for _ in range(args.runs):
+                ms, status = run_daemon(bin_dir, config, work, args.seconds)
+                ready.append(ms)
+                for key in ("VmRSS", "VmHWM", "RssAnon", "RssFile", "RssShmem"):
+                    rss.setdefault(key, []).append(status.get(key, 0) / 1024.0)
+            for name in ("composite", "lecturer", "lecturer.board"):
+                try:
+                    os.unlink("/dev/shm/depthkey-%s.%s" % (tag, name))
+                except FileNotFoundError:
+                    pass
+            print("depthkeyd on the simulated cameras, %s:" % title)
+            print("  exec to READY=1: %s" % spread(ready, "ms"))
+            for key, label in (("VmRSS", "VmRSS after %gs" % args.seconds), ("VmHWM", "VmHWM (peak)"),
+                               ("RssAnon", "  of it anonymous (heap, buffers)"),
+                               ("RssFile", "  of it file-backed (code, libraries)"),
+                               ("RssShmem", "  of it shared memory (output rings)")):
+                print("  %-38s %s" % (label + ":", spread(rss[key], "MB")))
 
         siox = os.path.join(bin_dir, "depthkey-siox")
         wall_ms([siox, "--help"], 3)  # warm the page cache
