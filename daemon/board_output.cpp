@@ -91,7 +91,7 @@ void BoardOutput::onPicture(const ColourFrame &frame)
 	if (boardGeometry())
 		scalePicture();
 	else if (pipeline_)
-		pipeline_->setBoardImage(picture_);
+		pipeline_->setBoardImage(cameraGeometryBoard());
 }
 
 void BoardOutput::loadHomography()
@@ -156,7 +156,7 @@ void BoardOutput::updateGeometry()
 			notCalibrated_ = "the board calibration's homography is singular";
 		compositor_.clear();
 		if (pipeline_)
-			pipeline_->setBoardImage(picture_);
+			pipeline_->setBoardImage(cameraGeometryBoard());
 	}
 	if (outputWidth() * 100000 + outputHeight() != before && onGeometry_)
 		onGeometry_();
@@ -191,6 +191,15 @@ void BoardOutput::showBoardOnly()
 	lecturer_.resize(composite_.width(), composite_.height());
 	std::fill(lecturer_.data(), lecturer_.data() + lecturer_.size(), Rgba8{ 0, 0, 0, 0 });
 	compositor_.forgetLayer();
+}
+
+// A solid colour needs no picture in the pipeline: with none it fills the
+// board with the same [board] colour at the frame's size, and keeps no copy
+// of a board-sized picture (6.2 MB at the default 1920x1080).
+const RgbImage &BoardOutput::cameraGeometryBoard() const
+{
+	static const RgbImage none;
+	return settings_.board.backend == "colour" ? none : picture_;
 }
 
 bool BoardOutput::sourceOk() const

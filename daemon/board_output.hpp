@@ -59,6 +59,7 @@ private:
 	void updateGeometry();
 	void scalePicture();
 	const RgbImage &outputPicture() const { return scaled_.empty() ? picture_ : scaled_; }
+	const RgbImage &cameraGeometryBoard() const;
 
 	EventLoop *loop_ = nullptr;
 	Settings settings_;
