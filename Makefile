@@ -11,6 +11,8 @@
 #   make bench      run the Google Benchmark suite (medians)
 #   make soak       a million frames through depthkeyd on a replayed sequence, as
 #                   fast as it goes, VmRSS, fds and keying time sampled (tests/soak/)
+#   make bench-process  whole-process figures: libraries mapped, depthkeyd's RSS and
+#                   time to READY=1 on the simulator, depthkey-siox's start
 #   make deps       install missing Debian 12 packages (idempotent, quiet when all there)
 #   make deb        build the Debian package into build/deb/ (see debian/)
 #   make boot-test  boot the package with systemd in the QEMU VM (in `make test` too)
@@ -57,7 +59,15 @@ BIN := $(BUILD)/bin
 OBJ := $(BUILD)/obj
 
 PKGS := libsystemd tomlplusplus libusb-1.0 libgpiodcxx libturbojpeg libpng eigen3 libmicrohttpd libxcrypt
-OPENCV_LIBS := -lopencv_calib3d -lopencv_features2d -lopencv_imgcodecs -lopencv_imgproc -lopencv_core
+# Every binary may use OpenCV's core and imgproc. Only depthkey-calibrate
+# fits homographies and finds circle grids (calib3d, features2d), and only
+# the tests use imgcodecs: an independent PNG/JPEG codec to check
+# hal/png_codec against (Debian's imgcodecs maps GDAL, poppler, HDF5 and
+# ~130 more libraries: issue 15). Those go on the link lines that need them,
+# below; --as-needed records in each binary only the libraries it calls.
+OPENCV_LIBS := -lopencv_imgproc -lopencv_core
+OPENCV_CALIB_LIBS := -lopencv_calib3d -lopencv_features2d
+OPENCV_CODEC_LIBS := -lopencv_imgcodecs
 
 # Recursive (=) so pkg-config runs only when a recipe needs it, i.e. after `deps`.
 # No -march=native: the binaries must run on any x86-64 CPU (and under QEMU TCG).
@@ -65,7 +75,7 @@ CXXFLAGS ?= -O2 -g
 CXXFLAGS += -std=c++20 -Wall -Wextra -Werror -MMD -MP -I. -isystem /usr/include/opencv4 $(SANFLAGS)
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS))
 LDLIBS = $(shell pkg-config --libs $(PKGS)) $(OPENCV_LIBS) -lpthread -lrt
-LDFLAGS += $(SANFLAGS)
+LDFLAGS += -Wl,--as-needed $(SANFLAGS)
 
 LIB_SRCS := $(filter-out daemon/main.cpp,$(wildcard algo/*.cpp hal/*.cpp hal/*/*.cpp config/*.cpp wiring/*.cpp daemon/*.cpp))
 TOOL_SRCS := $(wildcard tools/*.cpp)
@@ -89,7 +99,7 @@ JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 # Keep tool objects (intermediates of the pattern rule) so nothing rebuilds twice.
 .SECONDARY:
 
-.PHONY: all run test check process-check hil bench soak deps deb deb-deps package-test boot-test install clean fuzz fuzz-build
+.PHONY: all run test check process-check hil bench bench-process soak deps deb deb-deps package-test boot-test install clean fuzz fuzz-build
 .DEFAULT_GOAL := all
 
 # The SR-2 emulator is built (for the HIL tests) but not installed.
@@ -153,6 +163,13 @@ bench: deps
 soak: deps
 	@$(MAKE) --no-print-directory -j$(JOBS) all
 	@tests/soak/run.sh $(BIN) $(BUILD)
+# Whole-process figures (issue 15): ldd lines per binary, depthkeyd's time to
+# READY=1 and its VmRSS (anonymous / file-backed / shared memory) on the
+# simulated cameras, depthkey-siox's process start; medians, no verdict.
+#   make bench-process [BENCH_PROCESS_ARGS="--seconds 10 --runs 3 --siox IMAGE TRIMAP"]
+bench-process: deps
+	@$(MAKE) --no-print-directory -j$(JOBS) all $(SIM_CALIBRATION) $(SIM_BOARD_CALIBRATION)
+	@python3 tests/bench/process_bench.py $(BIN) $(BUILD) $(BENCH_PROCESS_ARGS)
 
 $(OBJ)/%.o: %.cpp
 	@mkdir -p $(dir $@)
@@ -180,7 +197,7 @@ $(SR2EMU): $(call obj,$(SR2EMU_SRCS)) $(LIB)
 CALIBRATE_BOARD_SRCS := $(wildcard tools/calibrate_board/*.cpp) $(wildcard tools/calibrate_live/*.cpp)
 $(BIN)/depthkey-calibrate: $(OBJ)/tools/calibrate.o $(call obj,$(CALIBRATE_BOARD_SRCS)) $(LIB)
 	@mkdir -p $(dir $@)
-	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -o $@
+	$(CXX) $(LDFLAGS) $^ $(OPENCV_CALIB_LIBS) $(LDLIBS) -o $@
 
 # Helpers of the HIL suite (tests/hil/NAME.cpp -> depthkey-hil-NAME, with _
 # as -): a bare libusb SR-2 client, a shared-memory flag watcher.
@@ -196,11 +213,11 @@ $(UNIT_TESTS): $(call obj,$(UNIT_TEST_SRCS)) $(LIB)
 $(PROCESS_TESTS): $(call obj,$(PROCESS_TEST_SRCS)) $(LIB)
 $(UNIT_TESTS) $(PROCESS_TESTS):
 	@mkdir -p $(dir $@)
-	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -lgmock -lgtest -o $@
+	$(CXX) $(LDFLAGS) $^ $(OPENCV_CALIB_LIBS) $(OPENCV_CODEC_LIBS) $(LDLIBS) -lgmock -lgtest -o $@
 
 $(BENCH): $(call obj,$(BENCH_SRCS)) $(LIB)
 	@mkdir -p $(dir $@)
-	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -lbenchmark -o $@
+	$(CXX) $(LDFLAGS) $^ $(OPENCV_CALIB_LIBS) $(OPENCV_CODEC_LIBS) $(LDLIBS) -lbenchmark -o $@
 
 # Where the system files go; the defaults are Debian 12's (pkg-config's
 # systemd.pc and udev.pc say the same). The unit names $(PREFIX)/sbin/depthkeyd.
@@ -272,7 +289,7 @@ FUZZ_DIR := $(BUILDROOT)/fuzz
 FUZZ_ALL := $(patsubst tests/fuzz/%_fuzz.cpp,%,$(wildcard tests/fuzz/*_fuzz.cpp))
 FUZZ_TARGETS ?= $(FUZZ_ALL)
 FUZZ_LIB_SRCS := $(wildcard config/*.cpp) algo/mapping_model.cpp algo/homography.cpp algo/radial_lens.cpp hal/sr2/sr2_frame_parser.cpp \
-	hal/recording/sequence_reader.cpp hal/recording/sequence_format.cpp hal/image_file_reader.cpp \
+	hal/recording/sequence_reader.cpp hal/recording/sequence_format.cpp hal/image_file_reader.cpp hal/png_codec.cpp \
 	hal/v4l2/yuv_to_rgb.cpp hal/v4l2/mjpeg_decoder.cpp hal/v4l2/depth16_to_frame.cpp \
 	hal/preview/preview_server.cpp hal/preview/preview_encoder.cpp hal/preview/preview_status.cpp \
 	hal/preview/preview_page.cpp hal/preview/password_file.cpp hal/preview/jpeg_encoder.cpp hal/preview/stage_picture.cpp

@@ -38,7 +38,7 @@ static uint32_t coarseCell(uint32_t quantised)
 constexpr size_t kCoarseCells = size_t(1) << (3 * kCoarseBits);
 
 SignatureScratch::SignatureScratch()
-	: points(kQuantisedColours), lecturerCells(kCoarseCells), boardCells(kCoarseCells)
+	: points(new WeightedLab[kQuantisedColours]), lecturerCells(kCoarseCells), boardCells(kCoarseCells)
 {
 }
 
@@ -71,7 +71,7 @@ void deriveSignatures(const DecayingHistogram &lecturer, const DecayingHistogram
 		      const QuantisedLabTable &lab, SignatureScratch &scratch, SioxClassifier &classifier)
 {
 	std::vector<uint64_t> &lecturerCells = scratch.lecturerCells, &boardCells = scratch.boardCells;
-	WeightedLab *points = scratch.points.data();
+	WeightedLab *points = scratch.points.get();
 	coarseDensity(lecturer, lecturerCells);
 	coarseDensity(board, boardCells);
 	// Densities: each class's counts over its own total.

@@ -17,6 +17,7 @@
 #include "algo/siox_classifier.hpp"
 #include "settings/settings.hpp"
 
+#include <memory>
 #include <vector>
 
 namespace depthkey {
@@ -24,7 +25,10 @@ namespace depthkey {
 // Work space of deriveSignatures, sized once.
 struct SignatureScratch {
 	SignatureScratch();
-	std::vector<WeightedLab> points;                // kQuantisedColours
+	// Room for kQuantisedColours, left uninitialised: only as many points
+	// as a histogram has non-empty cells are written, and the pages past
+	// them are never touched (3 MB that depthkey-siox would zero for nothing).
+	std::unique_ptr<WeightedLab[]> points;
 	std::vector<uint64_t> lecturerCells, boardCells; // coarse colour densities
 };
 

@@ -3,11 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <new>
 
 namespace depthkey {
 
-DecayingHistogram::DecayingHistogram() : bins_(kQuantisedColours, 0)
+DecayingHistogram::DecayingHistogram()
+	: bins_(static_cast<uint32_t *>(std::calloc(kQuantisedColours, sizeof(uint32_t))))
 {
+	if (!bins_)
+		throw std::bad_alloc(); // as the vector it replaced, once at construction
 }
 
 void DecayingHistogram::setRate(double rate)
@@ -18,7 +22,9 @@ void DecayingHistogram::setRate(double rate)
 
 void DecayingHistogram::clear()
 {
-	std::memset(bins_.data(), 0, bins_.size() * sizeof(uint32_t));
+	// Every count is in total_ (rescale() keeps it so): none, nothing to zero.
+	if (total_ != 0)
+		std::memset(bins_.get(), 0, kQuantisedColours * sizeof(uint32_t));
 	total_ = 0;
 	incrementExact_ = kStartIncrement;
 	increment_ = kStartIncrement;
@@ -41,9 +47,9 @@ void DecayingHistogram::endFrame()
 void DecayingHistogram::rescale(int shift)
 {
 	uint64_t total = 0;
-	for (uint32_t &b : bins_) {
-		b >>= shift;
-		total += b;
+	for (uint32_t i = 0; i < kQuantisedColours; ++i) {
+		bins_[i] >>= shift;
+		total += bins_[i];
 	}
 	total_ = total;
 	if (shift == 8)

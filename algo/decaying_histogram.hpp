@@ -13,7 +13,8 @@
 #include "algo/quantised_colour.hpp"
 
 #include <cstdint>
-#include <vector>
+#include <cstdlib>
+#include <memory>
 
 namespace depthkey {
 
@@ -43,7 +44,13 @@ public:
 private:
 	void rescale(int shift);
 
-	std::vector<uint32_t> bins_;
+	// calloc'd: fresh pages are zero without being written, so a histogram
+	// that sees a few thousand colours (depthkey-siox's) touches only their
+	// pages of its 1 MB, and clear() on an empty one writes nothing.
+	struct Free {
+		void operator()(uint32_t *p) const { std::free(p); }
+	};
+	std::unique_ptr<uint32_t[], Free> bins_;
 	uint64_t total_ = 0;
 	double rate_ = 0.0;
 	double growth_ = 1.0;    // per frame: 1 / (1 - rate)

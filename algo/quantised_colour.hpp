@@ -8,6 +8,7 @@
 #include "algo/lab_converter.hpp"
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace depthkey {
@@ -27,16 +28,36 @@ inline Rgb8 quantisedCentre(uint32_t index)
 		 uint8_t((index & 63) * 4 + 2) };
 }
 
-// Lab16 of every cell centre, built once (1.5 MB) so that signatures and the
-// decision cache never convert colours per frame.
+// Lab16 of every cell centre (1.5 MB) so that signatures and the decision
+// cache never convert colours per frame. Only the colours of the cells
+// looked up are ever needed (a histogram's non-empty cells, a decision
+// cache miss), never a pixel's own lookup.
 class QuantisedLabTable
 {
 public:
-	QuantisedLabTable();
-	const Lab16 &operator[](uint32_t index) const { return lab_[index]; }
+	// Eager: every cell at construction (about 5 ms): the daemon, whose
+	// table is read by more than one stage and must never change after.
+	// OnDemand: a cell the first time it is asked for: depthkey-siox, which
+	// looks up the few thousand colours of one photo and would otherwise
+	// spend longer building the table than segmenting (issue 15). One
+	// thread only: a lookup may write the cell.
+	enum class Fill { Eager, OnDemand };
+	explicit QuantisedLabTable(Fill fill = Fill::Eager);
+
+	const Lab16 &operator[](uint32_t index) const
+	{
+		if (!((known_[index >> 6] >> (index & 63)) & 1)) [[unlikely]]
+			fill(index);
+		return lab_[index];
+	}
 
 private:
-	std::vector<Lab16> lab_;
+	void fill(uint32_t index) const;
+
+	LabConverter converter_;
+	// Left uninitialised: pages of cells never filled are never touched.
+	std::unique_ptr<Lab16[]> lab_;
+	mutable std::vector<uint64_t> known_; // a bit a cell: lab_ holds it
 };
 
 } // namespace depthkey

@@ -7,7 +7,7 @@
 
 namespace depthkey {
 
-StillSiox::StillSiox() : classifier_(lab_)
+StillSiox::StillSiox() : lab_(QuantisedLabTable::Fill::OnDemand), classifier_(lab_)
 {
 }
 

@@ -2,6 +2,8 @@
 // depthkey-siox): every surely-lecturer pixel is a lecturer sample, every
 // surely-board pixel a board sample (the reference's "known" pixels), then
 // the same classification, post-processing and soft alpha as the pipeline.
+// Its colour table is filled on demand (QuantisedLabTable::Fill::OnDemand),
+// so a StillSiox is for one thread.
 #pragma once
 
 #include "algo/colour_learner.hpp"

@@ -91,7 +91,7 @@ void BoardOutput::onPicture(const ColourFrame &frame)
 	if (boardGeometry())
 		scalePicture();
 	else if (pipeline_)
-		pipeline_->setBoardImage(picture_);
+		pipeline_->setBoardImage(cameraGeometryBoard());
 }
 
 void BoardOutput::loadHomography()
@@ -141,7 +141,12 @@ void BoardOutput::updateGeometry()
 	int before = outputWidth() * 100000 + outputHeight();
 	if (notCalibrated_.empty() &&
 	    compositor_.configure(c.colourToBoard.then(boardScaling(pw, ph, ow, oh)), cw, ch, ow, oh, c.lens())) {
-		scaled_.resize(ow, oh);
+		// At the source's size the picture itself is the output's: no
+		// second copy of it (4.5 MB for the simulated board's 1920x780).
+		if (ow == pw && oh == ph)
+			scaled_ = RgbImage();
+		else
+			scaled_.resize(ow, oh);
 		scalePicture();
 		showBoardOnly();
 		if (pipeline_)
@@ -151,21 +156,20 @@ void BoardOutput::updateGeometry()
 			notCalibrated_ = "the board calibration's homography is singular";
 		compositor_.clear();
 		if (pipeline_)
-			pipeline_->setBoardImage(picture_);
+			pipeline_->setBoardImage(cameraGeometryBoard());
 	}
 	if (outputWidth() * 100000 + outputHeight() != before && onGeometry_)
 		onGeometry_();
 }
 
-// Nearest neighbour, pixel centres kept; a plain copy at the same size.
+// Nearest neighbour, pixel centres kept; nothing to do at the same size
+// (outputPicture() is the picture then).
 void BoardOutput::scalePicture()
 {
 	compositor_.forgetBoard(); // the next composite copies the new picture whole
-	const int sw = picture_.width(), sh = picture_.height(), dw = scaled_.width(), dh = scaled_.height();
-	if (sw == dw && sh == dh) {
-		std::memcpy(scaled_.data(), picture_.data(), picture_.size() * sizeof(Rgb8));
+	if (scaled_.empty())
 		return;
-	}
+	const int sw = picture_.width(), sh = picture_.height(), dw = scaled_.width(), dh = scaled_.height();
 	for (int y = 0; y < dh; ++y) {
 		const Rgb8 *src = picture_.row(int((2 * int64_t(y) + 1) * sh / (2 * dh)));
 		Rgb8 *dst = scaled_.row(y);
@@ -177,18 +181,27 @@ void BoardOutput::scalePicture()
 void BoardOutput::compose(const RgbaImage &cameraLayer, const Roi &roi, int opacityQ8)
 {
 	if (boardGeometry())
-		compositor_.compose(cameraLayer, roi, scaled_, opacityQ8, composite_, lecturer_);
+		compositor_.compose(cameraLayer, roi, outputPicture(), opacityQ8, composite_, lecturer_);
 }
 
 void BoardOutput::showBoardOnly()
 {
 	if (!boardGeometry())
 		return;
-	composite_ = scaled_;
-	lecturer_.resize(scaled_.width(), scaled_.height());
+	composite_ = outputPicture();
+	lecturer_.resize(composite_.width(), composite_.height());
 	std::fill(lecturer_.data(), lecturer_.data() + lecturer_.size(), Rgba8{ 0, 0, 0, 0 });
 	compositor_.forgetLayer();
 	compositor_.forgetBoard();
+}
+
+// A solid colour needs no picture in the pipeline: with none it fills the
+// board with the same [board] colour at the frame's size, and keeps no copy
+// of a board-sized picture (6.2 MB at the default 1920x1080).
+const RgbImage &BoardOutput::cameraGeometryBoard() const
+{
+	static const RgbImage none;
+	return settings_.board.backend == "colour" ? none : picture_;
 }
 
 bool BoardOutput::sourceOk() const

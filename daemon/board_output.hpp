@@ -58,6 +58,8 @@ private:
 	void loadHomography();
 	void updateGeometry();
 	void scalePicture();
+	const RgbImage &outputPicture() const { return scaled_.empty() ? picture_ : scaled_; }
+	const RgbImage &cameraGeometryBoard() const;
 
 	EventLoop *loop_ = nullptr;
 	Settings settings_;
@@ -68,7 +70,7 @@ private:
 	std::unique_ptr<ColourCamera> source_;
 
 	RgbImage picture_;            // last good board picture, the source's size
-	RgbImage scaled_;             // the picture at the output size
+	RgbImage scaled_;             // the picture at the output size; empty at the source's size
 	BoardCalibration calibration_;
 	bool haveCalibration_ = false; // last good H
 	std::string notCalibrated_;    // why the composite is in camera geometry

@@ -2,25 +2,25 @@
 
 #include <cerrno>
 #include <cstring>
-#include <vector>
 
 #include "config/frame_limits.hpp"
 #include "hal/image_file_reader.hpp"
 
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
+#include <opencv2/core/mat.hpp>
 
 namespace depthkey {
 
 namespace {
 
 // Board images and stills: bounded like every file read (image_file_reader).
-int readMat(const std::string &path, int flags, cv::Mat &mat, std::string &error)
+// The decoded pixels are freed again at once: a daemon that read a large
+// board image at a reload keeps no copy of it.
+int readDecoded(const std::string &path, DecodedImage &image, std::string &error)
 {
-	int ret = decodeImageFile(path, { kMaxBoardImageSide, kMaxBoardImageSide }, flags, mat, error);
+	int ret = decodeImageFile(path, { kMaxBoardImageSide, kMaxBoardImageSide }, image, error);
 	if (ret < 0)
 		return ret;
-	if (mat.depth() != CV_8U) {
+	if (image.bitDepth != 8) {
 		error = path + ": must have 8 bits per channel";
 		return -EINVAL;
 	}
@@ -31,75 +31,63 @@ int readMat(const std::string &path, int flags, cv::Mat &mat, std::string &error
 
 int readRgbImage(const std::string &path, RgbImage &out, std::string &error)
 {
-	cv::Mat mat;
-	int ret = readMat(path, cv::IMREAD_COLOR | cv::IMREAD_ANYDEPTH, mat, error);
+	DecodedImage image;
+	int ret = readDecoded(path, image, error);
 	if (ret < 0)
 		return ret;
-	out.resize(mat.cols, mat.rows);
-	cv::Mat rgb(mat.rows, mat.cols, CV_8UC3, out.data());
-	cv::cvtColor(mat, rgb, cv::COLOR_BGR2RGB);
+	out.resize(image.width, image.height);
+	const uint8_t *in = image.pixels.data();
+	const int step = image.channels;
+	Rgb8 *px = out.data();
+	// Grey (1), grey + alpha (2), RGB (3) or RGBA (4): colour from the first
+	// channel or the first three, alpha dropped.
+	for (size_t i = 0; i < out.size(); ++i, in += step)
+		px[i] = step < 3 ? Rgb8{ in[0], in[0], in[0] } : Rgb8{ in[0], in[1], in[2] };
 	return 0;
 }
 
 int readGray8Image(const std::string &path, Gray8Image &out, std::string &error)
 {
-	cv::Mat mat;
-	int ret = readMat(path, cv::IMREAD_UNCHANGED, mat, error);
+	DecodedImage image;
+	int ret = readDecoded(path, image, error);
 	if (ret < 0)
 		return ret;
-	if (mat.channels() != 1) {
+	if (image.channels != 1) {
 		error = path + ": must be a single-channel (grey) 8-bit image, has " +
-			std::to_string(mat.channels()) + " channels";
+			std::to_string(image.channels) + " channels";
 		return -EINVAL;
 	}
-	out.resize(mat.cols, mat.rows);
-	for (int y = 0; y < mat.rows; ++y)
-		std::memcpy(out.row(y), mat.ptr<uint8_t>(y), size_t(mat.cols));
+	out.resize(image.width, image.height);
+	std::memcpy(out.data(), image.pixels.data(), out.size());
 	return 0;
 }
 
 int writePicturePng(const std::string &path, const cv::Mat &picture, std::string &error, int pngCompression)
 {
-	std::vector<int> params;
-	if (pngCompression != kDefaultPngCompression)
-		params = { cv::IMWRITE_PNG_COMPRESSION, pngCompression };
-	bool ok = false;
-	try {
-		ok = cv::imwrite(path, picture, params);
-	} catch (const cv::Exception &e) {
-		error = path + ": " + e.what();
-		return -EIO;
+	if (picture.depth() != CV_8U || (picture.channels() != 1 && picture.channels() != 3)) {
+		error = path + ": cannot write a picture of type " + std::to_string(picture.type());
+		return -EINVAL;
 	}
-	if (!ok) {
-		error = path + ": cannot write";
-		return -EIO;
-	}
-	return 0;
+	PngPixels pixels{ picture.data, picture.cols, picture.rows, picture.step[0], picture.channels(), 8, true };
+	return encodePng(path, pixels, pngCompression, error);
 }
 
 int writePng(const std::string &path, const RgbImage &image, std::string &error, int pngCompression)
 {
-	cv::Mat rgb(image.height(), image.width(), CV_8UC3, const_cast<Rgb8 *>(image.data()));
-	cv::Mat bgr;
-	try {
-		cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR); // imwrite takes BGR
-	} catch (const cv::Exception &e) { // an empty image
-		error = path + ": " + e.what();
-		return -EIO;
-	}
-	return writePicturePng(path, bgr, error, pngCompression);
+	PngPixels pixels{ image.data(), image.width(), image.height(), size_t(image.width()) * 3, 3, 8, false };
+	return encodePng(path, pixels, pngCompression, error);
 }
 
 int writePng(const std::string &path, const Gray8Image &image, std::string &error, int pngCompression)
 {
-	cv::Mat mat(image.height(), image.width(), CV_8UC1, const_cast<uint8_t *>(image.data()));
-	return writePicturePng(path, mat, error, pngCompression);
+	PngPixels pixels{ image.data(), image.width(), image.height(), size_t(image.width()), 1, 8, false };
+	return encodePng(path, pixels, pngCompression, error);
 }
 
 int writePng(const std::string &path, const Gray16Image &image, std::string &error, int pngCompression)
 {
-	cv::Mat mat(image.height(), image.width(), CV_16UC1, const_cast<uint16_t *>(image.data()));
-	return writePicturePng(path, mat, error, pngCompression);
+	PngPixels pixels{ image.data(), image.width(), image.height(), size_t(image.width()) * 2, 1, 16, false };
+	return encodePng(path, pixels, pngCompression, error);
 }
 
 } // namespace depthkey

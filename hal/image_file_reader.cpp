@@ -6,7 +6,6 @@
 #include <cerrno>
 #include <cstring>
 
-#include <opencv2/imgcodecs.hpp>
 #include <png.h>
 #include <turbojpeg.h>
 
@@ -45,6 +44,42 @@ bool jpegSize(const unsigned char *data, size_t size, int &width, int &height)
 	return ok;
 }
 
+// Grey JPEGs stay grey, the rest become RGB. TurboJPEG's defaults are
+// libjpeg's (accurate integer IDCT, fancy upsampling), as OpenCV decoded.
+// A warning (a truncated or damaged file, decoded in part) is an error: a
+// half-grey picture is never taken for the real one.
+int decodeJpeg(const unsigned char *data, size_t size, DecodedImage &out, std::string &why)
+{
+	tjhandle handle = tjInitDecompress();
+	if (!handle) {
+		why = "out of memory";
+		return -ENOMEM;
+	}
+	int width = 0, height = 0, subsampling = 0, colourspace = 0;
+	int ret = 0;
+	if (tjDecompressHeader3(handle, data, static_cast<unsigned long>(size), &width, &height, &subsampling,
+				&colourspace) != 0) {
+		why = tjGetErrorStr2(handle);
+		ret = -EINVAL;
+	} else if (colourspace == TJCS_CMYK || colourspace == TJCS_YCCK) {
+		why = "a CMYK JPEG, not grey or colour";
+		ret = -EINVAL;
+	} else {
+		out.width = width;
+		out.height = height;
+		out.channels = colourspace == TJCS_GRAY ? 1 : 3;
+		out.bitDepth = 8;
+		out.pixels.resize(size_t(width) * size_t(height) * size_t(out.channels));
+		if (tjDecompress2(handle, data, static_cast<unsigned long>(size), out.pixels.data(), width, 0, height,
+				  out.channels == 1 ? TJPF_GRAY : TJPF_RGB, 0) != 0) {
+			why = tjGetErrorStr2(handle);
+			ret = -EINVAL;
+		}
+	}
+	tjDestroy(handle);
+	return ret;
+}
+
 } // namespace
 
 bool imageHeaderSize(const unsigned char *data, size_t size, int &width, int &height)
@@ -52,23 +87,22 @@ bool imageHeaderSize(const unsigned char *data, size_t size, int &width, int &he
 	return pngSize(data, size, width, height) || jpegSize(data, size, width, height);
 }
 
-int decodeImageFile(const std::string &path, const ImageLimits &limits, int cvFlags, cv::Mat &out,
-		    std::string &error)
+int decodeImageFile(const std::string &path, const ImageLimits &limits, DecodedImage &out, std::string &error)
 {
-	out.release();
+	out.width = out.height = out.channels = out.bitDepth = 0;
 	std::string bytes, why;
 	int ret = readTextFile(path, kMaxImageFileBytes, bytes, why);
 	if (ret < 0) {
 		error = path + ": cannot read: " + why;
 		return ret;
 	}
-	return decodeImageBytes(bytes, path, limits, cvFlags, out, error);
+	return decodeImageBytes(bytes, path, limits, out, error);
 }
 
 int decodeImageBytes(const std::string &bytes, const std::string &path, const ImageLimits &limits,
-		     int cvFlags, cv::Mat &out, std::string &error)
+		     DecodedImage &out, std::string &error)
 {
-	out.release();
+	out.width = out.height = out.channels = out.bitDepth = 0;
 	const auto *data = reinterpret_cast<const unsigned char *>(bytes.data());
 	int width = 0, height = 0;
 	if (!imageHeaderSize(data, bytes.size(), width, height)) {
@@ -81,20 +115,18 @@ int decodeImageBytes(const std::string &bytes, const std::string &path, const Im
 			std::to_string(limits.maxHeight) + " accepted";
 		return -EFBIG;
 	}
-	try {
-		cv::Mat raw(1, static_cast<int>(bytes.size()), CV_8UC1, const_cast<char *>(bytes.data()));
-		out = cv::imdecode(raw, cvFlags);
-	} catch (const cv::Exception &e) {
-		out.release();
-	}
-	if (out.empty()) {
-		error = path + ": corrupt image data";
-		return -EINVAL;
+	std::string why;
+	int ret = data[0] == 0xff ? decodeJpeg(data, bytes.size(), out, why)
+				  : decodePng(data, bytes.size(), limits.maxWidth, limits.maxHeight, out, why);
+	if (ret < 0) {
+		out.width = out.height = out.channels = out.bitDepth = 0;
+		error = path + ": corrupt image data (" + why + ")";
+		return ret == -ENOMEM ? ret : -EINVAL;
 	}
 	// The header was checked, but a decoder could still disagree with it.
-	if (out.cols > limits.maxWidth || out.rows > limits.maxHeight) {
-		out.release();
-		error = path + ": decoded larger than its header says";
+	if (out.width != width || out.height != height) {
+		out.width = out.height = out.channels = out.bitDepth = 0;
+		error = path + ": decoded to another size than its header says";
 		return -EINVAL;
 	}
 	return 0;

@@ -1,11 +1,12 @@
 // Decoding an image file that anybody may have put there: read like a config
 // (regular file, O_NONBLOCK, size cap: config/text_file.hpp), its PNG or JPEG
-// header's dimensions checked against limits, and only then decoded.
+// header's dimensions checked against limits, and only then decoded, with
+// libpng (hal/png_codec.hpp) or TurboJPEG.
 #pragma once
 
-#include <string>
+#include "hal/png_codec.hpp"
 
-#include <opencv2/core/mat.hpp>
+#include <string>
 
 namespace depthkey {
 
@@ -14,16 +15,16 @@ struct ImageLimits {
 	int maxHeight = 0;
 };
 
-// PNG or JPEG only: those are the formats whose headers are checked (with
-// libpng and TurboJPEG) before OpenCV decodes. cvFlags as for cv::imread.
-// Returns 0, or a negative errno with error naming path and what is wrong:
-// -EFBIG for dimensions over limits, -EINVAL for not an image.
-int decodeImageFile(const std::string &path, const ImageLimits &limits, int cvFlags, cv::Mat &out,
-		    std::string &error);
+// PNG or JPEG only: those are the formats whose headers are checked. out
+// gets the pixels as the file stores them (DecodedImage: a JPEG as 8-bit
+// grey or RGB). Returns 0, or a negative errno with error naming path and
+// what is wrong: -EFBIG for dimensions over limits, -EINVAL for not an
+// image or corrupt data.
+int decodeImageFile(const std::string &path, const ImageLimits &limits, DecodedImage &out, std::string &error);
 
 // The same for a file's bytes already in memory; name is what errors say.
 int decodeImageBytes(const std::string &bytes, const std::string &name, const ImageLimits &limits,
-		     int cvFlags, cv::Mat &out, std::string &error);
+		     DecodedImage &out, std::string &error);
 
 // The header's dimensions of a PNG or JPEG in memory; false when it is
 // neither (or the header is corrupt). For decodeImageFile and the fuzzers.

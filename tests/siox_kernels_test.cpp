@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <algorithm>
 #include <random>
 
 using namespace depthkey;
@@ -240,4 +241,24 @@ TEST(SioxClassifier, ConfidenceIsConsistentWithTheDecision)
 		ASSERT_GE(c, 1);
 		ASSERT_EQ(c >= kConfidenceLecturer, dFg <= dBg) << q;
 	}
+}
+
+// depthkey-siox fills its colour table on demand (issue 15): whatever order
+// the cells are asked for in, and however often, each is the eager table's.
+TEST(QuantisedLabTable, OnDemandCellsEqualTheEagerTable)
+{
+	QuantisedLabTable eager, onDemand(QuantisedLabTable::Fill::OnDemand);
+	std::vector<uint32_t> order(kQuantisedColours);
+	for (uint32_t i = 0; i < kQuantisedColours; ++i)
+		order[i] = i;
+	std::shuffle(order.begin(), order.end(), std::mt19937(15));
+	size_t differ = 0;
+	for (uint32_t i : order)
+		differ += !(onDemand[i] == eager[i]);
+	for (uint32_t i = 0; i < kQuantisedColours; i += 97) // again, now from the filled cells
+		differ += !(onDemand[i] == eager[i]);
+	EXPECT_EQ(differ, 0u);
+	// Not a table of zeros on both sides: white is L* 100, black 0.
+	EXPECT_EQ(eager[quantiseColour({ 255, 255, 255 })].l / 100, 99);
+	EXPECT_EQ(eager[quantiseColour({ 0, 0, 0 })].l / 100, 0);
 }

@@ -7,8 +7,6 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 #include <sstream>
 #include <unistd.h>
 
@@ -35,9 +33,9 @@ uint64_t sequenceFromName(const std::string &file)
 }
 
 template<typename Pixel> struct PixelType;
-template<> struct PixelType<Rgb8> { static constexpr int cv = CV_8UC3; static constexpr const char *name = "8-bit RGB"; };
-template<> struct PixelType<uint16_t> { static constexpr int cv = CV_16UC1; static constexpr const char *name = "16-bit grey"; };
-template<> struct PixelType<uint8_t> { static constexpr int cv = CV_8UC1; static constexpr const char *name = "8-bit grey"; };
+template<> struct PixelType<Rgb8> { static constexpr int channels = 3, bits = 8; static constexpr const char *name = "8-bit RGB"; };
+template<> struct PixelType<uint16_t> { static constexpr int channels = 1, bits = 16; static constexpr const char *name = "16-bit grey"; };
+template<> struct PixelType<uint8_t> { static constexpr int channels = 1, bits = 8; static constexpr const char *name = "8-bit grey"; };
 
 } // namespace
 
@@ -147,20 +145,16 @@ int SequenceReader::readImage(Stream stream, size_t i, Image<Pixel> &out)
 	std::string path = dir_ + "/" + index[i].file;
 	// Bounded by the largest frame the config allows: a PNG claiming
 	// 20000x20000 pixels is refused before anything is allocated for it.
-	cv::Mat mat;
-	if (int ret = decodeImageFile(path, { kMaxFrameWidth, kMaxFrameHeight }, cv::IMREAD_UNCHANGED,
-				      mat, error_);
-	    ret < 0)
+	if (int ret = decodeImageFile(path, { kMaxFrameWidth, kMaxFrameHeight }, decoded_, error_); ret < 0)
 		return ret;
-	if (mat.type() != PixelType<Pixel>::cv) {
+	if (decoded_.channels != PixelType<Pixel>::channels || decoded_.bitDepth != PixelType<Pixel>::bits) {
 		error_ = path + ": is not " + PixelType<Pixel>::name;
 		return -EINVAL;
 	}
-	if constexpr (std::is_same_v<Pixel, Rgb8>)
-		cv::cvtColor(mat, mat, cv::COLOR_BGR2RGB);
-	out.resize(mat.cols, mat.rows);
-	for (int y = 0; y < mat.rows; ++y)
-		std::memcpy(out.row(y), mat.ptr(y), sizeof(Pixel) * mat.cols);
+	// The decoder gives RGB in RGB order and 16-bit samples in host order:
+	// the layout of Image<Pixel> already.
+	out.resize(decoded_.width, decoded_.height);
+	std::memcpy(out.data(), decoded_.pixels.data(), sizeof(Pixel) * out.size());
 	return 0;
 }
 

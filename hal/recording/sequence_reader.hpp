@@ -4,6 +4,7 @@
 #pragma once
 
 #include "algo/frames.hpp"
+#include "hal/png_codec.hpp"
 #include "hal/recording/sequence_format.hpp"
 
 #include <initializer_list>
@@ -58,6 +59,7 @@ private:
 	std::string dir_;
 	std::vector<SequenceEntry> index_[recording::StreamCount];
 	std::string error_;
+	DecodedImage decoded_; // reused: a replay of equally sized frames decodes without allocating
 };
 
 } // namespace depthkey

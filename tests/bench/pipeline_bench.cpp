@@ -207,6 +207,19 @@ void BM_DepthkeySioxStill(benchmark::State &state)
 	}
 }
 
+// What one depthkey-siox run does between reading and writing its files: a
+// fresh StillSiox (its colour table filled on demand) and one segmentation.
+void BM_DepthkeySioxStillCold(benchmark::State &state)
+{
+	test::SyntheticStill still = test::makeStill(640, 480, 10, 2);
+	Gray8Image mask, alpha;
+	for (auto _ : state) {
+		auto siox = std::make_unique<StillSiox>();
+		siox->segment(still.image, still.trimap, mask, alpha);
+		benchmark::DoNotOptimize(mask.data());
+	}
+}
+
 } // namespace
 
 #define SIZES ->Args({ 640, 480 })->Args({ 1920, 1080 })->Unit(benchmark::kMicrosecond)
@@ -217,3 +230,4 @@ BENCHMARK(BM_Learn) SIZES;
 BENCHMARK(BM_SioxBand) SIZES;
 BENCHMARK(BM_CompositeOutputs) SIZES;
 BENCHMARK(BM_DepthkeySioxStill)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_DepthkeySioxStillCold)->Unit(benchmark::kMicrosecond);

@@ -1,0 +1,183 @@
+#!/usr/bin/python3
+"""Whole-process figures of the built binaries (`make bench-process`).
+
+    tests/bench/process_bench.py BIN BUILD [--seconds N] [--runs N]
+                                 [--siox IMAGE TRIMAP]
+
+Prints, for issue 15's targets (figures, never a pass/fail: no timed test):
+  - the shared libraries each binary in BIN maps (`ldd | wc -l`);
+  - depthkeyd on the simulated cameras (BUILD/run.toml as `make run` writes
+    it, with a preview port, shared-memory names and snapshot folder of its
+    own so that it runs beside a `make run`): milliseconds from exec to
+    READY=1 on a NOTIFY_SOCKET of ours, as systemd would see it, then after
+    N seconds VmRSS, VmHWM and VmRSS split into anonymous memory (heap,
+    frame buffers), file-backed pages (code and libraries) and shared memory
+    (the output rings), from /proc/PID/status;
+  - `depthkey-siox --help`: process start to exit, the median of many runs;
+  - with --siox: a whole `depthkey-siox IMAGE TRIMAP OUT` run, the same way.
+Medians of --runs runs. Figures are this machine's: under qemu-user they
+measure the emulator, not the code.
+"""
+
+import argparse
+import os
+import socket
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+
+def ldd_counts(bin_dir):
+    rows = []
+    for name in sorted(os.listdir(bin_dir)):
+        path = os.path.join(bin_dir, name)
+        if not (os.path.isfile(path) and os.access(path, os.X_OK)):
+            continue
+        out = subprocess.run(["ldd", path], capture_output=True, text=True).stdout
+        rows.append((len(out.splitlines()), name))
+    return rows
+
+
+def bench_config(build, bin_dir, work, colour_board=False):
+    """BUILD/run.toml (as daemon/run-sim.sh makes it) with our own names;
+    colour_board: the board a solid colour, composited in the colour
+    camera's geometry (640x480) instead of the simulated board's 1920x780."""
+    config = subprocess.run(["sh", "daemon/run-sim.sh", bin_dir, build], check=True, capture_output=True,
+                            text=True, env=dict(os.environ, RUN_SIM_PREPARE_ONLY="1")).stdout.strip()
+    tag = "bench%d" % os.getpid()
+    replace = {
+        "composite_name": '"/depthkey-%s.composite"' % tag,
+        "lecturer_name": '"/depthkey-%s.lecturer"' % tag,
+        "board_lecturer_name": '"/depthkey-%s.lecturer.board"' % tag,
+        "listen": '"127.0.0.1:0"',
+        "snapshot_dir": '""',
+        "record_dir": '""',
+    }
+    board = {"backend": '"colour"', "homography_file": '""'} if colour_board else {}
+    lines, section = [], None
+    with open(config) as f:
+        for line in f:
+            if line.startswith("["):
+                section = line.strip().strip("[]")
+            key = line.split("=", 1)[0].strip()
+            if "=" in line and section == "board" and key in board:
+                line = "%s = %s\n" % (key, board[key])
+            elif "=" in line and key in replace:
+                line = "%s = %s\n" % (key, replace[key])
+            lines.append(line)
+    path = os.path.join(work, "bench-colour-board.toml" if colour_board else "bench.toml")
+    with open(path, "w") as f:
+        f.writelines(lines)
+    return path, tag
+
+
+def status_kb(pid):
+    fields = {}
+    with open("/proc/%d/status" % pid) as f:
+        for line in f:
+            key, _, value = line.partition(":")
+            if value.strip().endswith("kB"):
+                fields[key] = int(value.split()[0])
+    return fields
+
+
+def run_daemon(bin_dir, config, work, seconds):
+    sock_path = os.path.join(work, "notify.sock")
+    if os.path.exists(sock_path):
+        os.unlink(sock_path)
+    sock = socket.socket(socket.AF_UNIX, socket.SOCK_DGRAM)
+    sock.bind(sock_path)
+    env = dict(os.environ, NOTIFY_SOCKET=sock_path, DEPTHKEY_LOG="stderr")
+    env.pop("WATCHDOG_USEC", None)
+    log = open(os.path.join(work, "daemon.log"), "w")
+    start = time.monotonic()
+    proc = subprocess.Popen([os.path.join(bin_dir, "depthkeyd"), "--config", config], env=env,
+                            stdin=subprocess.DEVNULL, stdout=log, stderr=log)
+    ready_ms = None
+    try:
+        sock.settimeout(10.0)
+        while ready_ms is None:
+            message = sock.recv(4096).decode(errors="replace")
+            if "READY=1" in message.split("\n"):
+                ready_ms = (time.monotonic() - start) * 1000.0
+        time.sleep(seconds)
+        if proc.poll() is not None:
+            raise RuntimeError("depthkeyd exited early (see %s/daemon.log)" % work)
+        status = status_kb(proc.pid)
+    finally:
+        proc.terminate()
+        try:
+            proc.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait()
+        sock.close()
+        log.close()
+    return ready_ms, status
+
+
+def wall_ms(argv, runs):
+    times = []
+    for _ in range(runs):
+        start = time.monotonic()
+        subprocess.run(argv, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        times.append((time.monotonic() - start) * 1000.0)
+    return times
+
+
+def spread(values, unit, digits=1):
+    return "median %.*f %s (min %.*f, max %.*f, %d runs)" % (
+        digits, statistics.median(values), unit, digits, min(values), digits, max(values), len(values))
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("bin")
+    parser.add_argument("build")
+    parser.add_argument("--seconds", type=float, default=10.0)
+    parser.add_argument("--runs", type=int, default=3)
+    parser.add_argument("--siox", nargs=2, metavar=("IMAGE", "TRIMAP"))
+    args = parser.parse_args()
+    bin_dir = os.path.abspath(args.bin)
+
+    print("shared libraries mapped (ldd lines):")
+    for count, name in ldd_counts(bin_dir):
+        print("  %4d  %s" % (count, name))
+
+    with tempfile.TemporaryDirectory(prefix="depthkey-bench-") as work:
+        for colour_board, title in ((False, "make run's config: the simulated board, composite at 1920x780"),
+                                    (True, "the board a solid colour, composite at the cameras' 640x480")):
+            config, tag = bench_config(args.build, bin_dir, work, colour_board)
+            ready, rss = [], {}
+            for _ in range(args.runs):
+                ms, status = run_daemon(bin_dir, config, work, args.seconds)
+                ready.append(ms)
+                for key in ("VmRSS", "VmHWM", "RssAnon", "RssFile", "RssShmem"):
+                    rss.setdefault(key, []).append(status.get(key, 0) / 1024.0)
+            for name in ("composite", "lecturer", "lecturer.board"):
+                try:
+                    os.unlink("/dev/shm/depthkey-%s.%s" % (tag, name))
+                except FileNotFoundError:
+                    pass
+            print("depthkeyd on the simulated cameras, %s:" % title)
+            print("  exec to READY=1: %s" % spread(ready, "ms"))
+            for key, label in (("VmRSS", "VmRSS after %gs" % args.seconds), ("VmHWM", "VmHWM (peak)"),
+                               ("RssAnon", "  of it anonymous (heap, buffers)"),
+                               ("RssFile", "  of it file-backed (code, libraries)"),
+                               ("RssShmem", "  of it shared memory (output rings)")):
+                print("  %-38s %s" % (label + ":", spread(rss[key], "MB")))
+
+        siox = os.path.join(bin_dir, "depthkey-siox")
+        wall_ms([siox, "--help"], 3)  # warm the page cache
+        print("depthkey-siox --help: %s" % spread(wall_ms([siox, "--help"], 31), "ms", 2))
+        if args.siox:
+            argv = [siox, args.siox[0], args.siox[1], os.path.join(work, "mask.png")]
+            wall_ms(argv, 3)
+            print("depthkey-siox %s %s OUT: %s" % (args.siox[0], args.siox[1], spread(wall_ms(argv, 31), "ms", 2)))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
