@@ -28,8 +28,8 @@ CAMPAIGN_SCHEDULE=$VM_RESULTS/campaign-schedule   # INDEX NAME, drawn before the
 : >"$CAMPAIGN_LOG"
 : >"$CAMPAIGN_RESOURCES"
 
-# The faults, each a function campaign_NAME. SR-2 faults overlap with a
-# webcam one as "sr2-FAULT+webcam-FAULT".
+# The faults by name (campaign_run_fault runs one). An SR-2 fault drawn to
+# overlap with a webcam one is named "sr2-FAULT+webcam-FAULT".
 SINGLE_FAULTS="$(for f in $SR2_FAULTS; do printf 'sr2-%s ' "$f"; done)webcam-disconnect webcam-streamon-fails webcam-qbuf-error webcam-fatal-error gpio-chip-removed gpio-line-busy"
 AWAY_WEBCAM_FAULTS="webcam-disconnect webcam-streamon-fails"
 # words LIST INDEX: the INDEX-th (from 0) word of LIST.
@@ -144,11 +144,10 @@ gpio_fail() {
 }
 # leds_back SINCE: waits for all the daemon's lines; FAULT_MS from SINCE.
 leds_back() {
-	local got
 	if hil_wait 10 lines_are "$LED_COUNT"; then
 		FAULT_MS=$(elapsed_ms "$1" "$(hil_uptime)")
-		got=$(gpio_pattern "$LED_POWER" 150)
-		[ "$got" = blinking ] || gpio_fail heartbeat "power line $got after the LEDs were requested again"
+		led_shows "$LED_POWER" blinking ||
+			gpio_fail heartbeat "power line $LED_SEEN after the LEDs were requested again"
 	else
 		gpio_fail recovery "$(lines_held) lines held 10 s after the reload, not $LED_COUNT"
 	fi

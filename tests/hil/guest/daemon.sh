@@ -10,19 +10,13 @@
 . "$here/faults.sh"
 daemon_config_usable || return 0
 
-# check_led NAME LINE PATTERN: the line shows PATTERN (on/off/blinking),
-# sampled for 1.5 s (the slowest blink is 1 Hz); retried for up to 15 s: the
-# LEDs follow the device state, which lags the frame flags (ten bad SR-2
-# frames make it lost: seconds in the sanitizer build under TCG).
+# check_led NAME LINE PATTERN: the line shows PATTERN (led_shows).
 check_led() {
-	local name=$1 line=$2 want=$3 got deadline
-	deadline=$(($(hil_now_cs) + 1500))
-	while :; do
-		got=$(gpio_pattern "$line" 150)
-		[ "$got" = "$want" ] && { hil_pass "$name" "line $line $got"; return; }
-		[ "$(hil_now_cs)" -lt "$deadline" ] || break
-	done
-	hil_fail "$name" "line $line is $got, expected $want"
+	if led_shows "$2" "$3"; then
+		hil_pass "$1" "line $2 $LED_SEEN"
+	else
+		hil_fail "$1" "line $2 is $LED_SEEN, expected $3"
+	fi
 }
 
 # recovery_check NAME SINCE: the time from SINCE (the uptime at which the

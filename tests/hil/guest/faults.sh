@@ -110,6 +110,21 @@ rss_kb() { sed -n 's/^VmRSS:[[:space:]]*\([0-9]*\) kB/\1/p' /proc/"$DK_PID"/stat
 elapsed_ms() { awk -v a="$2" -v b="$1" 'BEGIN { printf "%d", (a - b) * 1000 }'; }
 ms_seconds() { awk -v ms="$1" 'BEGIN { printf "%.3f", ms / 1000 }'; }
 
+# led_shows LINE PATTERN: the line shows PATTERN (on/off/blinking), sampled
+# for 1.5 s (the slowest blink is 1 Hz); retried for up to 15 s: the LEDs
+# follow the device state, which lags the frame flags (ten bad SR-2 frames
+# make it lost: seconds in the sanitizer build under TCG), and a starved VM
+# may sample a blink too seldom. LED_SEEN is the last pattern seen.
+led_shows() {
+	local deadline
+	deadline=$(($(hil_now_cs) + 1500))
+	while :; do
+		LED_SEEN=$(gpio_pattern "$1" 150)
+		[ "$LED_SEEN" = "$2" ] && return 0
+		[ "$(hil_now_cs)" -lt "$deadline" ] || return 1
+	done
+}
+
 # check_flags NAME MASK=VALUE COUNT [watch options]: COUNT consecutive new
 # frames with those flags.
 check_flags() {
