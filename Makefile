@@ -8,6 +8,8 @@
 #   make process-check  the tests that start processes (tests/process/*.cpp): the
 #                   daemon, the tools, curl, chromium, a C compiler
 #   make hil        the hardware-in-the-loop suite alone (QEMU VM, tests/hil/)
+#   make hil-campaign [CAMPAIGN_FAULTS=N] [CAMPAIGN_SEED=S]
+#                   the HIL VM through N faults (default 1000) in a seeded random order
 #   make bench      run the Google Benchmark suite (medians)
 #   make soak       a million frames through depthkeyd on a replayed sequence, as
 #                   fast as it goes, VmRSS, fds and keying time sampled (tests/soak/)
@@ -99,7 +101,7 @@ JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 # Keep tool objects (intermediates of the pattern rule) so nothing rebuilds twice.
 .SECONDARY:
 
-.PHONY: all run test check process-check hil bench bench-process soak deps deb deb-deps package-test boot-test install clean fuzz fuzz-build
+.PHONY: all run test check process-check hil hil-campaign bench bench-process soak deps deb deb-deps package-test boot-test install clean fuzz fuzz-build
 .DEFAULT_GOAL := all
 
 # The SR-2 emulator is built (for the HIL tests) but not installed.
@@ -145,6 +147,14 @@ endif
 hil: deps
 	@$(MAKE) --no-print-directory -j$(JOBS) all $(HIL_TOOLS)
 	@tests/hil/run.sh $(BIN)
+
+# The fault campaign (not part of `make test`): the HIL VM through
+# CAMPAIGN_FAULTS faults drawn in an order fixed by CAMPAIGN_SEED (docs/hil.md).
+CAMPAIGN_FAULTS ?= 1000
+CAMPAIGN_SEED ?= 14
+hil-campaign: deps
+	@$(MAKE) --no-print-directory -j$(JOBS) all $(HIL_TOOLS)
+	@HIL_CAMPAIGN_FAULTS=$(CAMPAIGN_FAULTS) HIL_CAMPAIGN_SEED=$(CAMPAIGN_SEED) tests/hil/run.sh $(BIN)
 
 # The unit tests need no other binary; the process tests run the daemon and
 # the tools, so they build everything first.

@@ -6,11 +6,17 @@
 # when nothing failed; a VM that cannot start is a failure, never a skip.
 #
 #   tests/hil/run.sh [BIN]        (default build/bin; `make hil` calls this)
+#
+# With HIL_CAMPAIGN_FAULTS=N and HIL_CAMPAIGN_SEED=S the same VM runs the
+# fault campaign instead of the suite's daemon checks (tests/hil/guest/
+# campaign.sh, `make hil-campaign`): its "campaign: " lines are shown as they
+# come, its logs go to build/hil/*-campaign-results/.
 set -uo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 tree=$(cd "$here/../.." && pwd)
 bin=$(cd "${1:-$tree/build/bin}" && pwd)
-results=$tree/build/hil/$(basename "$(dirname "$bin")")-results
+campaign=${HIL_CAMPAIGN_FAULTS:-}
+results=$tree/build/hil/$(basename "$(dirname "$bin")")${campaign:+-campaign}-results
 start=$(date +%s)
 # Recovery times and VmRSS are judged on the optimised build only: the
 # sanitizer build (build/san/bin) is several times slower under TCG.
@@ -49,9 +55,23 @@ mkdir -p "$results"
 "$bin/depthkey-calibrate" --board --sim --board-size 640x360 --output "$results/board.toml" \
 	>"$results/calibrate-board.log" 2>&1 ||
 	fail_setup "depthkey-calibrate --board --sim failed: $(tail -n1 "$results/calibrate-board.log")"
-"$tree/tests/vm/run.sh" --results "$results" --layer "$udev" --timeout "${HIL_TIMEOUT:-1200}" \
-	--env "HIL_BIN=$bin" --env "HIL_SECTIONS=${HIL_SECTIONS:-all}" --env "HIL_SANITIZER=$sanitizer" -- bash "$here/guest/main.sh" >"$results/console.txt" 2>&1
-vm_status=$?
+vm_options=(--results "$results" --layer "$udev" --env "HIL_BIN=$bin" --env "HIL_SANITIZER=$sanitizer")
+if [ -z "$campaign" ]; then
+	"$tree/tests/vm/run.sh" "${vm_options[@]}" --timeout "${HIL_TIMEOUT:-1200}" \
+		--env "HIL_SECTIONS=${HIL_SECTIONS:-all}" -- bash "$here/guest/main.sh" >"$results/console.txt" 2>&1
+	vm_status=$?
+else
+	case $campaign${HIL_CAMPAIGN_SEED:-} in *[!0-9]*) fail_setup "HIL_CAMPAIGN_FAULTS and HIL_CAMPAIGN_SEED must be numbers" ;; esac
+	[ -n "${HIL_CAMPAIGN_SEED:-}" ] || fail_setup "HIL_CAMPAIGN_SEED is not set (make hil-campaign sets it)"
+	# A fault takes seconds; a minute each is a VM that hangs.
+	"$tree/tests/vm/run.sh" "${vm_options[@]}" --timeout "${HIL_TIMEOUT:-$((1200 + 60 * campaign))}" \
+		--env "HIL_CAMPAIGN_FAULTS=$campaign" --env "HIL_CAMPAIGN_SEED=$HIL_CAMPAIGN_SEED" \
+		-- bash "$here/guest/main.sh" >"$results/console.txt" 2>&1 &
+	vm_pid=$!
+	tail -n +1 -f --pid="$vm_pid" "$results/console.txt" | grep --line-buffered '^campaign: '
+	wait "$vm_pid"
+	vm_status=$?
+fi
 grep '^hil: ' "$results/console.txt"
 passed=$(grep -c '^PASS ' "$results/results" 2>/dev/null)
 failed=$(grep -c '^FAIL ' "$results/results" 2>/dev/null)

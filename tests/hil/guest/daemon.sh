@@ -7,122 +7,26 @@
 # is a second vivid instance as the capture stick, in board geometry (its
 # unplug and return: the "board" section).
 
-DK_CONFIG=/run/hil-depthkey.toml
-DK_LOG=$HIL_LOGS/depthkeyd.log
-RECOVERY_LOG=$VM_RESULTS/recovery
-RECOVERY_LIMIT_MS=2000
-# HIL_SANITIZER=1: the binaries are the sanitizer build, several times slower
-# under TCG and holding freed memory in ASan's quarantine: recovery times and
-# VmRSS are then reported as skipped; recovery itself is still asserted.
-HIL_SANITIZER=${HIL_SANITIZER:-0}
-# Shared-memory flags (hal/depthkey_shm.h).
-ONLINE=0x7 COLOUR_OK=0x2 DEPTH_OK=0x4
-# LED lines on the simulated chip (the legend in docs/devices.md).
-LED_POWER=0 LED_DEPTH=1 LED_COLOUR=2 LED_CALIBRATION=3 LED_READER=4 LED_ERROR=5 LED_BOARD=6
+. "$here/faults.sh"
+daemon_config_usable || return 0
 
-cat >"$DK_CONFIG" <<TOML
-[colour]
-backend = "v4l2"
-device = "/dev/video0"
-width = 640
-height = 480
-fps = 15
-pixel_format = "yuyv"
-timeout_ms = 500
-
-[depth]
-backend = "sr2"
-fps = 10
-timeout_ms = 500
-
-[pairing]
-# Wider than the default 1.5 depth periods: under TCG the SR-2's frames come
-# irregularly, and one dropped frame must not unpair colour frames.
-max_skew_ms = 350
-
-[mapping]
-# Fitted by tests/hil/run.sh with depthkey-calibrate --sim (640x480 colour).
-calibration_file = "$VM_RESULTS/calibration.toml"
-
-[board]
-# The second vivid instance as the board computer's capture stick, at a
-# size TCG keeps up with; the board calibration fitted by tests/hil/run.sh
-# (depthkey-calibrate --board --sim --board-size 640x360).
-backend = "v4l2"
-device = "/dev/video1"
-width = 640
-height = 360
-fps = 5
-pixel_format = "yuyv"
-timeout_ms = 1000
-homography_file = "$VM_RESULTS/board.toml"
-
-[leds]
-backend = "gpiod"
-chip = "$led_chip"
-power_line = $LED_POWER
-depth_line = $LED_DEPTH
-colour_line = $LED_COLOUR
-calibration_line = $LED_CALIBRATION
-reader_line = $LED_READER
-error_line = $LED_ERROR
-board_line = $LED_BOARD
-TOML
-
-if ! out=$("$HIL_BIN/depthkeyd" --check-config "$DK_CONFIG" 2>&1); then
-	if echo "$out" | grep -q 'backend'; then
-		hil_skip daemon "this depthkeyd has no v4l2/sr2/gpiod backends: $(echo "$out" | head -n1)"
-	else
-		hil_fail daemon-config "$out"
-	fi
-	return 0
-fi
-
-shm_watch() { "$HIL_BIN/depthkey-hil-shm-watch" "$@"; }
-lost_count() { grep -c "$1 lost" "$DK_LOG"; }
-lost_more_than() { [ "$(lost_count "$1")" -gt "$2" ]; }
-daemon_alive() { kill -0 "$DK_PID" 2>/dev/null; }
-
-# check_flags NAME MASK=VALUE COUNT [watch options]: COUNT consecutive new
-# frames with those flags.
-check_flags() {
-	local name=$1 until=$2 count=$3
-	shift 3
-	hil_check "$name" shm_watch --until "$until" --count "$count" --timeout 30 "$@"
-}
-
-# check_led NAME LINE PATTERN: the line shows PATTERN (on/off/blinking),
-# sampled for 1.5 s (the slowest blink is 1 Hz); retried for up to 15 s: the
-# LEDs follow the device state, which lags the frame flags (ten bad SR-2
-# frames make it lost: seconds in the sanitizer build under TCG).
+# check_led NAME LINE PATTERN: the line shows PATTERN (led_shows).
 check_led() {
-	local name=$1 line=$2 want=$3 got deadline
-	deadline=$(($(hil_now_cs) + 1500))
-	while :; do
-		got=$(gpio_pattern "$line" 150)
-		[ "$got" = "$want" ] && { hil_pass "$name" "line $line $got"; return; }
-		[ "$(hil_now_cs)" -lt "$deadline" ] || break
-	done
-	hil_fail "$name" "line $line is $got, expected $want"
+	if led_shows "$2" "$3"; then
+		hil_pass "$1" "line $2 $LED_SEEN"
+	else
+		hil_fail "$1" "line $2 is $LED_SEEN, expected $3"
+	fi
 }
 
-# recovery_watch_start: starts a watcher for the first whole frame before a
-# device is brought back, so that its own start-up (slow under TCG) does not
-# count; recovery_check NAME SINCE then takes the time from SINCE (the uptime
-# at which the device returned) to that frame, logs it for the summary and
-# holds it against the 2 s limit.
-recovery_watch_start() {
-	# 9<&-: the watcher must not hold the webcam that the suite keeps away.
-	shm_watch --until "$ONLINE=$ONLINE" --timeout 60 >/run/hil-recovery-watch 9<&- &
-	RECOVERY_WATCH=$!
-}
+# recovery_check NAME SINCE: the time from SINCE (the uptime at which the
+# device returned) to the first whole frame seen by the watcher that
+# recovery_watch_start started, logged for the summary and held against the
+# 2 s limit.
 recovery_check() {
-	local name=$1 since=$2 out ms seconds
-	wait "$RECOVERY_WATCH"
-	out=$(cat /run/hil-recovery-watch)
-	if [[ $out =~ \ at\ ([0-9.]+) ]] && [ -n "$since" ]; then
-		ms=$(awk -v a="${BASH_REMATCH[1]}" -v b="$since" 'BEGIN { printf "%d", (a - b) * 1000 }')
-		seconds=$(awk -v ms="$ms" 'BEGIN { printf "%.3f", ms / 1000 }')
+	local name=$1 since=$2 ms seconds
+	if recovery_measure "$since"; then
+		ms=$RECOVERY_MS seconds=$(ms_seconds "$RECOVERY_MS")
 		echo "$name $seconds" >>"$RECOVERY_LOG"
 		if [ "$HIL_SANITIZER" = 1 ]; then
 			hil_pass "$name-recovery" "whole frames again $seconds s after the device returned"
@@ -133,7 +37,7 @@ recovery_check() {
 			hil_fail "$name-recovery" "whole frames again only $seconds s after the device returned (limit 2 s)"
 		fi
 	else
-		hil_fail "$name-recovery" "${out:-no result} (device returned at ${since:-?})"
+		hil_fail "$name-recovery" "$RECOVERY_WHY"
 	fi
 }
 
@@ -160,9 +64,7 @@ fault() {
 }
 
 # --- start --------------------------------------------------------------------
-{ "$HIL_BIN/depthkeyd" --config "$DK_CONFIG"; echo "hil: depthkeyd exit status $?"; } 2>&1 |
-	hil_timestamp >"$DK_LOG" &
-hil_wait 20 pidof depthkeyd && DK_PID=$(pidof depthkeyd)
+daemon_start
 check_flags daemon-frames-from-both-cameras "$ONLINE=$ONLINE" 10 --timeout 60
 # The simulated figure covers about a fifth of the view: keyed from the SR-2's
 # depth, the lecturer layer is neither empty nor everything.
@@ -247,14 +149,13 @@ if hil_section webcam-output; then
 fi
 
 # --- SR-2 faults ----------------------------------------------------------------
-sr2() { sr2_cmd "$@"; }
 if hil_section sr2; then
-	fault sr2-unplug "sr2 unplug" $DEPTH_OK $LED_DEPTH sr2_replug
-	fault sr2-stall "sr2 stall" $DEPTH_OK $LED_DEPTH "sr2 resume"
-	fault sr2-corrupt-frames "sr2 corrupt 100000" $DEPTH_OK $LED_DEPTH "sr2 corrupt 0"
-	fault sr2-flat-frames "sr2 flat 100000" $DEPTH_OK $LED_DEPTH "sr2 flat 0"
-	fault sr2-short-frames "sr2 short 100000" $DEPTH_OK $LED_DEPTH "sr2 short 0"
-	fault sr2-request-stalls "sr2 halt 100000" $DEPTH_OK $LED_DEPTH "sr2 halt 0"
+	fault sr2-unplug "sr2_inject unplug" $DEPTH_OK $LED_DEPTH "sr2_restore unplug"
+	fault sr2-stall "sr2_inject stall" $DEPTH_OK $LED_DEPTH "sr2_restore stall"
+	fault sr2-corrupt-frames "sr2_inject corrupt" $DEPTH_OK $LED_DEPTH "sr2_restore corrupt"
+	fault sr2-flat-frames "sr2_inject flat" $DEPTH_OK $LED_DEPTH "sr2_restore flat"
+	fault sr2-short-frames "sr2_inject short" $DEPTH_OK $LED_DEPTH "sr2_restore short"
+	fault sr2-request-stalls "sr2_inject halt" $DEPTH_OK $LED_DEPTH "sr2_restore halt"
 	# One bad frame is dropped and counted, not a lost camera. (Depth may still
 	# miss the pairing window for a frame or two under TCG's uneven timing, so
 	# this is judged by the daemon's own account, not the frame flags.)
@@ -275,43 +176,32 @@ if hil_section sr2; then
 fi
 
 # --- webcam (vivid) faults ---------------------------------------------------
-# vivid's "disconnect" unregisters the device until its last user closes it.
-# The suite holds it open (fd 9) to keep it away, like an unplugged webcam,
-# and lets it return by closing that fd. Injected errors hit the next such
-# call (stream on, buffer allocation) when the daemon re-opens it.
-vivid() { v4l2-ctl -d /dev/video0 -c "$1=1"; }
 webcam_unplug() {
 	local name=$1 since
 	shift
-	exec 9</dev/video0
-	for control in "$@" disconnect; do
-		vivid "$control" || hil_fail "$name-inject" "v4l2-ctl -c $control=1 failed"
-	done
+	webcam_away "$name" "$@"
 	check_flags "$name-offline-frames" "$COLOUR_OK=0" 3
 	check_led "$name-led-blinks" $LED_COLOUR blinking
 	hil_check "$name-daemon-runs" daemon_alive
 	recovery_watch_start
 	since=$(hil_uptime)
-	exec 9<&-
+	webcam_back
 	recovery_check "$name" "$since"
 	check_led "$name-led-on-again" $LED_COLOUR on
 }
 # A failing call on a present device: the daemon re-opens it at once, often
 # before three frame periods pass, i.e. before NO SIGNAL frames are due. The
 # recovery is timed from the injection to the daemon's "streaming again".
-again_count() { grep -c "$1 streaming again" "$DK_LOG"; }
-again_more_than() { [ "$(again_count "$1")" -gt "$2" ]; }
-webcam_error() {
-	local name=$1 control=$2 lost again since back ms seconds
+webcam_failure() {
+	local name=$1 control=$2 lost again since ms seconds
 	lost=$(lost_count v4l2-colour) again=$(again_count v4l2-colour)
 	since=$(hil_uptime)
-	vivid "$control" || hil_fail "$name-inject" "v4l2-ctl -c $control=1 failed"
+	webcam_error "$name" "$control"
 	hil_check "$name-noticed" hil_wait 10 lost_more_than v4l2-colour "$lost"
 	hil_check "$name-daemon-runs" daemon_alive
 	if hil_wait 10 again_more_than v4l2-colour "$again"; then
-		back=$(grep 'v4l2-colour streaming again' "$DK_LOG" | tail -n1 | sed 's/^\[\([0-9.]*\)\].*/\1/')
-		ms=$(awk -v a="$back" -v b="$since" 'BEGIN { printf "%d", (a - b) * 1000 }')
-		seconds=$(awk -v ms="$ms" 'BEGIN { printf "%.3f", ms / 1000 }')
+		ms=$(elapsed_ms "$since" "$(again_at v4l2-colour)")
+		seconds=$(ms_seconds "$ms")
 		echo "$name $seconds" >>"$RECOVERY_LOG"
 		[ "$HIL_SANITIZER" = 1 ] && hil_skip "$name-recovery-time" "not judged in the sanitizer build ($seconds s)"
 		[ "$HIL_SANITIZER" = 1 ] || [ "$ms" -le "$RECOVERY_LIMIT_MS" ] &&
@@ -326,8 +216,8 @@ if hil_section webcam; then
 	webcam_unplug webcam-unplug
 	webcam_unplug webcam-unplug-streamon-fails inject_vidioc_streamon_error
 	webcam_unplug webcam-unplug-reqbufs-fails inject_vidioc_reqbufs_error
-	webcam_error webcam-qbuf-error inject_vidioc_qbuf_error
-	webcam_error webcam-fatal-streaming-error inject_fatal_streaming_error
+	webcam_failure webcam-qbuf-error inject_vidioc_qbuf_error
+	webcam_failure webcam-fatal-streaming-error inject_fatal_streaming_error
 	vivid inject_v4l2_buf_flag_error
 	if out=$(shm_watch --until "$COLOUR_OK=0" --timeout 3); then
 		hil_fail webcam-error-buffer-dropped "colour went offline for one error buffer: $out"
@@ -353,9 +243,8 @@ if hil_section board; then
 	since=$(hil_uptime)
 	exec 7<&-
 	if hil_wait 15 again_more_than v4l2-board "$again"; then
-		back=$(grep 'v4l2-board streaming again' "$DK_LOG" | tail -n1 | sed 's/^\[\([0-9.]*\)\].*/\1/')
-		ms=$(awk -v a="$back" -v b="$since" 'BEGIN { printf "%d", (a - b) * 1000 }')
-		seconds=$(awk -v ms="$ms" 'BEGIN { printf "%.3f", ms / 1000 }')
+		ms=$(elapsed_ms "$since" "$(again_at v4l2-board)")
+		seconds=$(ms_seconds "$ms")
 		echo "board-unplug $seconds" >>"$RECOVERY_LOG"
 		[ "$HIL_SANITIZER" = 1 ] || [ "$ms" -le "$RECOVERY_LIMIT_MS" ] &&
 			hil_pass board-unplug-recovery "board streaming again $seconds s after its return" ||
@@ -368,18 +257,14 @@ if hil_section board; then
 fi
 
 # --- leaks over 50 unplug/replug cycles ----------------------------------------
-fd_count() { local n=0 f; for f in /proc/"$DK_PID"/fd/*; do n=$((n + 1)); done; echo "$n"; }
-rss_kb() { sed -n 's/^VmRSS:[[:space:]]*\([0-9]*\) kB/\1/p' /proc/"$DK_PID"/status; }
 replug_cycle() {
 	local since out
-	sr2_cmd unplug || { echo "unplug command failed"; return 1; }
+	sr2_inject unplug || { echo "unplug command failed"; return 1; }
 	out=$(shm_watch --until "$DEPTH_OK=0" --timeout 20) || { echo "no offline frame: $out"; return 1; }
 	recovery_watch_start
-	sr2_replug || { echo "replug failed"; return 1; }
-	wait "$RECOVERY_WATCH" || { cat /run/hil-recovery-watch; return 1; }
-	[[ $(cat /run/hil-recovery-watch) =~ \ at\ ([0-9.]+) ]] &&
-		awk -v a="${BASH_REMATCH[1]}" -v b="$SR2_RETURNED_AT" 'BEGIN { printf "cycle %.3f\n", a - b }' >>"$RECOVERY_LOG"
-	return 0
+	sr2_restore unplug || { echo "replug failed"; return 1; }
+	recovery_measure "$SR2_RETURNED_AT" || { echo "$RECOVERY_WHY"; return 1; }
+	echo "cycle $(ms_seconds "$RECOVERY_MS")" >>"$RECOVERY_LOG"
 }
 if hil_section leak; then
 	# Five cycles first: what a re-open allocates once (libusb's and glibc's
@@ -397,13 +282,13 @@ if hil_section leak; then
 		hil_pass sr2-50-replug-cycles "50 cycles, each back online"
 		[ "$fds_after" -eq "$fds_before" ] && hil_pass no-fd-leak "$fds_before fds before, $fds_after after" ||
 			hil_fail no-fd-leak "$fds_before fds before, $fds_after after 50 cycles"
-		# Freed memory may stay in the allocator's pools: allow 1 MB, far
-		# less than 50 frames' worth. AddressSanitizer holds freed memory in
-		# quarantine, so the sanitizer build leaves this to LeakSanitizer.
+		# LEAK_RSS_LIMIT_KB (allocator pools). AddressSanitizer holds freed
+		# memory in quarantine, so the sanitizer build leaves this to
+		# LeakSanitizer.
 		if [ "$HIL_SANITIZER" = 1 ]; then
 			hil_skip no-memory-leak "VmRSS $rss_before -> $rss_after kB not judged under ASan (quarantine)"
 		else
-			[ $((rss_after - rss_before)) -le 1024 ] &&
+			[ $((rss_after - rss_before)) -le "$LEAK_RSS_LIMIT_KB" ] &&
 				hil_pass no-memory-leak "VmRSS $rss_before kB before, $rss_after kB after" ||
 				hil_fail no-memory-leak "VmRSS grew from $rss_before kB to $rss_after kB over 50 cycles"
 		fi
@@ -413,11 +298,4 @@ if hil_section leak; then
 fi
 
 # --- stop -------------------------------------------------------------------------
-kill -TERM "$DK_PID"
-hil_check daemon-stops hil_wait 20 sh -c "! kill -0 $DK_PID"
-hil_check daemon-clean-stop hil_wait 10 grep -q 'hil: depthkeyd exit status 0' "$DK_LOG"
-dark=1
-for line in $LED_POWER $LED_DEPTH $LED_COLOUR $LED_CALIBRATION $LED_READER $LED_ERROR $LED_BOARD; do
-	[ "$(gpio_value "$line")" = 0 ] || dark=0
-done
-[ "$dark" -eq 1 ] && hil_pass leds-dark-after-stop "all seven lines low" || hil_fail leds-dark-after-stop "a line is still high"
+daemon_stop_checks

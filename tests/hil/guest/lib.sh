@@ -95,13 +95,14 @@ sr2_cmd() {
 
 sr2_answered() { [ "$(grep -c "] sr2-emulator: \(ok\|error\) " "$SR2_LOG")" -gt "$1" ]; }
 # sr2_replug: plugs the camera back in; sets SR2_RETURNED_AT to the uptime at
-# which the host had configured it (enumeration done: the device is back).
+# which the host had configured it (enumeration done: the device is back),
+# as the emulator says (the log's own timestamps may lag in a busy VM).
 sr2_replug() {
 	local before
 	before=$(grep -c 'host configured the device' "$SR2_LOG")
 	sr2_cmd replug &&
 		hil_wait 20 sr2_configured "$before" &&
-		SR2_RETURNED_AT=$(grep 'host configured the device' "$SR2_LOG" | tail -n1 | sed 's/^\[\([0-9.]*\)\].*/\1/')
+		SR2_RETURNED_AT=$(grep 'host configured the device' "$SR2_LOG" | tail -n1 | sed 's/.* at \([0-9.]*\)$/\1/')
 }
 sr2_configured() { [ "$(grep -c 'host configured the device' "$SR2_LOG")" -gt "$1" ]; }
 sr2_present() { lsusb -d 0852:0071; }

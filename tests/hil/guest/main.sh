@@ -2,7 +2,8 @@
 # The HIL suite, run as root inside the VM by tests/hil/run.sh: loads the
 # virtual devices (emulated SR-2 on dummy_hcd, vivid, gpio-sim), starts udev,
 # checks each device on its own, then runs the real depthkeyd against them
-# (daemon.sh). HIL_BIN is the folder of the binaries under test.
+# (daemon.sh; or the fault campaign, campaign.sh, when HIL_CAMPAIGN_FAULTS
+# is set). HIL_BIN is the folder of the binaries under test.
 set -u
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/lib.sh"
@@ -68,10 +69,14 @@ sr2_cmd replug
 hil_check sr2-replug hil_wait 20 sr2_present
 
 # --- the daemon on these devices --------------------------------------------
-if bash -n "$here/daemon.sh"; then
-	. "$here/daemon.sh"
+# The HIL suite's checks (daemon.sh), or with HIL_CAMPAIGN_FAULTS set the
+# fault campaign instead (campaign.sh, `make hil-campaign`).
+suite=daemon.sh
+[ -z "${HIL_CAMPAIGN_FAULTS:-}" ] || suite=campaign.sh
+if bash -n "$here/faults.sh" && bash -n "$here/$suite"; then
+	. "$here/$suite"
 else
-	hil_fail daemon-suite "tests/hil/guest/daemon.sh does not parse"
+	hil_fail daemon-suite "tests/hil/guest/$suite or faults.sh does not parse"
 fi
 
 # --- end ----------------------------------------------------------------------

@@ -1,0 +1,218 @@
+# The real depthkeyd against the virtual devices, and the faults injected
+# into them (sourced, after lib.sh): the daemon's config and start, the
+# shared-memory watcher, each fault's injection and its undoing, recovery
+# timing and the daemon's fds and VmRSS. Shared by daemon.sh (the HIL suite:
+# each fault once, with its LEDs) and campaign.sh (`make hil-campaign`: many
+# faults in a seeded random order).
+
+DK_CONFIG=/run/hil-depthkey.toml
+DK_LOG=$HIL_LOGS/depthkeyd.log
+RECOVERY_LOG=$VM_RESULTS/recovery
+RECOVERY_LIMIT_MS=2000
+# Freed memory may stay in the allocator's pools: VmRSS may grow this much
+# over many faults before it counts as a leak (far less than 50 frames).
+LEAK_RSS_LIMIT_KB=1024
+# HIL_SANITIZER=1: the binaries are the sanitizer build, several times slower
+# under TCG and holding freed memory in ASan's quarantine: recovery times and
+# VmRSS are then reported as skipped; recovery itself is still asserted.
+HIL_SANITIZER=${HIL_SANITIZER:-0}
+# Shared-memory flags (hal/depthkey_shm.h).
+ONLINE=0x7 COLOUR_OK=0x2 DEPTH_OK=0x4
+# LED lines on the simulated chip (the legend in docs/devices.md).
+LED_POWER=0 LED_DEPTH=1 LED_COLOUR=2 LED_CALIBRATION=3 LED_READER=4 LED_ERROR=5 LED_BOARD=6
+LED_LINES="$LED_POWER $LED_DEPTH $LED_COLOUR $LED_CALIBRATION $LED_READER $LED_ERROR $LED_BOARD"
+
+cat >"$DK_CONFIG" <<TOML
+[colour]
+backend = "v4l2"
+device = "/dev/video0"
+width = 640
+height = 480
+fps = 15
+pixel_format = "yuyv"
+timeout_ms = 500
+
+[depth]
+backend = "sr2"
+fps = 10
+timeout_ms = 500
+
+[pairing]
+# Wider than the default 1.5 depth periods: under TCG the SR-2's frames come
+# irregularly, and one dropped frame must not unpair colour frames.
+max_skew_ms = 350
+
+[mapping]
+# Fitted by tests/hil/run.sh with depthkey-calibrate --sim (640x480 colour).
+calibration_file = "$VM_RESULTS/calibration.toml"
+
+[board]
+# The second vivid instance as the board computer's capture stick, at a
+# size TCG keeps up with; the board calibration fitted by tests/hil/run.sh
+# (depthkey-calibrate --board --sim --board-size 640x360).
+backend = "v4l2"
+device = "/dev/video1"
+width = 640
+height = 360
+fps = 5
+pixel_format = "yuyv"
+timeout_ms = 1000
+homography_file = "$VM_RESULTS/board.toml"
+
+[leds]
+backend = "gpiod"
+chip = "$led_chip"
+power_line = $LED_POWER
+depth_line = $LED_DEPTH
+colour_line = $LED_COLOUR
+calibration_line = $LED_CALIBRATION
+reader_line = $LED_READER
+error_line = $LED_ERROR
+board_line = $LED_BOARD
+TOML
+
+# daemon_config_usable: true when this depthkeyd accepts the config; a
+# depthkeyd built without the device backends is a skip, anything else a
+# failure (both recorded).
+daemon_config_usable() {
+	local out
+	out=$("$HIL_BIN/depthkeyd" --check-config "$DK_CONFIG" 2>&1) && return 0
+	if echo "$out" | grep -q 'backend'; then
+		hil_skip daemon "this depthkeyd has no v4l2/sr2/gpiod backends: $(echo "$out" | head -n1)"
+	else
+		hil_fail daemon-config "$out"
+	fi
+	return 1
+}
+
+# daemon_start: starts depthkeyd on the config, its output timestamped into
+# DK_LOG (appended: a restart after a crash keeps the crash's lines), and
+# sets DK_PID.
+daemon_start() {
+	{ "$HIL_BIN/depthkeyd" --config "$DK_CONFIG"; echo "hil: depthkeyd exit status $?"; } 2>&1 |
+		hil_timestamp >>"$DK_LOG" &
+	hil_wait 20 pidof depthkeyd && DK_PID=$(pidof depthkeyd)
+}
+
+shm_watch() { "$HIL_BIN/depthkey-hil-shm-watch" "$@"; }
+lost_count() { grep -c "$1 lost" "$DK_LOG"; }
+lost_more_than() { [ "$(lost_count "$1")" -gt "$2" ]; }
+again_count() { grep -c "$1 streaming again" "$DK_LOG"; }
+again_more_than() { [ "$(again_count "$1")" -gt "$2" ]; }
+# again_at DEVICE: the uptime of the daemon's last "DEVICE streaming again".
+again_at() { grep "$1 streaming again" "$DK_LOG" | tail -n1 | sed 's/^\[\([0-9.]*\)\].*/\1/'; }
+daemon_alive() { kill -0 "$DK_PID" 2>/dev/null; }
+fd_count() { local n=0 f; for f in /proc/"$DK_PID"/fd/*; do n=$((n + 1)); done; echo "$n"; }
+rss_kb() { sed -n 's/^VmRSS:[[:space:]]*\([0-9]*\) kB/\1/p' /proc/"$DK_PID"/status; }
+
+# elapsed_ms SINCE UNTIL: milliseconds between two uptimes; ms_seconds MS:
+# those as seconds with three decimals.
+elapsed_ms() { awk -v a="$2" -v b="$1" 'BEGIN { printf "%d", (a - b) * 1000 }'; }
+ms_seconds() { awk -v ms="$1" 'BEGIN { printf "%.3f", ms / 1000 }'; }
+
+# led_shows LINE PATTERN: the line shows PATTERN (on/off/blinking), sampled
+# for 1.5 s (the slowest blink is 1 Hz); retried for up to 15 s: the LEDs
+# follow the device state, which lags the frame flags (ten bad SR-2 frames
+# make it lost: seconds in the sanitizer build under TCG), and a starved VM
+# may sample a blink too seldom. LED_SEEN is the last pattern seen.
+led_shows() {
+	local deadline
+	deadline=$(($(hil_now_cs) + 1500))
+	while :; do
+		LED_SEEN=$(gpio_pattern "$1" 150)
+		[ "$LED_SEEN" = "$2" ] && return 0
+		[ "$(hil_now_cs)" -lt "$deadline" ] || return 1
+	done
+}
+
+# check_flags NAME MASK=VALUE COUNT [watch options]: COUNT consecutive new
+# frames with those flags.
+check_flags() {
+	local name=$1 until=$2 count=$3
+	shift 3
+	hil_check "$name" shm_watch --until "$until" --count "$count" --timeout 30 "$@"
+}
+
+# recovery_watch_start: starts a watcher for the first whole frame before a
+# device is brought back, so that its own start-up (slow under TCG) does not
+# count; recovery_measure SINCE then waits for it and sets RECOVERY_MS to the
+# milliseconds from SINCE (the uptime at which the device returned) to that
+# frame, or fails with RECOVERY_WHY. (Not in a command substitution: the
+# watcher is this shell's child.)
+recovery_watch_start() {
+	# 9<&-: the watcher must not hold the webcam that the suite keeps away.
+	shm_watch --until "$ONLINE=$ONLINE" --timeout 60 >/run/hil-recovery-watch 9<&- &
+	RECOVERY_WATCH=$!
+}
+recovery_measure() {
+	local since=$1 out
+	wait "$RECOVERY_WATCH"
+	out=$(cat /run/hil-recovery-watch)
+	RECOVERY_MS="" RECOVERY_WHY=""
+	if [[ $out =~ \ at\ ([0-9.]+) ]] && [ -n "$since" ]; then
+		RECOVERY_MS=$(elapsed_ms "$since" "${BASH_REMATCH[1]}")
+	else
+		RECOVERY_WHY="${out:-no result} (device returned at ${since:-?})"
+		return 1
+	fi
+}
+
+# --- the faults: each injected and undone by name ------------------------------
+# SR-2: the emulator's commands (tools/sr2_emulator). A replug sets
+# SR2_RETURNED_AT (the device is back once the host has configured it).
+SR2_FAULTS="unplug stall corrupt flat short halt"
+sr2_inject() {
+	case $1 in
+	unplug | stall) sr2_cmd "$1" ;;
+	corrupt | flat | short | halt) sr2_cmd "$1" 100000 ;;
+	*) echo "no SR-2 fault $1" >&2; return 1 ;;
+	esac
+}
+sr2_restore() {
+	case $1 in
+	unplug) sr2_replug ;;
+	stall) sr2_cmd resume ;;
+	corrupt | flat | short | halt) sr2_cmd "$1" 0 ;;
+	*) echo "no SR-2 fault $1" >&2; return 1 ;;
+	esac
+}
+
+# The webcam (vivid). Its "disconnect" unregisters the device until its last
+# user closes it: webcam_away NAME [CONTROL...] holds it open (fd 9) to keep
+# it away, like an unplugged webcam, after setting vivid's error controls
+# given (they hit the next such call, e.g. stream on, when the daemon
+# re-opens it); webcam_back lets it return by closing that fd. webcam_error
+# NAME CONTROL injects an error into the streaming device (the daemon re-opens
+# it at once). A control that cannot be set fails NAME-inject.
+vivid() { v4l2-ctl -d /dev/video0 -c "$1=1"; }
+webcam_away() {
+	local name=$1 control
+	shift
+	exec 9</dev/video0
+	for control in "$@" disconnect; do
+		vivid "$control" || hil_fail "$name-inject" "v4l2-ctl -c $control=1 failed"
+	done
+}
+webcam_back() { exec 9<&-; }
+webcam_error() { vivid "$2" || hil_fail "$1-inject" "v4l2-ctl -c $2=1 failed"; }
+
+# The LEDs' GPIO chip (gpio-sim) removed and back: the daemon's lines fail
+# (released and logged once, the daemon goes on: docs/devices.md). A new chip
+# may have a new name: led_chip follows it.
+gpio_chip_remove() { echo 0 >"$GPIO_SIM/live"; }
+gpio_chip_return() {
+	echo 1 >"$GPIO_SIM/live" && led_chip=$(cat "$GPIO_SIM/bank0/chip_name") && hil_wait 10 test -c "/dev/$led_chip"
+}
+
+# daemon_stop_checks: SIGTERM; the daemon must stop cleanly (status 0) and
+# leave every LED dark.
+daemon_stop_checks() {
+	local dark=1 line
+	kill -TERM "$DK_PID"
+	hil_check daemon-stops hil_wait 20 sh -c "! kill -0 $DK_PID"
+	hil_check daemon-clean-stop hil_wait 10 grep -q 'hil: depthkeyd exit status 0' "$DK_LOG"
+	for line in $LED_LINES; do
+		[ "$(gpio_value "$line")" = 0 ] || dark=0
+	done
+	[ "$dark" -eq 1 ] && hil_pass leds-dark-after-stop "all seven lines low" || hil_fail leds-dark-after-stop "a line is still high"
+}
