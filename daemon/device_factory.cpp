@@ -61,10 +61,14 @@ std::unique_ptr<StatusLeds> createStatusLeds(const Settings &settings)
 	if (settings.leds.backend == "gpiod")
 		return std::make_unique<GpiodStatusLeds>(
 			[](const std::string &led, int error, const std::string &detail) {
-				// Once per line: the LED stays dark, the daemon goes on.
+				// Once per line: the LED stays dark, the daemon goes on,
+				// and the backend says when it lights again (error 0).
 				std::string device = led.empty() ? "leds" : "led-" + led;
-				logger().errorOnce(device, "status LED unavailable: " + detail,
-						   { { "DEVICE", device }, { "ERROR", errnoText(error) } });
+				if (error == 0)
+					logger().clearError(device, "status LED back: " + detail, { { "DEVICE", device } });
+				else
+					logger().errorOnce(device, "status LED unavailable: " + detail,
+							   { { "DEVICE", device }, { "ERROR", errnoText(error) } });
 			});
 	return std::make_unique<NoStatusLeds>();
 }

@@ -8,6 +8,8 @@ namespace depthkey {
 
 namespace {
 
+constexpr unsigned kLedRetryTicks = kLedTicksPerCycle; // missing lines retried once a second
+
 int errnoOf(const std::exception &e)
 {
 	if (auto *se = dynamic_cast<const std::system_error *>(&e))
@@ -27,46 +29,106 @@ GpiodStatusLeds::~GpiodStatusLeds()
 	close();
 }
 
+namespace {
+
+int lineOffset(const LedSettings &s, size_t led)
+{
+	const int offsets[kStatusLedCount] = { s.powerLine,  s.depthLine, s.colourLine, s.calibrationLine,
+					       s.readerLine, s.errorLine, s.boardLine };
+	return offsets[led];
+}
+
+} // namespace
+
 int GpiodStatusLeds::open(EventLoop &loop, const LedSettings &settings)
 {
 	close();
+	settings_ = settings;
+	reported_.fill(false);
+	chipReported_ = false;
+	patterns_ = ledPatternsFor(StatusSummary{});
+	tick_ = 0;
+	std::string why;
+	int r = openChip(why);
+	if (r < 0 && onFault_) {
+		chipReported_ = true;
+		onFault_("", r, why);
+	}
+	for (size_t i = 0; r == 0 && i < kStatusLedCount; i++)
+		if (lineOffset(settings_, i) >= 0 && requestLine(i) < 0)
+			continue; // reported by requestLine()
+	// The timer also runs without a chip: it retries once a second.
+	int t = loop.addPeriodic(kLedTickUs, [this] { tick(); }, timer_);
+	return r < 0 ? r : t;
+}
+
+int GpiodStatusLeds::openChip(std::string &why)
+{
 	try {
-		chip_ = std::make_unique<gpiod::chip>(settings.chip, gpiod::chip::OPEN_LOOKUP);
+		chip_ = std::make_unique<gpiod::chip>(settings_.chip, gpiod::chip::OPEN_LOOKUP);
 	} catch (const std::exception &e) {
 		chip_.reset();
-		if (onFault_)
-			onFault_("", errnoOf(e), "cannot open GPIO chip " + settings.chip + ": " + e.what());
+		why = "cannot open GPIO chip " + settings_.chip + ": " + e.what();
 		return errnoOf(e);
 	}
 	if (!*chip_) {
 		chip_.reset();
-		if (onFault_)
-			onFault_("", -ENODEV, "no GPIO chip " + settings.chip);
+		why = "no GPIO chip " + settings_.chip;
 		return -ENODEV;
 	}
-	int offsets[kStatusLedCount] = { settings.powerLine, settings.depthLine,
-					 settings.colourLine, settings.calibrationLine,
-					 settings.readerLine, settings.errorLine, settings.boardLine };
+	return 0;
+}
+
+// Requests one LED's line; on failure releases it and reports the fault
+// (once: not again while it stays reported).
+int GpiodStatusLeds::requestLine(size_t led)
+{
+	const int offset = lineOffset(settings_, led);
 	gpiod::line_request request{ "depthkeyd", gpiod::line_request::DIRECTION_OUTPUT,
-				     settings.activeLow ? gpiod::line_request::FLAG_ACTIVE_LOW
-							: std::bitset<32>() };
-	for (size_t i = 0; i < kStatusLedCount; i++) {
-		if (offsets[i] < 0)
-			continue;
-		try {
-			auto line = std::make_unique<gpiod::line>(
-				chip_->get_line(static_cast<unsigned>(offsets[i])));
-			line->request(request, 0);
-			lines_[i] = std::move(line);
-			written_[i] = 0;
-		} catch (const std::exception &e) {
-			release(i, errnoOf(e), "cannot request line " + std::to_string(offsets[i]) +
-						       " of " + settings.chip + ": " + e.what());
-		}
+				     settings_.activeLow ? gpiod::line_request::FLAG_ACTIVE_LOW : std::bitset<32>() };
+	try {
+		auto line = std::make_unique<gpiod::line>(chip_->get_line(static_cast<unsigned>(offset)));
+		line->request(request, 0);
+		lines_[led] = std::move(line);
+		written_[led] = -1; // the next tick writes its level
+		return 0;
+	} catch (const std::exception &e) {
+		if (!reported_[led])
+			release(led, errnoOf(e), "cannot request line " + std::to_string(offset) + " of " + settings_.chip +
+							 ": " + e.what());
+		else
+			lines_[led].reset();
+		return errnoOf(e);
 	}
-	patterns_ = ledPatternsFor(StatusSummary{});
-	tick_ = 0;
-	return loop.addPeriodic(kLedTickUs, [this] { tick(); }, timer_);
+}
+
+// Once a second while a line is missing: the chip again if none is held,
+// then the missing lines. Failures stay quiet (reported already).
+void GpiodStatusLeds::retryMissing()
+{
+	bool missing = false;
+	for (size_t i = 0; i < kStatusLedCount; i++)
+		missing |= lineOffset(settings_, i) >= 0 && !lines_[i];
+	if (!missing && chip_)
+		return;
+	if (linesInUse() == 0)
+		chip_.reset();
+	if (!chip_) {
+		std::string why;
+		if (openChip(why) < 0)
+			return;
+		if (chipReported_ && onFault_)
+			onFault_("", 0, "GPIO chip " + settings_.chip + " is back");
+		chipReported_ = false;
+	}
+	for (size_t i = 0; i < kStatusLedCount; i++) {
+		if (lineOffset(settings_, i) < 0 || lines_[i] || requestLine(i) < 0)
+			continue;
+		if (reported_[i] && onFault_)
+			onFault_(statusLedName(static_cast<StatusLed>(i)), 0,
+				 "line " + std::to_string(lineOffset(settings_, i)) + " of " + settings_.chip + " is back");
+		reported_[i] = false;
+	}
 }
 
 void GpiodStatusLeds::show(const StatusSummary &summary)
@@ -102,6 +164,8 @@ int GpiodStatusLeds::linesInUse() const
 
 void GpiodStatusLeds::tick()
 {
+	if (tick_ % kLedRetryTicks == 0)
+		retryMissing();
 	for (size_t i = 0; i < kStatusLedCount; i++) {
 		if (!lines_[i])
 			continue;
@@ -128,8 +192,9 @@ void GpiodStatusLeds::release(size_t led, int error, const std::string &what)
 		}
 		lines_[led].reset();
 	}
-	if (onFault_)
+	if (!reported_[led] && onFault_)
 		onFault_(statusLedName(static_cast<StatusLed>(led)), error, what);
+	reported_[led] = true;
 }
 
 } // namespace depthkey

@@ -3,7 +3,11 @@
 // writes each level when it changes, on a 125 ms event-loop timer. The C++
 // binding throws; every call is wrapped here and becomes a negative errno.
 // A line that fails is released and reported once through onFault; the
-// other LEDs and the daemon go on.
+// other LEDs and the daemon go on. Once a second the missing lines are
+// requested again (the chip opened afresh when none is held: a chip that
+// went away and came back is a new device), silently while they still fail;
+// one that is back is reported through onFault with error 0. So a chip that
+// returns, or a line another process let go, lights again by itself.
 #pragma once
 
 #include "hal/gpio/led_patterns.hpp"
@@ -24,7 +28,8 @@ class GpiodStatusLeds : public StatusLeds
 {
 public:
 	// Called once per failed line (and once if the chip cannot be opened):
-	// the LED's name ("" for the chip), the negative errno and what failed.
+	// the LED's name ("" for the chip), the negative errno and what failed;
+	// and once more with error 0 when it works again.
 	using FaultHandler = std::function<void(const std::string &led, int error,
 						const std::string &detail)>;
 
@@ -38,6 +43,9 @@ public:
 	int linesInUse() const;
 
 private:
+	int openChip(std::string &why);
+	int requestLine(size_t led);
+	void retryMissing();
 	void tick();
 	void release(size_t led, int error, const std::string &what);
 
@@ -45,6 +53,9 @@ private:
 	std::unique_ptr<gpiod::chip> chip_;
 	std::array<std::unique_ptr<gpiod::line>, kStatusLedCount> lines_;
 	std::array<int, kStatusLedCount> written_{}; // -1 = unknown
+	std::array<bool, kStatusLedCount> reported_{}; // its fault reported, not yet back
+	bool chipReported_ = false;
+	LedSettings settings_;
 	LedPatterns patterns_{};
 	EventSource timer_;
 	unsigned tick_ = 0;

@@ -124,10 +124,6 @@ leds_reopen() {
 	sed -i "s|^chip = .*|chip = \"$spelling\"|" "$DK_CONFIG"
 	kill -HUP "$DK_PID"
 }
-lines_held() { find /proc/"$DK_PID"/fd -lname 'anon_inode:gpio-line*' 2>/dev/null | wc -l; }
-lines_are() { [ "$(lines_held)" -eq "$1" ]; }
-lines_below() { [ "$(lines_held)" -lt "$1" ]; }
-LED_COUNT=$(count "$LED_LINES")
 whole_frames() { # WHAT
 	local out
 	out=$(shm_watch --until "$ONLINE=$ONLINE" --count 3 --timeout 30 9<&-) || fault_fail "$1" "$out"

@@ -204,6 +204,12 @@ gpio_chip_return() {
 	echo 1 >"$GPIO_SIM/live" && led_chip=$(cat "$GPIO_SIM/bank0/chip_name") && hil_wait 10 test -c "/dev/$led_chip"
 }
 
+# The GPIO lines the daemon holds (its LEDs), from its fds.
+lines_held() { find /proc/"$DK_PID"/fd -lname 'anon_inode:gpio-line*' 2>/dev/null | wc -l; }
+lines_are() { [ "$(lines_held)" -eq "$1" ]; }
+lines_below() { [ "$(lines_held)" -lt "$1" ]; }
+LED_COUNT=$(set -- $LED_LINES; echo $#)
+
 # daemon_stop_checks: SIGTERM; the daemon must stop cleanly (status 0) and
 # leave every LED dark.
 daemon_stop_checks() {
