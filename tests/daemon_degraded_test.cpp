@@ -190,6 +190,9 @@ TEST(DaemonDegraded, WithoutDepthAHeldColourFrameLeavesAfterTheDelayWithItsTimes
 	settings.colour.width = 32;
 	settings.colour.height = 24;
 	settings.pairing.delayMs = 60;
+	// A slow colour rate: its NO SIGNAL frame (after 3 periods without
+	// colour) stays out of the script's 80 ms even on a slow (sanitizer) build.
+	settings.colour.fps = 5;
 	Daemon daemon("unused.toml", {}, h.factory());
 	ASSERT_EQ(daemon.start(settings), 0);
 	ColourFrame colour;
