@@ -112,9 +112,13 @@ sr2_absent() { ! lsusb -d 0852:0071; }
 GPIO_SIM=/sys/kernel/config/gpio-sim/hil-leds
 
 # Creates a simulated chip of 8 lines; prints its name (gpiochipN).
+# The bank's label: a name that stays when the chip comes back as a new
+# gpiochipN (the LED config can name a chip by its label).
+GPIO_LABEL=depthkey-hil-leds
 gpio_sim_create() {
 	mkdir -p "$GPIO_SIM/bank0" &&
 		echo 8 >"$GPIO_SIM/bank0/num_lines" &&
+		echo "$GPIO_LABEL" >"$GPIO_SIM/bank0/label" &&
 		echo 1 >"$GPIO_SIM/live" &&
 		cat "$GPIO_SIM/bank0/chip_name"
 }
