@@ -49,8 +49,9 @@ ARCH_LIBS :=
 ifeq ($(ARCH),arm64)
 CROSS := aarch64-linux-gnu-
 CXX := $(CROSS)g++
-# The arm64 .pc files, plus the architecture-independent ones (eigen3).
-PKG_CONFIG := PKG_CONFIG_LIBDIR=/usr/lib/aarch64-linux-gnu/pkgconfig:/usr/share/pkgconfig pkg-config
+# pkgconf:arm64's wrapper reads the arm64 .pc files (and the
+# architecture-independent ones: eigen3).
+PKG_CONFIG := $(CROSS)pkg-config
 BUILDROOT ?= build/arm64
 DEPS_LISTS := packaging/build-deps.txt packaging/build-deps-arm64.txt
 # OpenCV's calib3d and features2d -dev packages cannot be installed for
@@ -288,14 +289,14 @@ install: all $(CONFIG_MAN)
 # The Debian package (debhelper; debian/ must sit at the top of the source
 # tree, where dpkg-buildpackage looks). Output: build/deb/*.deb.
 deb: deb-deps
-	@packaging/build-deb.sh
+	@packaging/build-deb.sh $(ARCH)
 
 deb-deps:
-	@packaging/install-deps.sh packaging/deb-deps.txt
+	@packaging/install-deps.sh packaging/deb-deps.txt $(DEPS_LISTS)
 
 # The package's tests (in `make test`, not repeated by SAN=1): offline checks
 # of the unit and lintian on the host, then the boot test in the QEMU VM.
-DEB_FILE = build/deb/depthkey_$(VERSION)_$(shell dpkg --print-architecture).deb
+DEB_FILE = build/deb/depthkey_$(VERSION)_$(or $(ARCH),$(shell dpkg --print-architecture)).deb
 
 package-test: deb
 	@tests/package/offline_checks.sh $(DEB_FILE)
