@@ -20,6 +20,9 @@ fi
 if [ -n "${1:-}" ]; then
 	eval "$(dpkg-architecture -a "$1" -s)"
 	export DEB_BUILD_PROFILES="cross pkg.depthkey.cross-opencv"
+	# The tests are not run by the package build anyway (debian/rules).
+	export DEB_BUILD_OPTIONS="nocheck ${DEB_BUILD_OPTIONS:-}"
+	export CC="$DEB_HOST_GNU_TYPE-gcc" CXX="$DEB_HOST_GNU_TYPE-g++"
 	checkdeps="dpkg-checkbuilddeps -a $1 -P cross,pkg.depthkey.cross-opencv"
 else
 	checkdeps=dpkg-checkbuilddeps
@@ -33,7 +36,7 @@ mkdir -p build/deb
 	$checkdeps &&
 	debian/rules clean &&
 	DEB_BUILD_OPTIONS="parallel=2 ${DEB_BUILD_OPTIONS:-}" debian/rules build &&
-	debian/rules binary
+	DEB_BUILD_OPTIONS="parallel=2 ${DEB_BUILD_OPTIONS:-}" debian/rules binary
 } >build/deb/build.log 2>&1 || {
 	tail -40 build/deb/build.log >&2
 	echo "make deb: the package build failed, full log in build/deb/build.log" >&2
