@@ -182,8 +182,9 @@ hil: deps
 
 # The unit tests need no other binary; the process tests run the daemon and
 # the tools, so they build everything first.
+# CHECK_ARGS: more GoogleTest flags (e.g. --gtest_filter=...).
 check: $(UNIT_TESTS)
-	@$(RUN) $(UNIT_TESTS) --gtest_brief=1
+	@$(RUN) $(UNIT_TESTS) --gtest_brief=1 $(CHECK_ARGS)
 
 process-check: all $(PROCESS_TESTS)
 	@$(PROCESS_RUN) $(PROCESS_TESTS) --gtest_brief=1
