@@ -15,11 +15,16 @@
 #                   fast as it goes, VmRSS, fds and keying time sampled (tests/soak/)
 #   make bench-process  whole-process figures: libraries mapped, depthkeyd's RSS and
 #                   time to READY=1 on the simulator, depthkey-siox's start
+#   make frame-instructions  instructions of one pipeline frame (callgrind)
 #   make deps       install missing Debian 12 packages (idempotent, quiet when all there)
 #   make deb        build the Debian package into build/deb/ (see debian/)
 #   make boot-test  boot the package with systemd in the QEMU VM (in `make test` too)
 #   make install DESTDIR=... PREFIX=...
 #   make clean
+#   make ARCH=arm64 ...  cross-build for arm64 (Debian's aarch64-linux-gnu
+#                   toolchain, arm64 libraries through multiarch) into build/arm64/;
+#                   `make ARCH=arm64 deps` installs them, `make ARCH=arm64 check` runs
+#                   the unit tests under qemu-user (docs/arm64.md)
 #   make SAN=1 ... build with AddressSanitizer + UndefinedBehaviorSanitizer (in build/san/)
 #   make SAN=thread ... build with ThreadSanitizer (in build/tsan/)
 #   make fuzz [FUZZ_SECONDS=N | FUZZ_RUNS=N] [FUZZ_TARGETS="config image ..."]
@@ -37,6 +42,47 @@
 PREFIX ?= /usr/local
 DESTDIR ?=
 SAN ?= 0
+
+# ARCH: empty = this machine's; arm64 = cross-built with Debian's toolchain
+# and run under qemu-user (docs/arm64.md). Everything that differs per
+# architecture is in this block; the rules below only use its variables.
+ARCH ?=
+PKG_CONFIG ?= pkg-config
+# How a built binary is started (empty: directly), and the process tests.
+RUN :=
+PROCESS_RUN :=
+ARCH_LIBS :=
+ifeq ($(ARCH),arm64)
+CROSS := aarch64-linux-gnu-
+CXX := $(CROSS)g++
+# pkgconf:arm64's wrapper reads the arm64 .pc files (and the
+# architecture-independent ones: eigen3).
+PKG_CONFIG := $(CROSS)pkg-config
+BUILDROOT ?= build/arm64
+DEPS_LISTS := packaging/build-deps.txt packaging/build-deps-arm64.txt
+# OpenCV's calib3d and features2d -dev packages cannot be installed for
+# arm64 beside amd64's (they pull imgcodecs-dev -> libgdcm-dev, which is not
+# Multi-Arch: same), so only their runtime libraries are; the headers are the
+# amd64 ones (/usr/include/opencv4 is the same for every architecture) and
+# the linker finds the libraries through links made by the rules at the end.
+ARCH_LINKS = $(BUILDROOT)/opencv-links
+LDFLAGS += -L$(ARCH_LINKS)
+# imgcodecs cannot be installed for arm64 at all beside amd64's (libgdal32,
+# which it links, is not Multi-Arch: same): the arm64 build has no image
+# file codecs until they move to libpng/TurboJPEG (issue 15, the lean half).
+# Meanwhile -lopencv_imgcodecs finds arch/arm64/imgcodecs_unavailable.cpp,
+# which answers every call with a failure, and the tests that need a codec
+# skip (DEPTHKEY_NO_IMGCODECS).
+CXXFLAGS_ARCH := -DDEPTHKEY_NO_IMGCODECS
+ARCH_LIBS = $(ARCH_LINKS)/libopencv_imgcodecs.a $(ARCH_LINKS)/libopencv_calib3d.so $(ARCH_LINKS)/libopencv_features2d.so
+# qemu-user; -L: where the arm64 dynamic loader and libc are.
+RUN := qemu-aarch64-static -L /usr/aarch64-linux-gnu
+# The process tests run the daemon and tools with execve(): only where the
+# kernel hands arm64 binaries to qemu (binfmt_misc), else reported skipped.
+PROCESS_RUN := tests/arm64/process-check.sh $(RUN) --
+else ifneq ($(ARCH),)
+$(error ARCH=$(ARCH): only arm64 (or empty, this machine) is known)
+endif
 # The package build (debian/rules) compiles apart, in build/deb/, with
 # Debian's hardening flags, and never touches the developer's build/.
 BUILDROOT ?= build
@@ -74,9 +120,9 @@ OPENCV_CODEC_LIBS := -lopencv_imgcodecs
 # Recursive (=) so pkg-config runs only when a recipe needs it, i.e. after `deps`.
 # No -march=native: the binaries must run on any x86-64 CPU (and under QEMU TCG).
 CXXFLAGS ?= -O2 -g
-CXXFLAGS += -std=c++20 -Wall -Wextra -Werror -MMD -MP -I. -isystem /usr/include/opencv4 $(SANFLAGS)
-PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS))
-LDLIBS = $(shell pkg-config --libs $(PKGS)) $(OPENCV_LIBS) -lpthread -lrt
+CXXFLAGS += -std=c++20 -Wall -Wextra -Werror -MMD -MP -I. -isystem /usr/include/opencv4 $(SANFLAGS) $(CXXFLAGS_ARCH)
+PKG_CFLAGS = $(shell $(PKG_CONFIG) --cflags $(PKGS))
+LDLIBS = $(shell $(PKG_CONFIG) --libs $(PKGS)) $(OPENCV_LIBS) -lpthread -lrt
 LDFLAGS += -Wl,--as-needed $(SANFLAGS)
 
 LIB_SRCS := $(filter-out daemon/main.cpp,$(wildcard algo/*.cpp hal/*.cpp hal/*/*.cpp config/*.cpp wiring/*.cpp daemon/*.cpp))
@@ -101,14 +147,14 @@ JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 # Keep tool objects (intermediates of the pattern rule) so nothing rebuilds twice.
 .SECONDARY:
 
-.PHONY: all run test check process-check hil hil-campaign bench bench-process soak deps deb deb-deps package-test boot-test install clean fuzz fuzz-build
+.PHONY: all run test check process-check hil hil-campaign bench bench-process soak frame-instructions deps deb deb-deps package-test boot-test install clean fuzz fuzz-build
 .DEFAULT_GOAL := all
 
 # The SR-2 emulator is built (for the HIL tests) but not installed.
 all: $(DAEMON) $(TOOLS) $(SR2EMU)
 
 deps:
-	@packaging/install-deps.sh
+	@packaging/install-deps.sh $(DEPS_LISTS)
 
 # run/test/bench first install packages, then build in a fresh make so that
 # pkg-config sees the newly installed libraries.
@@ -158,15 +204,16 @@ hil-campaign: deps
 
 # The unit tests need no other binary; the process tests run the daemon and
 # the tools, so they build everything first.
+# CHECK_ARGS: more GoogleTest flags (e.g. --gtest_filter=...).
 check: $(UNIT_TESTS)
-	@$(UNIT_TESTS) --gtest_brief=1
+	@$(RUN) $(UNIT_TESTS) --gtest_brief=1 $(CHECK_ARGS)
 
 process-check: all $(PROCESS_TESTS)
-	@$(PROCESS_TESTS) --gtest_brief=1
+	@$(PROCESS_RUN) $(PROCESS_TESTS) --gtest_brief=1
 
 bench: deps
 	@$(MAKE) --no-print-directory -j$(JOBS) $(BENCH)
-	@$(BENCH) --benchmark_repetitions=9 --benchmark_report_aggregates_only=true \
+	@$(RUN) $(BENCH) --benchmark_repetitions=9 --benchmark_report_aggregates_only=true \
 	    --benchmark_display_aggregates_only=true $(BENCH_ARGS)
 
 # Not in `make test`: it takes half an hour to an hour (SOAK_FRAMES=N for fewer).
@@ -180,6 +227,13 @@ soak: deps
 bench-process: deps
 	@$(MAKE) --no-print-directory -j$(JOBS) all $(SIM_CALIBRATION) $(SIM_BOARD_CALIBRATION)
 	@python3 tests/bench/process_bench.py $(BIN) $(BUILD) $(BENCH_PROCESS_ARGS)
+
+# The instructions of one whole pipeline frame (640x480), callgrind on the
+# native build: the stand-in for `make bench` where its times mean nothing
+# (ARCH=arm64 under qemu-user, docs/arm64.md). Needs valgrind (build-deps.txt).
+frame-instructions: $(BENCH)
+	@test -z "$(ARCH)" || { echo "make frame-instructions: counts on the native build (no ARCH=)" >&2; exit 1; }
+	@tests/bench/frame_instructions.sh $(BENCH)
 
 $(OBJ)/%.o: %.cpp
 	@mkdir -p $(dir $@)
@@ -270,14 +324,14 @@ install: all $(CONFIG_MAN)
 # The Debian package (debhelper; debian/ must sit at the top of the source
 # tree, where dpkg-buildpackage looks). Output: build/deb/*.deb.
 deb: deb-deps
-	@packaging/build-deb.sh
+	@packaging/build-deb.sh $(ARCH)
 
 deb-deps:
-	@packaging/install-deps.sh packaging/deb-deps.txt
+	@packaging/install-deps.sh packaging/deb-deps.txt $(DEPS_LISTS)
 
 # The package's tests (in `make test`, not repeated by SAN=1): offline checks
 # of the unit and lintian on the host, then the boot test in the QEMU VM.
-DEB_FILE = build/deb/depthkey_$(VERSION)_$(shell dpkg --print-architecture).deb
+DEB_FILE = build/deb/depthkey_$(VERSION)_$(or $(ARCH),$(shell dpkg --print-architecture)).deb
 
 package-test: deb
 	@tests/package/offline_checks.sh $(DEB_FILE)
@@ -326,6 +380,17 @@ $(FUZZ_DIR)/obj/%.o: %.cpp tests/fuzz/ubsan-ignorelist.txt
 $(FUZZ_DIR)/bin/%_fuzz: $(FUZZ_DIR)/obj/tests/fuzz/%_fuzz.o $(FUZZ_OBJS)
 	@mkdir -p $(dir $@)
 	$(FUZZ_CXX) $(FUZZ_SAN) -fsanitize=fuzzer $^ $(LDLIBS) -o $@
+
+# ARCH=arm64: the OpenCV libraries the linker finds in $(ARCH_LINKS) (see
+# the ARCH block), made before anything links.
+$(LIB): | $(ARCH_LIBS)
+$(ARCH_LINKS)/libopencv_%.so:
+	@mkdir -p $(dir $@)
+	ln -sf /usr/lib/aarch64-linux-gnu/libopencv_$*.so.406 $@
+$(ARCH_LINKS)/libopencv_imgcodecs.a: $(OBJ)/arch/arm64/imgcodecs_unavailable.o
+	@mkdir -p $(dir $@)
+	@rm -f $@
+	$(CROSS)ar rcs $@ $^
 
 -include $(shell find $(OBJ) -name '*.d' 2>/dev/null)
 ifneq ($(filter fuzz fuzz-build,$(MAKECMDGOALS)),)

@@ -12,6 +12,8 @@ void boardWarpRow(KernelPath path, const BoardWarpRow &row, int opacityQ8)
 {
 	if (path == KernelPath::Sse2)
 		boardWarpRow_SSE2(row, opacityQ8);
+	else if (path == KernelPath::Neon)
+		boardWarpRow_NEON(row, opacityQ8);
 	else
 		boardWarpRow_C(row, opacityQ8);
 }

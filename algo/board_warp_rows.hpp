@@ -1,6 +1,7 @@
 // The row kernels of the board-geometry composite (algo/board_compositor.hpp),
-// a plain C reference (_C) and an SSE2 variant (_SSE2, board_warp_rows_sse2.cpp)
-// that gives the same bytes (tests/board_warp_rows_test.cpp).
+// a plain C reference (_C) and SSE2 and NEON variants (_SSE2,
+// board_warp_rows_sse2.cpp; _NEON, board_warp_rows_neon.cpp) that give the
+// same bytes (tests/board_warp_rows_test.cpp).
 //
 // Each output pixel has a precomputed source: the index of the top-left of
 // the 2x2 colour pixels it samples (kOutsideView = the camera does not see
@@ -47,8 +48,8 @@ inline unsigned lerp8(unsigned a, unsigned b, unsigned f)
 
 } // namespace warp_detail
 
-// Output pixel x of the C reference (the SSE2 row's tail and its groups
-// with an unseen pixel run it too, so both rows share one definition).
+// Output pixel x of the C reference (the SIMD rows' tails and their groups
+// with an unseen pixel run it too, so all rows share one definition).
 inline void boardWarpPixel_C(const BoardWarpRow &r, int x, int opacityQ8)
 {
 	using warp_detail::lerp8;
@@ -74,6 +75,7 @@ inline void boardWarpPixel_C(const BoardWarpRow &r, int x, int opacityQ8)
 
 void boardWarpRow_C(const BoardWarpRow &row, int opacityQ8);
 void boardWarpRow_SSE2(const BoardWarpRow &row, int opacityQ8);
+void boardWarpRow_NEON(const BoardWarpRow &row, int opacityQ8);
 void boardWarpRow(KernelPath path, const BoardWarpRow &row, int opacityQ8);
 
 } // namespace depthkey

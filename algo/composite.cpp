@@ -38,6 +38,8 @@ void compositeRow(KernelPath path, const Rgb8 *lecturer, const uint8_t *alpha, c
 {
 	if (path == KernelPath::Sse2)
 		compositeRow_SSE2(lecturer, alpha, board, opacityQ8, out, width);
+	else if (path == KernelPath::Neon)
+		compositeRow_NEON(lecturer, alpha, board, opacityQ8, out, width);
 	else
 		compositeRow_C(lecturer, alpha, board, opacityQ8, out, width);
 }
@@ -46,6 +48,8 @@ void lecturerLayerRow(KernelPath path, const Rgb8 *colour, const uint8_t *alpha,
 {
 	if (path == KernelPath::Sse2)
 		lecturerLayerRow_SSE2(colour, alpha, out, width);
+	else if (path == KernelPath::Neon)
+		lecturerLayerRow_NEON(colour, alpha, out, width);
 	else
 		lecturerLayerRow_C(colour, alpha, out, width);
 }

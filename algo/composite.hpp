@@ -3,9 +3,10 @@
 // with o the configured opacity and a the alpha matte (0..255). Fixed point:
 // o is Q8 (256 = opaque), the blend weight w = round(o*a/255) is Q8 too.
 //
-// Row kernels come as a plain C reference (_C) and an SSE2 variant (_SSE2,
-// algo/composite_sse2.cpp) that gives the same bytes for any width and any
-// pointer alignment (tests/composite_test.cpp compares them bit for bit).
+// Row kernels come as a plain C reference (_C) and SSE2 and NEON variants
+// (_SSE2, algo/composite_sse2.cpp; _NEON, algo/composite_neon.cpp) that give
+// the same bytes for any width and any pointer alignment
+// (tests/composite_test.cpp compares them bit for bit).
 #pragma once
 
 #include "algo/image.hpp"
@@ -34,12 +35,15 @@ void compositeRow_C(const Rgb8 *lecturer, const uint8_t *alpha, const Rgb8 *boar
 		    int opacityQ8, Rgb8 *out, int width);
 void compositeRow_SSE2(const Rgb8 *lecturer, const uint8_t *alpha, const Rgb8 *board,
 		       int opacityQ8, Rgb8 *out, int width);
+void compositeRow_NEON(const Rgb8 *lecturer, const uint8_t *alpha, const Rgb8 *board,
+		       int opacityQ8, Rgb8 *out, int width);
 void compositeRow(KernelPath path, const Rgb8 *lecturer, const uint8_t *alpha, const Rgb8 *board,
 		  int opacityQ8, Rgb8 *out, int width);
 
 // Straight (not premultiplied) alpha, as the recorder's RGBA layer expects.
 void lecturerLayerRow_C(const Rgb8 *colour, const uint8_t *alpha, Rgba8 *out, int width);
 void lecturerLayerRow_SSE2(const Rgb8 *colour, const uint8_t *alpha, Rgba8 *out, int width);
+void lecturerLayerRow_NEON(const Rgb8 *colour, const uint8_t *alpha, Rgba8 *out, int width);
 void lecturerLayerRow(KernelPath path, const Rgb8 *colour, const uint8_t *alpha, Rgba8 *out, int width);
 
 // Whole images; outputs are resized to the colour image's size.

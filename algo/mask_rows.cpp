@@ -57,6 +57,8 @@ MaskRowFn maskRow(KernelPath path, bool erode)
 {
 	if (path == KernelPath::Sse2)
 		return erode ? maskAndRow_SSE2 : maskOrRow_SSE2;
+	if (path == KernelPath::Neon)
+		return erode ? maskAndRow_NEON : maskOrRow_NEON;
 	return erode ? maskAndRow_C : maskOrRow_C;
 }
 

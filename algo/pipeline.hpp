@@ -62,6 +62,7 @@ public:
 	{
 		kernelPath_ = path;
 		seeder_.setKernelPath(path);
+		refiner_.setKernelPath(path);
 	}
 
 	// Keys a colour frame with the depth frames captured just before and

@@ -1,13 +1,10 @@
 #include "algo/siox_refiner.hpp"
 
+#include "algo/band_scan.hpp"
 #include "algo/quantised_colour.hpp"
 
 #include <algorithm>
 #include <cstring>
-
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 namespace depthkey {
 
@@ -20,26 +17,6 @@ constexpr uint8_t kUnreachedBoard = 2;
 // filling the way out to the border.
 constexpr uint8_t kOutside = 3;
 constexpr uint8_t kCounting = 4;
-
-inline bool isSeed(uint8_t label) { return label == kTrimapBoard || label == kTrimapLecturer; }
-
-// First x in [x, end) whose label is undecided, or end. Most of the ROI is
-// seeds, so 16 labels are tested at once where SSE2 is there.
-int nextUndecided(const uint8_t *labels, int x, int end)
-{
-#if defined(__SSE2__)
-	const __m128i board = _mm_set1_epi8(char(kTrimapBoard)), lecturer = _mm_set1_epi8(char(kTrimapLecturer));
-	for (; x + 16 <= end; x += 16) {
-		__m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i *>(labels + x));
-		int seeds = _mm_movemask_epi8(_mm_or_si128(_mm_cmpeq_epi8(v, board), _mm_cmpeq_epi8(v, lecturer)));
-		if (seeds != 0xffff)
-			return x + __builtin_ctz(~seeds);
-	}
-#endif
-	while (x < end && isSeed(labels[x]))
-		++x;
-	return x;
-}
 
 // Floods from the pixels on the stack through 4-neighbours marked `from`,
 // re-marking them `to`. Every pixel is pushed at most once.
@@ -95,13 +72,14 @@ void SioxRefiner::refine(const RgbImage &colour, const Gray8Image &trimap, const
 void SioxRefiner::collectAndClassify(const Gray8Image &trimap, const Roi &roi, BandEvidence &evidence)
 {
 	colourConfidence_.clear();
+	const BandScanFn nextUndecided = bandScanRow(kernelPath_); // once per image
 	for (int y = roi.y0; y < roi.y1; ++y) {
 		const uint8_t *t = trimap.row(y);
 		uint8_t *w = work_.data() + at(0, y);
 		std::memcpy(w + roi.x0, t + roi.x0, size_t(roi.x1 - roi.x0));
 		for (int x = nextUndecided(t, roi.x0, roi.x1); x < roi.x1; x = nextUndecided(t, x, roi.x1)) {
 			Span span{ y, x, x, int(colourConfidence_.size()) };
-			while (x < roi.x1 && !isSeed(t[x]))
+			while (x < roi.x1 && !isTrimapSeed(t[x]))
 				++x;
 			span.x1 = x;
 			// Within the capacity reserved for the whole image: no allocation.

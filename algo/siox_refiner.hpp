@@ -23,13 +23,15 @@
 //      that thresholding the alpha at 128 gives back the mask.
 //
 // The band is kept as a list of horizontal spans (row, first, last), found
-// once per frame; every later step walks the spans. The working mask has a
+// once per frame (algo/band_scan.hpp skips the seeds between them, 16 labels
+// at a time on the SIMD paths); every later step walks the spans. The working mask has a
 // one-pixel frame of kOutside around the image, so neighbours are read
 // without bounds checks and no pixel index is ever divided back into x, y.
 #pragma once
 
 #include "algo/band_evidence.hpp"
 #include "algo/image.hpp"
+#include "algo/kernel_path.hpp"
 #include "algo/siox_classifier.hpp"
 #include "algo/trimap.hpp"
 #include "settings/settings.hpp"
@@ -52,6 +54,8 @@ public:
 	// (SeedMapper::lecturerBeyondBorder), so band regions SIOX calls
 	// lecturer that touch the border are his too, seed or no seed.
 	void setLecturerBeyondBorder(bool beyond) { lecturerBeyondBorder_ = beyond; }
+	// The band scan's row kernel (algo/band_scan.hpp); the best by default.
+	void setKernelPath(KernelPath path) { kernelPath_ = path; }
 
 	// roi must contain every non-board trimap pixel with one pixel to spare
 	// (or the image border). alpha is resized to the image and written
@@ -94,6 +98,7 @@ private:
 
 	SioxSettings settings_;
 	bool lecturerBeyondBorder_ = false;
+	KernelPath kernelPath_ = bestKernelPath();
 	int width_ = 0, height_ = 0, stride_ = 0;
 	Gray8Image work_;             // (w+2) x (h+2): seeds, band pixels 0 / 255, kOutside around
 	std::vector<Span> spans_;

@@ -13,16 +13,30 @@ if [ "$code" != "$pkg" ]; then
 	exit 1
 fi
 
+# An architecture as argument (make deb ARCH=arm64): a cross build with
+# Debian's cross toolchain, as `dpkg-buildpackage -a ARCH` sets it up (the
+# DEB_HOST_* variables), with the profile that takes the OpenCV libraries
+# instead of the -dev packages that cannot sit beside this machine's.
+if [ -n "${1:-}" ]; then
+	eval "$(dpkg-architecture -a "$1" -s)"
+	export DEB_BUILD_PROFILES="cross pkg.depthkey.cross-opencv"
+	# The tests are not run by the package build anyway (debian/rules).
+	export DEB_BUILD_OPTIONS="nocheck ${DEB_BUILD_OPTIONS:-}"
+	export CC="$DEB_HOST_GNU_TYPE-gcc" CXX="$DEB_HOST_GNU_TYPE-g++"
+	checkdeps="dpkg-checkbuilddeps -a $1 -P cross,pkg.depthkey.cross-opencv"
+else
+	checkdeps=dpkg-checkbuilddeps
+fi
 arch=$(dpkg-architecture -qDEB_HOST_ARCH)
 mkdir -p build/deb
 # What `dpkg-buildpackage -b -us -uc` does, less the .buildinfo/.changes that
 # it can only write next to the source tree (..): nothing is uploaded.
 # dh_builddeb --destdir (debian/rules) puts the .deb into build/deb/.
 {
-	dpkg-checkbuilddeps &&
+	$checkdeps &&
 	debian/rules clean &&
 	DEB_BUILD_OPTIONS="parallel=2 ${DEB_BUILD_OPTIONS:-}" debian/rules build &&
-	debian/rules binary
+	DEB_BUILD_OPTIONS="parallel=2 ${DEB_BUILD_OPTIONS:-}" debian/rules binary
 } >build/deb/build.log 2>&1 || {
 	tail -40 build/deb/build.log >&2
 	echo "make deb: the package build failed, full log in build/deb/build.log" >&2

@@ -20,6 +20,16 @@ if [ "$(id -u)" -ne 0 ]; then
 fi
 echo "depthkey: installing$missing"
 export DEBIAN_FRONTEND=noninteractive
+# A package of another architecture (libfoo-dev:arm64, ARCH=arm64 builds)
+# needs that architecture added to dpkg first (multiarch).
+for arch in $(printf '%s\n' $missing | sed -n 's/.*:\([a-z0-9]*\)$/\1/p' | sort -u); do
+    if [ "$arch" != "$(dpkg --print-architecture)" ] &&
+        ! dpkg --print-foreign-architectures | grep -qx "$arch"; then
+        dpkg --add-architecture "$arch"
+    fi
+done
 # A fresh machine has no package lists; an old list may name versions that are gone.
 apt-get update -qq
-apt-get install -y -qq --no-install-recommends $missing >/dev/null
+# --no-remove: installing must never take a package away (a foreign
+# architecture's library that cannot sit beside the native one would).
+apt-get install -y -qq --no-install-recommends --no-remove $missing >/dev/null

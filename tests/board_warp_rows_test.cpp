@@ -1,10 +1,11 @@
-// The SSE2 row of the board warp gives the C row's bytes, for random
+// The SSE2 and NEON rows of the board warp give the C row's bytes, for random
 // sources, fractions (0 and 255 included), unseen pixels, zero and full
 // alpha, and every opacity class; for every count up to a few groups of four
 // and a long odd one, at every start offset (unaligned map, layer and
 // composite pointers), with groups where nobody is or one pixel is unseen
 // (the C pixel), every pixel of the row written and none outside it.
 #include "algo/board_warp_rows.hpp"
+#include "tests/simd_paths.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,7 +14,7 @@
 
 using namespace depthkey;
 
-TEST(BoardWarpRows, Sse2MatchesC)
+TEST(BoardWarpRows, SimdRowsMatchC)
 {
 	constexpr int kW = 37, kH = 9, kMaxCount = 211, kMaxOffset = 3;
 	constexpr int kLen = kMaxCount + kMaxOffset + 1; // a guard pixel after the row
@@ -44,37 +45,38 @@ TEST(BoardWarpRows, Sse2MatchesC)
 	std::vector<int> counts{ kMaxCount };
 	for (int c = 0; c <= 13; ++c)
 		counts.push_back(c);
-	for (int opacity : { 0, 1, 128, 255, 256 })
-		for (int count : counts)
-			for (int offset = 0; offset <= kMaxOffset; ++offset) {
-				// Outputs start as garbage: every pixel of the row is written,
-				// none outside it.
-				const Rgb8 was{ 7, 77, 177 };
-				const Rgba8 wasLayer{ 5, 55, 155, 255 };
-				std::vector<Rgb8> cComposite(kLen, was), sComposite = cComposite;
-				std::vector<Rgba8> cLayer(kLen, wasLayer), sLayer = cLayer;
-				BoardWarpRow c{ index.data() + offset, frac.data() + offset, source.data(), kW, board.data() + offset,
-						cComposite.data() + offset, cLayer.data() + offset, count };
-				BoardWarpRow s = c;
-				s.composite = sComposite.data() + offset;
-				s.layer = sLayer.data() + offset;
-				boardWarpRow_C(c, opacity);
-				boardWarpRow_SSE2(s, opacity);
-				size_t lit = 0;
-				for (int x = 0; x < kLen; ++x) {
-					const bool inRow = x >= offset && x < offset + count;
-					ASSERT_EQ(cComposite[x], sComposite[x]) << "x " << x << " opacity " << opacity << " count " << count;
-					ASSERT_EQ(cLayer[x], sLayer[x]) << "x " << x << " opacity " << opacity << " count " << count;
-					if (!inRow) {
-						ASSERT_EQ(sComposite[x], was) << "written outside the row: x " << x;
-						ASSERT_EQ(sLayer[x], wasLayer) << "written outside the row: x " << x;
+	for (KernelPath path : simd_test::kSimdPaths)
+		for (int opacity : { 0, 1, 128, 255, 256 })
+			for (int count : counts)
+				for (int offset = 0; offset <= kMaxOffset; ++offset) {
+					// Outputs start as garbage: every pixel of the row is written,
+					// none outside it.
+					const Rgb8 was{ 7, 77, 177 };
+					const Rgba8 wasLayer{ 5, 55, 155, 255 };
+					std::vector<Rgb8> cComposite(kLen, was), sComposite = cComposite;
+					std::vector<Rgba8> cLayer(kLen, wasLayer), sLayer = cLayer;
+					BoardWarpRow c{ index.data() + offset, frac.data() + offset, source.data(), kW, board.data() + offset,
+							cComposite.data() + offset, cLayer.data() + offset, count };
+					BoardWarpRow s = c;
+					s.composite = sComposite.data() + offset;
+					s.layer = sLayer.data() + offset;
+					boardWarpRow_C(c, opacity);
+					boardWarpRow(path, s, opacity);
+					size_t lit = 0;
+					for (int x = 0; x < kLen; ++x) {
+						const bool inRow = x >= offset && x < offset + count;
+						ASSERT_EQ(cComposite[x], sComposite[x]) << simd_test::pathName(path) << " x " << x << " opacity " << opacity << " count " << count;
+						ASSERT_EQ(cLayer[x], sLayer[x]) << simd_test::pathName(path) << " x " << x << " opacity " << opacity << " count " << count;
+						if (!inRow) {
+							ASSERT_EQ(sComposite[x], was) << "written outside the row: x " << x;
+							ASSERT_EQ(sLayer[x], wasLayer) << "written outside the row: x " << x;
+						}
+						lit += cLayer[x].a > 0;
 					}
-					lit += cLayer[x].a > 0;
+					if (count == kMaxCount) {
+						EXPECT_GT(lit, size_t(count / 3)); // many samples touch the lecturer
+					}
 				}
-				if (count == kMaxCount) {
-					EXPECT_GT(lit, size_t(count / 3)); // many samples touch the lecturer
-				}
-			}
 }
 
 // Where nobody is (unseen, or no alpha in the four taps) the row gives the
@@ -85,7 +87,7 @@ TEST(BoardWarpRows, NobodyIsTheBoardAndTransparent)
 	std::vector<int32_t> index{ kOutsideView, 0, 1, 2, 4, 5, 6, kOutsideView, 0 };
 	std::vector<uint16_t> frac(index.size(), uint16_t(100 | 100 << 8));
 	const std::vector<Rgb8> board(index.size(), Rgb8{ 1, 2, 3 });
-	for (KernelPath path : { KernelPath::C, KernelPath::Sse2 }) {
+	for (KernelPath path : simd_test::kAllPaths) {
 		std::vector<Rgb8> composite(index.size(), Rgb8{ 4, 5, 6 });
 		std::vector<Rgba8> layer(index.size(), Rgba8{ 1, 1, 1, 1 });
 		boardWarpRow(path, { index.data(), frac.data(), source.data(), 4, board.data(), composite.data(), layer.data(), int(index.size()) }, 256);

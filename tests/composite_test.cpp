@@ -2,6 +2,7 @@
 //   composite = board * (1 - o*a) + lecturer * (o*a)
 // Tolerance: 1 code value (the Q8 weight rounds to 1/256, the result to 1).
 #include "algo/composite.hpp"
+#include "tests/simd_paths.hpp"
 
 #include <gtest/gtest.h>
 
@@ -103,9 +104,10 @@ struct RandomRows {
 
 } // namespace
 
-// The SSE2 rows against the C rows, bit for bit, for every width up to 100
-// and a few long ones, at every pointer offset the byte arrays allow.
-TEST(Composite, Sse2RowsEqualTheCRowsBitForBit)
+// The SSE2 and NEON rows against the C rows, bit for bit, for widths about
+// each vector step and a few long ones, at every pointer offset the byte
+// arrays allow.
+TEST(Composite, SimdRowsEqualTheCRowsBitForBit)
 {
 	std::mt19937 rng(11);
 	size_t compared = 0;
@@ -114,17 +116,20 @@ TEST(Composite, Sse2RowsEqualTheCRowsBitForBit)
 			RandomRows rows(width, rng);
 			const Rgb8 *l = rows.lecturer.data() + offset, *b = rows.board.data() + offset;
 			const uint8_t *a = rows.alpha.data() + offset;
-			for (int opacity : { 0, 77, 128, 256 }) {
-				std::vector<Rgb8> outC(width + 1), outSse(width + 1);
-				compositeRow_C(l, a, b, opacity, outC.data() + offset, width);
-				compositeRow_SSE2(l, a, b, opacity, outSse.data() + offset, width);
-				ASSERT_EQ(outC, outSse) << "composite width " << width << " offset " << offset
-							<< " opacity " << opacity;
+			for (KernelPath path : simd_test::kSimdPaths) {
+				for (int opacity : { 0, 77, 128, 256 }) {
+					std::vector<Rgb8> outC(width + 1), outSimd(width + 1);
+					compositeRow_C(l, a, b, opacity, outC.data() + offset, width);
+					compositeRow(path, l, a, b, opacity, outSimd.data() + offset, width);
+					ASSERT_EQ(outC, outSimd) << simd_test::pathName(path) << " composite width " << width
+								 << " offset " << offset << " opacity " << opacity;
+				}
+				std::vector<Rgba8> layerC(width + 1), layerSimd(width + 1);
+				lecturerLayerRow_C(l, a, layerC.data() + offset, width);
+				lecturerLayerRow(path, l, a, layerSimd.data() + offset, width);
+				ASSERT_EQ(layerC, layerSimd) << simd_test::pathName(path) << " lecturer layer width " << width
+							     << " offset " << offset;
 			}
-			std::vector<Rgba8> layerC(width + 1), layerSse(width + 1);
-			lecturerLayerRow_C(l, a, layerC.data() + offset, width);
-			lecturerLayerRow_SSE2(l, a, layerSse.data() + offset, width);
-			ASSERT_EQ(layerC, layerSse) << "lecturer layer width " << width << " offset " << offset;
 			compared += width;
 		}
 	}
@@ -144,12 +149,14 @@ TEST(Composite, WholeImagesAgreeOnEveryKernelPath)
 		std::copy(rows.alpha.begin(), rows.alpha.begin() + w, alpha.row(y));
 	}
 	composite(lecturer, alpha, board, 128, outC, KernelPath::C);
-	composite(lecturer, alpha, board, 128, outBest, KernelPath::Sse2);
-	EXPECT_EQ(outC, outBest);
 	RgbaImage layerC, layerBest;
 	lecturerLayer(lecturer, alpha, layerC, KernelPath::C);
-	lecturerLayer(lecturer, alpha, layerBest, KernelPath::Sse2);
-	EXPECT_EQ(layerC, layerBest);
+	for (KernelPath path : simd_test::kSimdPaths) {
+		composite(lecturer, alpha, board, 128, outBest, path);
+		EXPECT_EQ(outC, outBest) << simd_test::pathName(path);
+		lecturerLayer(lecturer, alpha, layerBest, path);
+		EXPECT_EQ(layerC, layerBest) << simd_test::pathName(path);
+	}
 }
 
 // Where the matte is 0 outside the ROI, blending only the ROI and copying the
@@ -169,7 +176,7 @@ TEST(Composite, RoiCompositeEqualsTheWholeImageComposite)
 		if (y >= roi.y0 && y < roi.y1)
 			std::copy(rows.alpha.begin() + roi.x0, rows.alpha.begin() + roi.x1, alpha.row(y) + roi.x0);
 	}
-	for (KernelPath path : { KernelPath::C, KernelPath::Sse2 }) {
+	for (KernelPath path : simd_test::kAllPaths) {
 		composite(lecturer, alpha, board, 200, whole, path);
 		part = RgbImage(w, h, Rgb8{ 1, 2, 3 }); // stale content must all be overwritten
 		compositeRoi(lecturer, alpha, board, roi, 200, part, path);

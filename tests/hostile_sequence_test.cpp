@@ -7,6 +7,7 @@
 #include "hal/recording/sequence_reader.hpp"
 #include "tests/hostile_files.hpp"
 #include "tests/huge_png.hpp"
+#include "tests/image_codecs.hpp"
 
 #include <gtest/gtest.h>
 
@@ -77,6 +78,7 @@ TEST(HostileSequence, FifoIndexOrImageIsRefusedWithoutBlocking)
 
 TEST(ImageHeader, SizesOfPngAndJpegWithoutDecoding)
 {
+	SKIP_WITHOUT_IMAGE_CODECS();
 	std::string png = pngBytes(37, 21);
 	int w = 0, h = 0;
 	ASSERT_TRUE(imageHeaderSize(reinterpret_cast<const unsigned char *>(png.data()), png.size(), w, h));

@@ -3,6 +3,7 @@
 // half-written or broken file is refused with its error while the last good
 // picture stays (the source delivers nothing and reports Lost).
 #include "hal/board/image_board_source.hpp"
+#include "tests/image_codecs.hpp"
 
 #include <gtest/gtest.h>
 
@@ -81,6 +82,7 @@ struct Harness {
 
 TEST(ImageBoardSource, ReadsAgainWhenTheFileIsReplacedAndRefusesAHalfWrittenOne)
 {
+	SKIP_WITHOUT_IMAGE_CODECS();
 	Harness h;
 	std::vector<uchar> red = encodePng({ 200, 10, 10 }), green = encodePng({ 10, 200, 10 }),
 			   blue = encodePng({ 10, 10, 200 });
@@ -125,6 +127,7 @@ TEST(ImageBoardSource, ReadsAgainWhenTheFileIsReplacedAndRefusesAHalfWrittenOne)
 // OpenCV decodes a JPEG cut short with a warning only: the source refuses it.
 TEST(ImageBoardSource, RefusesAJpegCutShort)
 {
+	SKIP_WITHOUT_IMAGE_CODECS();
 	Harness h;
 	cv::Mat mat(24, 32, CV_8UC3, cv::Scalar(10, 20, 30));
 	std::vector<uchar> jpeg;
@@ -145,6 +148,7 @@ TEST(ImageBoardSource, RefusesAJpegCutShort)
 
 TEST(ImageBoardSource, AMissingFileIsLostUntilItAppears)
 {
+	SKIP_WITHOUT_IMAGE_CODECS();
 	Harness h;
 	BoardSettings settings;
 	settings.image = h.path;

@@ -24,5 +24,7 @@ TEST(KernelPath, ForceCEnvironmentVariableSelectsTheCRows)
 		unsetenv("DEPTHKEY_FORCE_C");
 #if defined(__x86_64__)
 	EXPECT_EQ(bestKernelPath(), KernelPath::Sse2) << "SSE2 is the x86-64 baseline";
+#elif defined(__aarch64__)
+	EXPECT_EQ(bestKernelPath(), KernelPath::Neon) << "NEON is the AArch64 baseline";
 #endif
 }

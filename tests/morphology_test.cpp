@@ -1,9 +1,10 @@
 // The mask morphology of the seeding (algo/morphology.hpp, algo/mask_rows.hpp):
-// erosion and dilation against brute force on both kernel paths, the SSE2
-// rows against the C rows bit for bit, and the component labelling against
+// erosion and dilation against brute force on every kernel path, the SSE2
+// and NEON rows against the C rows bit for bit, and the component labelling against
 // a flood-fill reference.
 #include "algo/mask_rows.hpp"
 #include "algo/morphology.hpp"
+#include "tests/simd_paths.hpp"
 
 #include <gtest/gtest.h>
 
@@ -19,12 +20,12 @@ TEST(Morphology, ErodeAndDilateMatchBruteForce)
 	std::bernoulli_distribution on(0.6);
 	Gray8Image in(37, 23), out;
 	MorphologyScratch scratch;
-	for (int trial = 0; trial < 4; ++trial) {
+	for (int trial = 0; trial < 6; ++trial) {
 		for (size_t i = 0; i < in.size(); ++i)
 			in.data()[i] = on(rng) ? 255 : 0;
 		for (int r = 0; r <= 5; ++r)
 			for (bool erode : { true, false }) {
-				KernelPath path = trial % 2 ? KernelPath::C : KernelPath::Sse2;
+				KernelPath path = simd_test::kAllPaths[trial % 3];
 				(erode ? erodeSquare : dilateSquare)(in, r, out, scratch, path);
 				for (int y = 0; y < in.height(); ++y)
 					for (int x = 0; x < in.width(); ++x) {
@@ -40,9 +41,9 @@ TEST(Morphology, ErodeAndDilateMatchBruteForce)
 	}
 }
 
-// The SSE2 mask rows against the C rows, bit for bit, for odd widths and
-// unaligned pointers.
-TEST(Morphology, Sse2MaskRowsEqualTheCRows)
+// The SSE2 and NEON mask rows against the C rows, bit for bit, for odd
+// widths and unaligned pointers.
+TEST(Morphology, SimdMaskRowsEqualTheCRows)
 {
 	std::mt19937 rng(4);
 	std::uniform_int_distribution<int> byte(0, 255);
@@ -53,12 +54,14 @@ TEST(Morphology, Sse2MaskRowsEqualTheCRows)
 				acc[i] = uint8_t(byte(rng));
 				src[i] = uint8_t(byte(rng));
 			}
-			for (bool erode : { false, true }) {
-				std::vector<uint8_t> c = acc, sse = acc;
-				maskRow(KernelPath::C, erode)(c.data() + offset, src.data() + offset, width);
-				maskRow(KernelPath::Sse2, erode)(sse.data() + offset, src.data() + offset, width);
-				ASSERT_EQ(c, sse) << "width " << width << " offset " << offset << " erode " << erode;
-			}
+			for (bool erode : { false, true })
+				for (KernelPath path : simd_test::kSimdPaths) {
+					std::vector<uint8_t> c = acc, simd = acc;
+					maskRow(KernelPath::C, erode)(c.data() + offset, src.data() + offset, width);
+					maskRow(path, erode)(simd.data() + offset, src.data() + offset, width);
+					ASSERT_EQ(c, simd) << simd_test::pathName(path) << " width " << width
+							   << " offset " << offset << " erode " << erode;
+				}
 		}
 	}
 }

@@ -1,12 +1,13 @@
 // RGB -> YUYV (hal/v4l2/rgb_to_yuyv.hpp) against BT.601 limited range in
 // doubles. Tolerance: within 1 level per component (Q16 coefficients, one
 // rounding: the fixed point is off the double by at most 0.5 + 510 x 2^-17
-// before rounding). The error histogram is printed. The SSE2 row against the
-// C row bit for bit, odd widths and unaligned pointers.
+// before rounding). The error histogram is printed. The SSE2 and NEON rows
+// against the C row bit for bit, odd widths and unaligned pointers.
 #include <gtest/gtest.h>
 
 #include "hal/v4l2/rgb_to_yuyv.hpp"
 #include "hal/v4l2/yuv_to_rgb.hpp"
+#include "tests/simd_paths.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -122,8 +123,13 @@ TEST(RgbToYuyv, OddWidthRepeatsTheLastPixelAndFramesRoundTrip)
 	}
 }
 
-TEST(RgbToYuyv, Sse2RowEqualsTheCRowBitForBit)
+TEST(RgbToYuyv, SimdRowsEqualTheCRowBitForBit)
 {
+	struct SimdRow {
+		const char *name;
+		void (*row)(const Rgb8 *, uint8_t *, int);
+	};
+	const SimdRow kSimdRows[] = { { "SSE2", rgbToYuyvRow_SSE2 }, { "NEON", rgbToYuyvRow_NEON } };
 	std::mt19937 rng(5);
 	size_t compared = 0;
 	for (int width : { 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 15, 16, 17, 31, 33, 100, 639, 640, 641, 1919, 1920 }) {
@@ -135,20 +141,24 @@ TEST(RgbToYuyv, Sse2RowEqualsTheCRowBitForBit)
 				for (size_t i = 0; i < in.size(); i++)
 					in[i] = i % 3 ? Rgb8{ 255, 255, 255 } : Rgb8{ 0, 255, 0 };
 			std::vector<uint8_t> outC(static_cast<size_t>(yuyvWidth(width)) * 2 + 4, 0x55);
-			std::vector<uint8_t> outSse(outC.size(), 0x55);
 			rgbToYuyvRow_C(in.data() + offset, outC.data() + offset, width);
-			rgbToYuyvRow_SSE2(in.data() + offset, outSse.data() + offset, width);
-			ASSERT_EQ(outC, outSse) << "width " << width << " offset " << offset;
+			for (const SimdRow &simd : kSimdRows) {
+				std::vector<uint8_t> outSimd(outC.size(), 0x55);
+				simd.row(in.data() + offset, outSimd.data() + offset, width);
+				ASSERT_EQ(outC, outSimd) << simd.name << " width " << width << " offset " << offset;
+			}
 			compared += static_cast<size_t>(width);
 		}
 	}
 	EXPECT_GT(compared, 10000u);
-	// Whole frames on both paths.
+	// Whole frames on every path.
 	RgbImage image(641, 7);
 	for (size_t i = 0; i < image.size(); i++)
 		image.data()[i] = { uint8_t(rng()), uint8_t(rng()), uint8_t(rng()) };
-	std::vector<uint8_t> c(yuyvFrameBytes(641, 7)), sse(c.size());
+	std::vector<uint8_t> c(yuyvFrameBytes(641, 7)), simd(c.size());
 	ASSERT_EQ(rgbToYuyv(image, c.data(), c.size(), KernelPath::C), 0);
-	ASSERT_EQ(rgbToYuyv(image, sse.data(), sse.size(), KernelPath::Sse2), 0);
-	EXPECT_EQ(c, sse);
+	for (KernelPath path : simd_test::kSimdPaths) {
+		ASSERT_EQ(rgbToYuyv(image, simd.data(), simd.size(), path), 0);
+		EXPECT_EQ(c, simd) << simd_test::pathName(path);
+	}
 }

@@ -4,8 +4,10 @@
 // regions touching the core (or the border, when the lecturer goes on beyond
 // it) are kept, specks are dropped and large free regions kept, enclosed
 // holes are filled except where the evidence says clearly board, and the
-// soft alpha stays on the side of the decision.
+// soft alpha stays on the side of the decision; every kernel path of the
+// band scan gives the same alpha.
 #include "algo/siox_refiner.hpp"
+#include "tests/simd_paths.hpp"
 
 #include <gtest/gtest.h>
 
@@ -244,5 +246,40 @@ TEST(SioxRefiner, TheSoftAlphaStaysOnTheSideOfTheDecision)
 				fractional += a != 0 && a != 255;
 			}
 		EXPECT_GT(fractional, 50u) << "smoothing " << smoothing;
+	}
+}
+
+// The band scan's row (algo/band_scan.hpp) on every path: the same band,
+// the same alpha, on a trimap that is mostly seeds with short band runs at
+// every position of a 16-label block.
+TEST(SioxRefiner, EveryKernelPathGivesTheSameAlpha)
+{
+	std::mt19937 random(23);
+	Gray8Image trimap(kW, kH), evidence(kW, kH);
+	for (size_t i = 0; i < trimap.size(); ++i) {
+		trimap.data()[i] = random() % 2 ? kTrimapBoard : kTrimapLecturer;
+		evidence.data()[i] = uint8_t(1 + random() % 255);
+	}
+	for (int run = 0; run < 300; ++run) {
+		const int x = int(random() % (kW - 8)), y = int(random() % kH), n = 1 + int(random() % 8);
+		fill(trimap, x, y, x + n, y + 1, run % 2 ? kTrimapUndecided : kTrimapInRange);
+	}
+	Gray8Image reference;
+	size_t referenceBand = 0;
+	for (KernelPath path : simd_test::kAllPaths) {
+		SioxRefiner refiner;
+		refiner.setKernelPath(path);
+		RgbImage colour(kW, kH);
+		MapEvidence fake(evidence);
+		Gray8Image alpha;
+		refiner.refine(colour, trimap, { 0, 0, kW, kH }, fake, alpha);
+		if (path == KernelPath::C) {
+			reference = alpha;
+			referenceBand = refiner.bandPixels();
+			EXPECT_GT(referenceBand, 600u);
+			continue;
+		}
+		EXPECT_EQ(refiner.bandPixels(), referenceBand) << simd_test::pathName(path);
+		EXPECT_EQ(alpha, reference) << simd_test::pathName(path);
 	}
 }

@@ -2,7 +2,8 @@
 // ffmpeg, browsers and OBS assume for a YUYV camera), in 16-bit fixed point,
 // for the virtual webcam (hal/v4l2/v4l2_output.hpp). The inverse of
 // yuv_to_rgb.hpp. rgbToYuyvRow_C is the plain C reference row,
-// rgbToYuyvRow_SSE2 gives the same bytes for any width and alignment; the
+// rgbToYuyvRow_SSE2 and rgbToYuyvRow_NEON (rgb_to_yuyv_sse2.cpp,
+// rgb_to_yuyv_neon.cpp) give the same bytes for any width and alignment; the
 // frame function picks one per frame (algo/kernel_path.hpp) and walks the
 // rows into a buffer the caller sized once.
 #pragma once
@@ -27,6 +28,7 @@ inline size_t yuyvFrameBytes(int width, int height)
 // colour). An odd last pixel is paired with itself. Writes yuyvWidth(width) * 2 bytes.
 void rgbToYuyvRow_C(const Rgb8 *rgb, uint8_t *yuyv, int width);
 void rgbToYuyvRow_SSE2(const Rgb8 *rgb, uint8_t *yuyv, int width);
+void rgbToYuyvRow_NEON(const Rgb8 *rgb, uint8_t *yuyv, int width);
 
 // The whole image into yuyv (rows of yuyvWidth(width) * 2 bytes, no padding).
 // -EMSGSIZE when bytes is less than yuyvFrameBytes().

@@ -1,6 +1,6 @@
 // Per-frame cost of the virtual webcam (output.v4l2_device) on the event
 // loop: BM_WebcamConvert the RGB -> YUYV conversion alone (C row: sse2:0,
-// SSE2 row: sse2:1),
+// best row, SSE2 or on arm64 NEON: sse2:1),
 // BM_WebcamWrite all of V4l2Output::write() into a device that copies the
 // frame as v4l2loopback's write() does (copy_from_user into its buffer),
 // i.e. what the daemon pays per published frame with the webcam on. With
@@ -55,7 +55,7 @@ void BM_WebcamConvert(benchmark::State &state)
 	RgbImage image = picture(w, h);
 	std::vector<uint8_t> yuyv(yuyvFrameBytes(w, h));
 	for (auto _ : state) {
-		rgbToYuyv(image, yuyv.data(), yuyv.size(), state.range(2) ? KernelPath::Sse2 : KernelPath::C);
+		rgbToYuyv(image, yuyv.data(), yuyv.size(), state.range(2) ? bestKernelPath() : KernelPath::C);
 		benchmark::DoNotOptimize(yuyv.data());
 	}
 	state.SetItemsProcessed(state.iterations() * w * h);
@@ -68,7 +68,7 @@ void BM_WebcamWrite(benchmark::State &state)
 	EventLoop loop;
 	loop.open();
 	V4l2Output output(std::make_unique<CopyingDevice>());
-	output.setKernelPath(state.range(2) ? KernelPath::Sse2 : KernelPath::C);
+	output.setKernelPath(state.range(2) ? bestKernelPath() : KernelPath::C);
 	output.start(loop, "/dev/video10", nullptr);
 	output.write(image); // opens
 	for (auto _ : state)
