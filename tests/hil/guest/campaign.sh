@@ -110,8 +110,9 @@ campaign_webcam_error() { # CONTROL
 
 # The LEDs' chip removed: the daemon goes on publishing whole frames and
 # releases the lines that fail (the heartbeat's at once: a line is written
-# only when its level changes). The LEDs do not come back by themselves
-# (docs/devices.md); a reload that names the chip anew re-requests them:
+# only when its level changes). A reload that names the chip anew
+# re-requests them (the daemon also retries by itself, once a second; the
+# suite's section leds checks that):
 # timed from that reload until the daemon holds all its lines again, then
 # the heartbeat must blink. gpio-line-busy: while the chip is back another
 # process holds one LED line; the reload gets the other six, the daemon goes
