@@ -144,7 +144,7 @@ if hil_section webcam-output; then
 		kill -HUP "$DK_PID"
 		# The status line, printed every few seconds, no longer names it.
 		hil_check webcam-off-after-reload hil_wait 30 sh -c \
-			"grep 'fps; readers' '$DK_LOG' | tail -n 1 | grep -v -q 'webcam /dev/video10'"
+			"grep '; readers [0-9]' '$DK_LOG' | tail -n 1 | grep -v -q 'webcam /dev/video10'"
 	fi
 fi
 
