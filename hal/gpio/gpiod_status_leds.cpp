@@ -54,9 +54,10 @@ int GpiodStatusLeds::open(EventLoop &loop, const LedSettings &settings)
 		chipReported_ = true;
 		onFault_("", r, why);
 	}
+	// A line that fails is reported by requestLine() and retried by tick().
 	for (size_t i = 0; r == 0 && i < kStatusLedCount; i++)
-		if (lineOffset(settings_, i) >= 0 && requestLine(i) < 0)
-			continue; // reported by requestLine()
+		if (lineOffset(settings_, i) >= 0)
+			requestLine(i);
 	// The timer also runs without a chip: it retries once a second.
 	int t = loop.addPeriodic(kLedTickUs, [this] { tick(); }, timer_);
 	return r < 0 ? r : t;
