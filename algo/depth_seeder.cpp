@@ -77,6 +77,22 @@ void DepthSeeder::seed(const DepthFrame &depth, DepthSeeds &out)
 	out.lecturerDepthMm = out.lecturerPixels ? int(depthSum / unsigned(out.lecturerPixels)) : 0;
 	smoothSurface(depth.depthMm, out);
 	weighDepth(depth, out);
+	keepCoreWhereDepthIsSure(out);
+}
+
+void DepthSeeder::keepCoreWhereDepthIsSure(DepthSeeds &out)
+{
+	// Erosion keeps a gap the lecturer encloses (between the legs, between
+	// an arm and his side): the scattered-light halo fills it with depths
+	// between his and the board's, in range, and nothing reaches in from
+	// outside to erode it. Its pixels' own depth evidence is near neutral
+	// there, so the core (which colour cannot overrule) keeps only pixels
+	// whose depth is clearly his; the rest are decided on all the evidence.
+	uint8_t *labels = out.labels.data();
+	const uint8_t *evidence = out.evidence.data();
+	for (size_t i = 0; i < out.labels.size(); ++i)
+		if (labels[i] == kTrimapLecturer && evidence[i] < kCoreMinEvidence)
+			labels[i] = kTrimapSubset;
 }
 
 uint8_t DepthSeeder::depthEvidence(int dMm, int amplitude, int intensity, int zLecturerMm, int zBoardMm)

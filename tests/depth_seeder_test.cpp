@@ -74,3 +74,21 @@ TEST(DepthSeeder, SurfaceDepthIsTheLecturersSmoothedDepth)
 	EXPECT_EQ(seeds.labels.at(2, 2), kTrimapBoard);
 	EXPECT_EQ(seeds.surfaceMm.at(2, 2), 0);
 }
+
+TEST(DepthSeeder, CoreLeavesAHaloFilledGapToTheEvidence)
+{
+	// A 2 x 2 gap inside the lecturer (between an arm and his side) that
+	// the scattered-light halo fills with a depth between his (1200 mm) and
+	// the board's (2000 mm): in range and enclosed, so erosion keeps it, but
+	// its own depth does not say lecturer, and colour must be able to decide it.
+	const DepthSeeds seeds = seedsOf(boardWithLecturer([](int x, int y) {
+		return uint16_t(x >= 19 && x < 21 && y >= 14 && y < 16 ? 1600 : 1200);
+	}));
+	EXPECT_EQ(seeds.labels.at(19, 14), kTrimapSubset);
+	EXPECT_EQ(seeds.labels.at(20, 15), kTrimapSubset);
+	EXPECT_LT(seeds.evidence.at(20, 15), DepthSeeder::kCoreMinEvidence);
+	// Around it his own depth: still the core.
+	EXPECT_EQ(seeds.labels.at(17, 15), kTrimapLecturer);
+	EXPECT_EQ(seeds.labels.at(20, 12), kTrimapLecturer);
+	EXPECT_GE(seeds.evidence.at(17, 15), DepthSeeder::kCoreMinEvidence);
+}
