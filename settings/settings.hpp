@@ -107,7 +107,7 @@ struct SioxSettings {
 	int smoothing = 1;                  // 0..8 passes of 3x3 confidence smoothing
 	bool softAlpha = true;              // fractional alpha on the boundary
 	int guidedRadius = 5;               // 0..7: guided filter of the matte (edge-aware alpha); 0 = off
-	int guidedEps = 400;                // 1..65025: its smoothing, in squared 8-bit levels
+	int guidedEps = 10;                 // 1..65025: its smoothing, in squared 8-bit levels
 	bool operator==(const SioxSettings &) const = default;
 };
 
