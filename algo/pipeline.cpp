@@ -27,6 +27,8 @@ void Pipeline::configure(const PipelineSettings &settings, const MappingModel &m
 		s.valid = false; // new settings: seed the next frames again
 	learner_.configure(settings.learning);
 	refiner_.configure(settings.siox);
+	refiner_.setGraphCut(settings.decision.cutSmoothness, settings.decision.cutEdgeSigma,
+			     size_t(settings.decision.cutMaxBandPixels));
 	evidence_.configure(settings.decision);
 	guided_.configure(settings.siox.guidedRadius, settings.siox.guidedEps);
 	if (reseed)

@@ -59,10 +59,14 @@ void SioxRefiner::refine(const RgbImage &colour, const Gray8Image &trimap, const
 	std::memset(alpha.data(), 0, alpha.size());
 	spans_.clear();
 	bandPixels_ = 0;
+	lastCut_ = false;
 	if (roi.empty() || trimap.width() != width_ || trimap.height() != height_)
 		return;
 	collectAndClassify(trimap, roi, evidence);
-	if (settings_.smoothing > 0)
+	lastCut_ = cut_.enabled() && bandPixels_ <= cutMaxBandPixels_;
+	if (lastCut_)
+		decideByCut(colour, trimap);
+	else if (settings_.smoothing > 0)
 		smooth();
 	keepComponentsTouchingLecturer();
 	fillHoles();
@@ -92,6 +96,14 @@ void SioxRefiner::collectAndClassify(const Gray8Image &trimap, const Roi &roi, B
 		}
 	}
 	bandPixels_ = colourConfidence_.size();
+}
+
+void SioxRefiner::decideByCut(const RgbImage &colour, const Gray8Image &trimap)
+{
+	next_.resize(bandPixels_); // within the capacity reserved for the image
+	cut_.cut(colour, trimap, spans_, colourConfidence_.data(), next_.data());
+	uint8_t *m = work_.data();
+	forEachBandPixel([&](int p, int k) { m[p] = next_[k]; });
 }
 
 void SioxRefiner::smooth()

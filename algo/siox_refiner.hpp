@@ -7,6 +7,8 @@
 //      with the board model, depth and the previous frame);
 //   2. smoothing: `smoothing` passes of a 3x3 box average of the confidence
 //      (as SIOX's smoothcm with weights 1/3), then a threshold at one half;
+//      or, when a graph cut is set (the keyer's), the minimum cut of
+//      algo/band_graph_cut.hpp instead;
 //   3. components: keep every 4-connected lecturer region of the band that
 //      touches a surely-lecturer pixel (not only the largest: a hand behind a
 //      thin undecided wrist stays), or the image border when the lecturer
@@ -30,6 +32,7 @@
 #pragma once
 
 #include "algo/band_evidence.hpp"
+#include "algo/band_graph_cut.hpp"
 #include "algo/image.hpp"
 #include "algo/kernel_path.hpp"
 #include "algo/siox_classifier.hpp"
@@ -54,6 +57,15 @@ public:
 	// (SeedMapper::lecturerBeyondBorder), so band regions SIOX calls
 	// lecturer that touch the border are his too, seed or no seed.
 	void setLecturerBeyondBorder(bool beyond) { lecturerBeyondBorder_ = beyond; }
+	// The band decided by a minimum cut instead of smoothing (smoothness 0
+	// = off), in frames whose band has at most maxBandPixels pixels.
+	void setGraphCut(int smoothness, int edgeSigma, size_t maxBandPixels)
+	{
+		cut_.configure(smoothness, edgeSigma);
+		cutMaxBandPixels_ = maxBandPixels;
+	}
+	// Whether the last refine() decided its band by the cut.
+	bool lastCut() const { return lastCut_; }
 	// The band scan's row kernel (algo/band_scan.hpp); the best by default.
 	void setKernelPath(KernelPath path) { kernelPath_ = path; }
 
@@ -74,13 +86,11 @@ public:
 	size_t bandPixels() const { return bandPixels_; }
 
 private:
-	struct Span {
-		int y, x0, x1;   // pixels [x0, x1) of row y
-		int first;       // index of its first pixel in the band arrays
-	};
+	using Span = BandSpan; // pixels [x0, x1) of row y, from index first in the band arrays
 
 	void collectAndClassify(const Gray8Image &trimap, const Roi &roi, BandEvidence &evidence);
 	void smooth();
+	void decideByCut(const RgbImage &colour, const Gray8Image &trimap);
 	void keepComponentsTouchingLecturer();
 	void fillHoles();
 	void writeAlpha(const Roi &roi, Gray8Image &alpha) const;
@@ -102,6 +112,9 @@ private:
 	int width_ = 0, height_ = 0, stride_ = 0;
 	Gray8Image work_;             // (w+2) x (h+2): seeds, band pixels 0 / 255, kOutside around
 	std::vector<Span> spans_;
+	BandGraphCut cut_;
+	size_t cutMaxBandPixels_ = 0;
+	bool lastCut_ = false;
 	size_t bandPixels_ = 0;
 	std::vector<uint8_t> colourConfidence_, next_;
 	std::vector<int32_t> stack_;

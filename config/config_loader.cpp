@@ -244,6 +244,9 @@ void bindDecision(TomlSection &sec, DecisionSettings &s)
 	sec.integer("board_match", s.boardMatch, 1, 255);
 	sec.integer("temporal_weight", s.temporalWeight, 0, 255);
 	sec.integer("still_colour", s.stillColour, 1, 255);
+	sec.integer("cut_smoothness", s.cutSmoothness, 0, 10000);
+	sec.integer("cut_edge_sigma", s.cutEdgeSigma, 1, 64);
+	sec.integer("cut_max_band_pixels", s.cutMaxBandPixels, 0, 8294400);
 }
 
 void bindComposite(TomlSection &sec, CompositeSettings &s)

@@ -121,6 +121,9 @@ struct DecisionSettings {
 	int boardMatch = 10;                // 1..255: L1 RGB distance below which the board model matches
 	int temporalWeight = 64;            // 0..255: the previous frame's alpha where colour did not change
 	int stillColour = 24;               // 1..255: L1 RGB change below which a pixel did not change
+	int cutSmoothness = 1000;           // 0..10000: the band's minimum cut (algo/band_graph_cut.hpp); 0 = off
+	int cutEdgeSigma = 7;               // 1..64: colour difference (8-bit RGB levels) the cut follows
+	int cutMaxBandPixels = 150000;      // 0..8294400: a larger band is smoothed instead (the cut's time)
 	bool operator==(const DecisionSettings &) const = default;
 };
 

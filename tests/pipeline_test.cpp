@@ -83,15 +83,23 @@ TEST(Pipeline, BeatsTheDepthOnlyKeyerOnTheSimulatedScene)
 	EXPECT_GT(iouPipeline / scored, iouDepth / scored);
 }
 
+// The band's minimum cut (algo/band_graph_cut.hpp) is the one stage that
+// allocates per frame: OpenCV's max-flow graph has no reset, so it is made
+// anew, a few blocks sized by the band. Every other stage allocates nothing;
+// with the cut, at most this many blocks a frame.
+constexpr size_t kCutAllocationsPerFrame = 16;
+
 TEST(Pipeline, NoHeapAllocationPerFrameInSteadyState)
 {
 	if (!allocationCounting())
 		GTEST_SKIP() << "allocations are not counted under AddressSanitizer (the plain build counts them)";
+	for (int cut : { 0, Settings{}.decision.cutSmoothness })
 	for (auto [w, h] : { std::pair{ 640, 480 }, std::pair{ 960, 540 } }) {
 		SimFrames sim(w, h);
 		Pipeline pipeline;
 		Settings settings;
 		settings.learning.initialFrames = 30; // the first derivation falls in the counted frames
+		settings.decision.cutSmoothness = cut;
 		pipeline.configure(PipelineSettings::from(settings), identity(w, h));
 		PipelineOutput out;
 		for (int frame = 0; frame < 25; ++frame) { // warm-up: buffers reach their sizes
@@ -106,9 +114,9 @@ TEST(Pipeline, NoHeapAllocationPerFrameInSteadyState)
 			pipeline.process(sim.colour, sim.depth, out);
 			allocations += counter.count();
 		}
-		EXPECT_EQ(allocations, 0u) << w << "x" << h;
+		EXPECT_LE(allocations, cut ? 20 * kCutAllocationsPerFrame : 0u) << w << "x" << h << ", cut " << cut;
 		EXPECT_GT(pipeline.status().derivations, derivationsBefore);
-		std::printf("%dx%d: 20 frames, %d signature derivations, %zu allocations\n", w, h,
+		std::printf("%dx%d, cut %d: 20 frames, %d signature derivations, %zu allocations\n", w, h, cut,
 			    pipeline.status().derivations - derivationsBefore, allocations);
 	}
 }
@@ -120,27 +128,30 @@ TEST(Pipeline, NoHeapAllocationPerFrameOnTheSimulatedLecture)
 	// lecturer walks, writes, leaves and comes back.
 	if (!allocationCounting())
 		GTEST_SKIP() << "allocations are not counted under AddressSanitizer (the plain build counts them)";
-	Settings settings;
-	SimSequence sequence;
-	sequence.configure(settings.sim, 640, 480, settings.colour.fps, settings.depth.fps);
-	Pipeline pipeline;
-	pipeline.configure(PipelineSettings::from(settings), identity(640, 480));
-	PipelineOutput out;
-	GroundTruth truth;
-	DepthFrame latest;
-	ColourFrame colour;
-	size_t allocations = 0;
-	for (uint64_t n = 0; n < 300; ++n) {
-		sequence.frame(n, colour, truth, [&](const DepthFrame &d) { latest = d; });
-		if (latest.depthMm.empty())
-			continue;
-		CountAllocations counter;
-		pipeline.process(colour, latest, out);
-		if (n >= 30) // warm-up: buffers reach their sizes
-			allocations += counter.count();
+	for (int cut : { 0, Settings{}.decision.cutSmoothness }) {
+		Settings settings;
+		settings.decision.cutSmoothness = cut;
+		SimSequence sequence;
+		sequence.configure(settings.sim, 640, 480, settings.colour.fps, settings.depth.fps);
+		Pipeline pipeline;
+		pipeline.configure(PipelineSettings::from(settings), identity(640, 480));
+		PipelineOutput out;
+		GroundTruth truth;
+		DepthFrame latest;
+		ColourFrame colour;
+		size_t allocations = 0;
+		for (uint64_t n = 0; n < 300; ++n) {
+			sequence.frame(n, colour, truth, [&](const DepthFrame &d) { latest = d; });
+			if (latest.depthMm.empty())
+				continue;
+			CountAllocations counter;
+			pipeline.process(colour, latest, out);
+			if (n >= 30) // warm-up: buffers reach their sizes
+				allocations += counter.count();
+		}
+		EXPECT_LE(allocations, cut ? 270 * kCutAllocationsPerFrame : 0u) << "cut " << cut;
+		std::printf("simulated lecture, cut %d: 270 frames, %zu allocations\n", cut, allocations);
 	}
-	EXPECT_EQ(allocations, 0u);
-	std::printf("simulated lecture: 270 frames, %zu allocations\n", allocations);
 }
 
 TEST(Pipeline, SeedsOncePerDepthFrameAndAgainAfterNewSettings)

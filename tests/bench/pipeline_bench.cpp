@@ -90,11 +90,14 @@ MappingModel identity(int w, int h)
 	return m;
 }
 
-void pipelineFrame(benchmark::State &state, const Inputs &in)
+void pipelineFrame(benchmark::State &state, const Inputs &in, bool graphCut = true)
 {
 	const int w = int(state.range(0)), h = int(state.range(1));
 	auto pipeline = std::make_unique<Pipeline>();
-	pipeline->configure(PipelineSettings{}, identity(w, h));
+	PipelineSettings settings;
+	if (!graphCut)
+		settings.decision.cutSmoothness = 0; // the band smoothed instead (algo/siox_refiner.hpp)
+	pipeline->configure(settings, identity(w, h));
 	pipeline->setKernelPath(kernelPathFromEnvironment());
 	PipelineOutput out;
 	for (int i = 0; i < 30; ++i) // past learning
@@ -118,6 +121,12 @@ void BM_PipelineFrame(benchmark::State &state)
 void BM_PipelineFrameLecture(benchmark::State &state)
 {
 	pipelineFrame(state, lectureInputs(int(state.range(0)), int(state.range(1))));
+}
+
+// The same without the band's minimum cut: what the cut costs.
+void BM_PipelineFrameLectureNoCut(benchmark::State &state)
+{
+	pipelineFrame(state, lectureInputs(int(state.range(0)), int(state.range(1))), false);
 }
 
 // The stages one by one, with the state a running pipeline has.
@@ -225,6 +234,7 @@ void BM_DepthkeySioxStillCold(benchmark::State &state)
 #define SIZES ->Args({ 640, 480 })->Args({ 1920, 1080 })->Unit(benchmark::kMicrosecond)
 BENCHMARK(BM_PipelineFrame) SIZES;
 BENCHMARK(BM_PipelineFrameLecture) SIZES;
+BENCHMARK(BM_PipelineFrameLectureNoCut) SIZES;
 BENCHMARK(BM_SeedAndMap) SIZES;
 BENCHMARK(BM_Learn) SIZES;
 BENCHMARK(BM_SioxBand) SIZES;
