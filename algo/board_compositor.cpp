@@ -220,6 +220,7 @@ void BoardCompositor::compose(const RgbaImage &source, const Roi &roi, const Rgb
 	for (size_t t = 0; t < clearTiles_.size(); ++t)
 		clearTiles_[t] = lastWarpedTiles_[t] && !warpedTiles_[t];
 	warpedPixels_ = 0;
+	const BoardWarpRowFn warpRow = boardWarpRowFn(path_);
 	for (int ty = 0; ty < tilesY_; ++ty) {
 		const int y0 = ty * kBoardTile, y1 = std::min(h, y0 + kBoardTile);
 		for (const Run &run : runsOf(clearTiles_.data() + size_t(ty) * tilesX_))
@@ -239,10 +240,9 @@ void BoardCompositor::compose(const RgbaImage &source, const Roi &roi, const Rgb
 			warpedPixels_ += size_t(run.x1 - run.x0) * (y1 - y0);
 			for (int y = y0; y < y1; ++y) {
 				const size_t k = size_t(y) * w + run.x0;
-				boardWarpRow(path_, { index_.data() + k, frac_.data() + k, source.data(), colourWidth_,
-						      board.row(y) + run.x0, composite.row(y) + run.x0, lecturer.row(y) + run.x0,
-						      run.x1 - run.x0 },
-					     opacityQ8);
+				warpRow({ index_.data() + k, frac_.data() + k, source.data(), colourWidth_, board.row(y) + run.x0,
+					  composite.row(y) + run.x0, lecturer.row(y) + run.x0, run.x1 - run.x0 },
+					opacityQ8);
 			}
 		}
 	}

@@ -1,4 +1,4 @@
-// The SSE2 and NEON rows of the board warp give the C row's bytes, for random
+// The SSE2, SSSE3 and NEON rows of the board warp give the C row's bytes, for random
 // sources, fractions (0 and 255 included), unseen pixels, zero and full
 // alpha, and every opacity class; for every count up to a few groups of four
 // and a long odd one, at every start offset (unaligned map, layer and
@@ -96,4 +96,14 @@ TEST(BoardWarpRows, NobodyIsTheBoardAndTransparent)
 			EXPECT_EQ(layer[x], (Rgba8{ 0, 0, 0, 0 })) << x;
 		}
 	}
+}
+
+// Each path runs its own row where this CPU has the instructions (else the
+// comparisons above would hold trivially).
+TEST(BoardWarpRows, EachPathRunsItsOwnRow)
+{
+	EXPECT_EQ(boardWarpRowFn(KernelPath::C), &boardWarpRow_C);
+	EXPECT_EQ(boardWarpRowFn(KernelPath::Sse2), &boardWarpRow_SSE2);
+	EXPECT_EQ(boardWarpRowFn(KernelPath::Ssse3), cpuHasSsse3() ? &boardWarpRow_SSSE3 : &boardWarpRow_SSE2);
+	EXPECT_EQ(boardWarpRowFn(KernelPath::Neon), &boardWarpRow_NEON);
 }

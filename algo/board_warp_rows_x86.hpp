@@ -1,0 +1,64 @@
+// What the SSE2 and SSSE3 rows of the board warp (board_warp_rows_sse2.cpp,
+// board_warp_rows_ssse3.cpp) share, in SSE2 alone: a group of four output
+// pixels' source taps, and whether anybody is in them. Included only where
+// __SSE2__ is defined.
+#pragma once
+
+#include "algo/board_warp_rows.hpp"
+
+#include <emmintrin.h>
+
+#include <cstring>
+
+namespace depthkey::warp_x86 {
+
+// Some of the four pixels from index on unseen (they run the C pixel).
+inline bool anyUnseen(const int32_t *index)
+{
+	const __m128i k = _mm_loadu_si128(reinterpret_cast<const __m128i *>(index));
+	return _mm_movemask_epi8(_mm_cmpeq_epi32(k, _mm_set1_epi32(kOutsideView))) != 0;
+}
+
+// Two pixels' 8-byte tap pairs in one register, [a left, a right, b left,
+// b right]: a load and a movhps.
+inline __m128i loadTaps(const Rgba8 *a, const Rgba8 *b)
+{
+	const __m128i lo = _mm_loadl_epi64(reinterpret_cast<const __m128i *>(a));
+	return _mm_castps_si128(_mm_loadh_pi(_mm_castsi128_ps(lo), reinterpret_cast<const __m64 *>(b)));
+}
+
+// The taps of four seen pixels from index on, two pixels a register.
+struct GroupTaps {
+	__m128i top01, top23, bottom01, bottom23;
+};
+
+inline GroupTaps loadGroupTaps(const Rgba8 *source, ptrdiff_t stride, const int32_t *index)
+{
+	const Rgba8 *s0 = source + index[0], *s1 = source + index[1], *s2 = source + index[2], *s3 = source + index[3];
+	return { loadTaps(s0, s1), loadTaps(s2, s3), loadTaps(s0 + stride, s1 + stride), loadTaps(s2 + stride, s3 + stride) };
+}
+
+// Per pixel (32-bit lanes, in order): all ones where none of its four taps
+// has alpha.
+inline __m128i nobodyMask(const GroupTaps &t)
+{
+	const __m128 any01 = _mm_castsi128_ps(_mm_or_si128(t.top01, t.bottom01));
+	const __m128 any23 = _mm_castsi128_ps(_mm_or_si128(t.top23, t.bottom23));
+	const __m128i any = _mm_castps_si128(_mm_or_ps(_mm_shuffle_ps(any01, any23, _MM_SHUFFLE(2, 0, 2, 0)),
+						       _mm_shuffle_ps(any01, any23, _MM_SHUFFLE(3, 1, 3, 1))));
+	return _mm_cmpeq_epi32(_mm_and_si128(any, _mm_set1_epi32(int(0xFF000000u))), _mm_setzero_si128());
+}
+
+inline bool nobodyAt(__m128i nobody)
+{
+	return _mm_movemask_epi8(nobody) == 0xFFFF;
+}
+
+// A group nobody is in: the board, transparent.
+inline void writeNobody(const Rgb8 *board, Rgb8 *composite, Rgba8 *layer)
+{
+	std::memcpy(composite, board, 4 * sizeof(Rgb8));
+	_mm_storeu_si128(reinterpret_cast<__m128i *>(layer), _mm_setzero_si128());
+}
+
+} // namespace depthkey::warp_x86
