@@ -13,7 +13,10 @@
 // composite's blend with w = compositeWeight(opacity, alpha).
 //
 // The row writes every pixel of composite and layer: a pixel nobody is at
-// (unseen, or alpha 0 in all four taps) is the board, transparent. So the
+// (unseen, or its sampled alpha 0) is the board, and transparent in the
+// layer with no colour either ({0, 0, 0, 0}: the SIMD rows mask the layer
+// by its own alpha, and skip the arithmetic for groups of four whose taps
+// all have alpha 0). So the
 // compositor copies the board and clears the layer only around the rows it
 // warps (each byte of the frame written once).
 #pragma once
@@ -67,6 +70,11 @@ inline void boardWarpPixel_C(const BoardWarpRow &r, int x, int opacityQ8)
 		return lerp8(lerp8(p00.*c, p10.*c, fy), lerp8(p01.*c, p11.*c, fy), fx);
 	};
 	const unsigned cr = sample(&Rgba8::r), cg = sample(&Rgba8::g), cb = sample(&Rgba8::b), ca = sample(&Rgba8::a);
+	if (ca == 0) {
+		r.composite[x] = r.board[x]; // the blend would weigh the sample 0
+		r.layer[x] = { 0, 0, 0, 0 };
+		return;
+	}
 	const unsigned w = compositeWeight(opacityQ8, uint8_t(ca)), wb = 256u - w;
 	const Rgb8 b = r.board[x];
 	r.composite[x] = { uint8_t((b.r * wb + cr * w + 128u) >> 8), uint8_t((b.g * wb + cg * w + 128u) >> 8),

@@ -110,17 +110,16 @@ void boardWarpRow_SSE2(const BoardWarpRow &r, int opacityQ8)
 			continue;
 		}
 		const warp_x86::GroupTaps t = warp_x86::loadGroupTaps(source, stride, index + x);
-		const __m128i nobody = warp_x86::nobodyMask(t);
-		if (warp_x86::nobodyAt(nobody)) {
+		if (!warp_x86::anyAlpha(t)) {
 			warp_x86::writeNobody(board + x, composite + x, layer + x);
 			continue;
 		}
 		const __m128i fr = _mm_unpacklo_epi8(_mm_loadl_epi64(reinterpret_cast<const __m128i *>(frac + x)), k.zero);
 		const __m128i h01 = samplePair(k, t.top01, t.bottom01, _mm_unpacklo_epi16(fr, fr));
 		const __m128i h23 = samplePair(k, t.top23, t.bottom23, _mm_unpackhi_epi16(fr, fr));
-		// Nobody's pixels transparent, their colour samples dropped (their
-		// composite is the board already: alpha 0 weighs the samples 0).
-		_mm_storeu_si128(reinterpret_cast<__m128i *>(layer + x), _mm_andnot_si128(nobody, _mm_packus_epi16(h01, h23)));
+		// Transparent samples have no colour (their composite is the board
+		// already: alpha 0 weighs the samples 0).
+		_mm_storeu_si128(reinterpret_cast<__m128i *>(layer + x), warp_x86::dropTransparent(_mm_packus_epi16(h01, h23)));
 		const __m128i under = loadRgb4(k, board + x);
 		const __m128i c01 = blendPair(k, _mm_unpacklo_epi8(under, k.zero), h01, opacity);
 		const __m128i c23 = blendPair(k, _mm_unpackhi_epi8(under, k.zero), h23, opacity);

@@ -117,8 +117,7 @@ SSSE3 void boardWarpRow_SSSE3(const BoardWarpRow &r, int opacityQ8)
 			continue;
 		}
 		const warp_x86::GroupTaps t = warp_x86::loadGroupTaps(source, stride, index + x);
-		const __m128i nobody = warp_x86::nobodyMask(t);
-		if (warp_x86::nobodyAt(nobody)) {
+		if (!warp_x86::anyAlpha(t)) {
 			warp_x86::writeNobody(board + x, composite + x, layer + x);
 			continue;
 		}
@@ -126,10 +125,10 @@ SSSE3 void boardWarpRow_SSSE3(const BoardWarpRow &r, int opacityQ8)
 			_mm_unpacklo_epi8(_mm_loadl_epi64(reinterpret_cast<const __m128i *>(frac + x)), k.zero), 7);
 		const __m128i h01 = samplePair(k, t.top01, t.bottom01, _mm_shuffle_epi8(fr, k.fx01), _mm_shuffle_epi8(fr, k.fy01));
 		const __m128i h23 = samplePair(k, t.top23, t.bottom23, _mm_shuffle_epi8(fr, k.fx23), _mm_shuffle_epi8(fr, k.fy23));
-		// Nobody's pixels transparent, their colour samples dropped (their
-		// composite is the board already: alpha 0 weighs the samples 0).
+		// Transparent samples have no colour (their composite is the board
+		// already: alpha 0 weighs the samples 0).
 		const __m128i samples = _mm_packus_epi16(h01, h23);
-		_mm_storeu_si128(reinterpret_cast<__m128i *>(layer + x), _mm_andnot_si128(nobody, samples));
+		_mm_storeu_si128(reinterpret_cast<__m128i *>(layer + x), warp_x86::dropTransparent(samples));
 		// The four blend weights at once, << 7 saturated (256 -> 32767).
 		const __m128i p = _mm_add_epi16(_mm_mullo_epi16(_mm_shuffle_epi8(samples, k.alphaWords), opacity), k.half);
 		const __m128i w6 = _mm_slli_epi16(_mm_mulhi_epu16(p, k.v257), 6);

@@ -38,20 +38,19 @@ inline GroupTaps loadGroupTaps(const Rgba8 *source, ptrdiff_t stride, const int3
 	return { loadTaps(s0, s1), loadTaps(s2, s3), loadTaps(s0 + stride, s1 + stride), loadTaps(s2 + stride, s3 + stride) };
 }
 
-// Per pixel (32-bit lanes, in order): all ones where none of its four taps
-// has alpha.
-inline __m128i nobodyMask(const GroupTaps &t)
+// Whether any of the group's taps has alpha (else nobody is there).
+inline bool anyAlpha(const GroupTaps &t)
 {
-	const __m128 any01 = _mm_castsi128_ps(_mm_or_si128(t.top01, t.bottom01));
-	const __m128 any23 = _mm_castsi128_ps(_mm_or_si128(t.top23, t.bottom23));
-	const __m128i any = _mm_castps_si128(_mm_or_ps(_mm_shuffle_ps(any01, any23, _MM_SHUFFLE(2, 0, 2, 0)),
-						       _mm_shuffle_ps(any01, any23, _MM_SHUFFLE(3, 1, 3, 1))));
-	return _mm_cmpeq_epi32(_mm_and_si128(any, _mm_set1_epi32(int(0xFF000000u))), _mm_setzero_si128());
+	const __m128i any = _mm_or_si128(_mm_or_si128(t.top01, t.bottom01), _mm_or_si128(t.top23, t.bottom23));
+	const __m128i none = _mm_cmpeq_epi32(_mm_and_si128(any, _mm_set1_epi32(int(0xFF000000u))), _mm_setzero_si128());
+	return _mm_movemask_epi8(none) != 0xFFFF;
 }
 
-inline bool nobodyAt(__m128i nobody)
+// Four RGBA samples, those with alpha 0 all 0 (the C row's transparent pixel).
+inline __m128i dropTransparent(__m128i samples)
 {
-	return _mm_movemask_epi8(nobody) == 0xFFFF;
+	const __m128i alpha = _mm_and_si128(samples, _mm_set1_epi32(int(0xFF000000u)));
+	return _mm_andnot_si128(_mm_cmpeq_epi32(alpha, _mm_setzero_si128()), samples);
 }
 
 // A group nobody is in: the board, transparent.

@@ -71,6 +71,9 @@ TEST(BoardWarpRows, SimdRowsMatchC)
 							ASSERT_EQ(sComposite[x], was) << "written outside the row: x " << x;
 							ASSERT_EQ(sLayer[x], wasLayer) << "written outside the row: x " << x;
 						}
+						if (inRow && cLayer[x].a == 0) {
+							ASSERT_EQ(cLayer[x], (Rgba8{ 0, 0, 0, 0 })) << "a transparent pixel has no colour: x " << x;
+						}
 						lit += cLayer[x].a > 0;
 					}
 					if (count == kMaxCount) {
