@@ -100,45 +100,30 @@ SSSE3 void boardWarpRow_SSSE3(const BoardWarpRow &r, int opacityQ8)
 {
 	const Constants k;
 	const __m128i opacity = _mm_set1_epi16(short(opacityQ8));
-	// Locals: the stores below are through byte pointers, which may alias r.
-	const int32_t *index = r.index;
-	const uint16_t *frac = r.frac;
-	const Rgba8 *source = r.source;
-	const ptrdiff_t stride = r.stride;
-	const Rgb8 *board = r.board;
-	Rgb8 *composite = r.composite;
-	Rgba8 *layer = r.layer;
-	const int n = r.count;
+	const warp_x86::RowPointers p(r);
 	int x = 0;
-	for (; x + 4 <= n; x += 4) {
-		if (warp_x86::anyUnseen(index + x)) {
-			for (int i = x; i < x + 4; ++i)
-				boardWarpPixel_C(r, i, opacityQ8);
+	for (; x + 4 <= p.count; x += 4) {
+		warp_x86::GroupTaps t;
+		if (warp_x86::groupWithoutArithmetic(r, p, x, opacityQ8, t))
 			continue;
-		}
-		const warp_x86::GroupTaps t = warp_x86::loadGroupTaps(source, stride, index + x);
-		if (!warp_x86::anyAlpha(t)) {
-			warp_x86::writeNobody(board + x, composite + x, layer + x);
-			continue;
-		}
 		const __m128i fr = _mm_slli_epi16(
-			_mm_unpacklo_epi8(_mm_loadl_epi64(reinterpret_cast<const __m128i *>(frac + x)), k.zero), 7);
+			_mm_unpacklo_epi8(_mm_loadl_epi64(reinterpret_cast<const __m128i *>(p.frac + x)), k.zero), 7);
 		const __m128i h01 = samplePair(k, t.top01, t.bottom01, _mm_shuffle_epi8(fr, k.fx01), _mm_shuffle_epi8(fr, k.fy01));
 		const __m128i h23 = samplePair(k, t.top23, t.bottom23, _mm_shuffle_epi8(fr, k.fx23), _mm_shuffle_epi8(fr, k.fy23));
 		// Transparent samples have no colour (their composite is the board
 		// already: alpha 0 weighs the samples 0).
 		const __m128i samples = _mm_packus_epi16(h01, h23);
-		_mm_storeu_si128(reinterpret_cast<__m128i *>(layer + x), warp_x86::dropTransparent(samples));
+		_mm_storeu_si128(reinterpret_cast<__m128i *>(p.layer + x), warp_x86::dropTransparent(samples));
 		// The four blend weights at once, << 7 saturated (256 -> 32767).
-		const __m128i p = _mm_add_epi16(_mm_mullo_epi16(_mm_shuffle_epi8(samples, k.alphaWords), opacity), k.half);
-		const __m128i w6 = _mm_slli_epi16(_mm_mulhi_epu16(p, k.v257), 6);
+		const __m128i oa = _mm_add_epi16(_mm_mullo_epi16(_mm_shuffle_epi8(samples, k.alphaWords), opacity), k.half);
+		const __m128i w6 = _mm_slli_epi16(_mm_mulhi_epu16(oa, k.v257), 6);
 		const __m128i w7 = _mm_adds_epi16(w6, w6);
-		const __m128i under = loadRgb4(board + x, x + 6 <= n);
+		const __m128i under = loadRgb4(p.board + x, x + 6 <= p.count);
 		const __m128i c01 = lerp(_mm_shuffle_epi8(under, k.rgb01), h01, _mm_shuffle_epi8(w7, k.lanes01));
 		const __m128i c23 = lerp(_mm_shuffle_epi8(under, k.rgb23), h23, _mm_shuffle_epi8(w7, k.lanes23));
-		storeRgb4(composite + x, _mm_shuffle_epi8(_mm_packus_epi16(c01, c23), k.packRgb));
+		storeRgb4(p.composite + x, _mm_shuffle_epi8(_mm_packus_epi16(c01, c23), k.packRgb));
 	}
-	for (; x < n; ++x)
+	for (; x < p.count; ++x)
 		boardWarpPixel_C(r, x, opacityQ8);
 }
 

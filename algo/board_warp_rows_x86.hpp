@@ -1,7 +1,7 @@
 // What the SSE2 and SSSE3 rows of the board warp (board_warp_rows_sse2.cpp,
-// board_warp_rows_ssse3.cpp) share, in SSE2 alone: a group of four output
-// pixels' source taps, and whether anybody is in them. Included only where
-// __SSE2__ is defined.
+// board_warp_rows_ssse3.cpp) share, in SSE2 alone: the row's pointers, a
+// group of four output pixels' source taps, and the groups that need no
+// arithmetic. Included only where __SSE2__ is defined.
 #pragma once
 
 #include "algo/board_warp_rows.hpp"
@@ -53,11 +53,40 @@ inline __m128i dropTransparent(__m128i samples)
 	return _mm_andnot_si128(_mm_cmpeq_epi32(alpha, _mm_setzero_si128()), samples);
 }
 
-// A group nobody is in: the board, transparent.
-inline void writeNobody(const Rgb8 *board, Rgb8 *composite, Rgba8 *layer)
+// The row's pointers as locals: the rows store through byte pointers, which
+// may alias the row itself.
+struct RowPointers {
+	explicit RowPointers(const BoardWarpRow &r)
+		: index(r.index), frac(r.frac), source(r.source), stride(r.stride), board(r.board),
+		  composite(r.composite), layer(r.layer), count(r.count)
+	{
+	}
+	const int32_t *index;
+	const uint16_t *frac;
+	const Rgba8 *source;
+	ptrdiff_t stride;
+	const Rgb8 *board;
+	Rgb8 *composite;
+	Rgba8 *layer;
+	int count;
+};
+
+// The group of four from x when it needs no arithmetic, and then true: a
+// pixel of it unseen (the C pixels), or no alpha in its taps (the board,
+// transparent). Else its taps in t.
+inline bool groupWithoutArithmetic(const BoardWarpRow &r, const RowPointers &p, int x, int opacityQ8, GroupTaps &t)
 {
-	std::memcpy(composite, board, 4 * sizeof(Rgb8));
-	_mm_storeu_si128(reinterpret_cast<__m128i *>(layer), _mm_setzero_si128());
+	if (anyUnseen(p.index + x)) {
+		for (int i = x; i < x + 4; ++i)
+			boardWarpPixel_C(r, i, opacityQ8);
+		return true;
+	}
+	t = loadGroupTaps(p.source, p.stride, p.index + x);
+	if (anyAlpha(t))
+		return false;
+	std::memcpy(p.composite + x, p.board + x, 4 * sizeof(Rgb8));
+	_mm_storeu_si128(reinterpret_cast<__m128i *>(p.layer + x), _mm_setzero_si128());
+	return true;
 }
 
 } // namespace depthkey::warp_x86
