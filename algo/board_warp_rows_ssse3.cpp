@@ -1,7 +1,8 @@
 // SSSE3 row of algo/board_warp_rows.hpp: the SSE2 row's plan (four pixels
 // a step, taps gathered with 8-byte loads, two pixels per register in 16-bit
 // lanes [pixel a r g b a, pixel b r g b a]) in fewer instructions, which is
-// much of its time (28 instructions a pixel where SSE2 has 39, callgrind):
+// much of its time (28 instructions a warped pixel where SSE2 takes 40,
+// callgrind):
 // - each lerp is a + mulhrs(b - a, f << 7): pmulhrsw gives
 //   (d f 128 + 2^14) >> 15 = (d f + 128) >> 8 rounded down, and the C row's
 //   (a (256 - f) + b f + 128) >> 8 is a + that, exactly (a 256 drops out of
