@@ -11,7 +11,7 @@ int nextUndecidedRow_C(const uint8_t *labels, int x, int end)
 
 BandScanFn bandScanRow(KernelPath path)
 {
-	if (path == KernelPath::Sse2)
+	if (sse2Rows(path))
 		return nextUndecidedRow_SSE2;
 	if (path == KernelPath::Neon)
 		return nextUndecidedRow_NEON;

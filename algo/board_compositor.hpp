@@ -17,9 +17,10 @@
 // lecturer layer is transparent. Both outputs keep what they held: the
 // layer is cleared, and the board copied into the composite, only where
 // last frame's warped tiles were (the warp writes its pixels whole). A new
-// board picture (forgetBoard()) is copied whole once: at 1920x1080 that copy
-// is about a sixth of the frame's warp time, and the board's picture
-// changes far less often than the camera's. Nothing is allocated per frame
+// board picture (forgetBoard()) is copied whole once: at 1920x1080 that
+// copy is about a quarter of such a frame's time (docs/board.md), and the
+// board's picture changes far less often than the camera's (a capture
+// stick's every frame). Nothing is allocated per frame
 // (tests/board_compositor_test.cpp counts).
 #pragma once
 

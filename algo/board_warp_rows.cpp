@@ -8,14 +8,20 @@ void boardWarpRow_C(const BoardWarpRow &r, int opacityQ8)
 		boardWarpPixel_C(r, x, opacityQ8);
 }
 
+BoardWarpRowFn boardWarpRowFn(KernelPath path)
+{
+	if (path == KernelPath::Ssse3 && cpuHasSsse3())
+		return boardWarpRow_SSSE3;
+	if (sse2Rows(path))
+		return boardWarpRow_SSE2;
+	if (path == KernelPath::Neon)
+		return boardWarpRow_NEON;
+	return boardWarpRow_C;
+}
+
 void boardWarpRow(KernelPath path, const BoardWarpRow &row, int opacityQ8)
 {
-	if (path == KernelPath::Sse2)
-		boardWarpRow_SSE2(row, opacityQ8);
-	else if (path == KernelPath::Neon)
-		boardWarpRow_NEON(row, opacityQ8);
-	else
-		boardWarpRow_C(row, opacityQ8);
+	boardWarpRowFn(path)(row, opacityQ8);
 }
 
 } // namespace depthkey

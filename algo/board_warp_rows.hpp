@@ -1,7 +1,8 @@
 // The row kernels of the board-geometry composite (algo/board_compositor.hpp),
-// a plain C reference (_C) and SSE2 and NEON variants (_SSE2,
-// board_warp_rows_sse2.cpp; _NEON, board_warp_rows_neon.cpp) that give the
-// same bytes (tests/board_warp_rows_test.cpp).
+// a plain C reference (_C) and SSE2, SSSE3 and NEON variants (_SSE2,
+// board_warp_rows_sse2.cpp; _SSSE3, board_warp_rows_ssse3.cpp; _NEON,
+// board_warp_rows_neon.cpp) that give the same bytes
+// (tests/board_warp_rows_test.cpp).
 //
 // Each output pixel has a precomputed source: the index of the top-left of
 // the 2x2 colour pixels it samples (kOutsideView = the camera does not see
@@ -12,7 +13,10 @@
 // composite's blend with w = compositeWeight(opacity, alpha).
 //
 // The row writes every pixel of composite and layer: a pixel nobody is at
-// (unseen, or alpha 0 in all four taps) is the board, transparent. So the
+// (unseen, or its sampled alpha 0) is the board, and transparent in the
+// layer with no colour either ({0, 0, 0, 0}: the SIMD rows mask the layer
+// by its own alpha, and skip the arithmetic for groups of four whose taps
+// all have alpha 0). So the
 // compositor copies the board and clears the layer only around the rows it
 // warps (each byte of the frame written once).
 #pragma once
@@ -66,6 +70,11 @@ inline void boardWarpPixel_C(const BoardWarpRow &r, int x, int opacityQ8)
 		return lerp8(lerp8(p00.*c, p10.*c, fy), lerp8(p01.*c, p11.*c, fy), fx);
 	};
 	const unsigned cr = sample(&Rgba8::r), cg = sample(&Rgba8::g), cb = sample(&Rgba8::b), ca = sample(&Rgba8::a);
+	if (ca == 0) {
+		r.composite[x] = r.board[x]; // the blend would weigh the sample 0
+		r.layer[x] = { 0, 0, 0, 0 };
+		return;
+	}
 	const unsigned w = compositeWeight(opacityQ8, uint8_t(ca)), wb = 256u - w;
 	const Rgb8 b = r.board[x];
 	r.composite[x] = { uint8_t((b.r * wb + cr * w + 128u) >> 8), uint8_t((b.g * wb + cg * w + 128u) >> 8),
@@ -75,7 +84,14 @@ inline void boardWarpPixel_C(const BoardWarpRow &r, int x, int opacityQ8)
 
 void boardWarpRow_C(const BoardWarpRow &row, int opacityQ8);
 void boardWarpRow_SSE2(const BoardWarpRow &row, int opacityQ8);
+// Only where cpuHasSsse3() (built for x86 alone: elsewhere the C row).
+void boardWarpRow_SSSE3(const BoardWarpRow &row, int opacityQ8);
 void boardWarpRow_NEON(const BoardWarpRow &row, int opacityQ8);
+
+using BoardWarpRowFn = void (*)(const BoardWarpRow &row, int opacityQ8);
+// The row of path on this CPU (Ssse3 without SSSE3: the SSE2 row); chosen
+// once per image.
+BoardWarpRowFn boardWarpRowFn(KernelPath path);
 void boardWarpRow(KernelPath path, const BoardWarpRow &row, int opacityQ8);
 
 } // namespace depthkey

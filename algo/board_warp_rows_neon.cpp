@@ -111,23 +111,20 @@ void boardWarpRow_NEON(const BoardWarpRow &r, int opacityQ8)
 		const uint8x16_t top01 = vcombine_u8(load8(s0), load8(s1)), top23 = vcombine_u8(load8(s2), load8(s3));
 		const uint8x16_t bottom01 = vcombine_u8(load8(s0 + stride), load8(s1 + stride));
 		const uint8x16_t bottom23 = vcombine_u8(load8(s2 + stride), load8(s3 + stride));
-		// Per pixel: is there any alpha in its four taps? OR of each pixel's
-		// two 32-bit lanes: the pairwise max of the alpha bytes.
-		const uint32x4_t any01 = vandq_u32(vreinterpretq_u32_u8(vorrq_u8(top01, bottom01)), alphaBytes);
-		const uint32x4_t any23 = vandq_u32(vreinterpretq_u32_u8(vorrq_u8(top23, bottom23)), alphaBytes);
-		const uint32x4_t any = vpmaxq_u32(any01, any23); // pixels 0 1 2 3
-		const uint32x4_t nobody = vceqzq_u32(any);
-		if (vminvq_u32(nobody) == 0xFFFFFFFFu) {
+		// Any alpha in the group's taps?
+		const uint8x16_t any = vorrq_u8(vorrq_u8(top01, bottom01), vorrq_u8(top23, bottom23));
+		if (vmaxvq_u32(vandq_u32(vreinterpretq_u32_u8(any), alphaBytes)) == 0) {
 			std::memcpy(composite + x, board + x, 4 * sizeof(Rgb8));
 			vst1q_u8(&layer[x].r, vdupq_n_u8(0));
 			continue;
 		}
 		const uint16x8_t h01 = samplePair(top01, bottom01, frac[x], frac[x + 1]);
 		const uint16x8_t h23 = samplePair(top23, bottom23, frac[x + 2], frac[x + 3]);
-		// Nobody's pixels transparent, their colour samples dropped (their
-		// composite is the board already: alpha 0 weighs the samples 0).
+		// Transparent samples have no colour (their composite is the board
+		// already: alpha 0 weighs the samples 0).
 		const uint8x16_t samples = vcombine_u8(vmovn_u16(h01), vmovn_u16(h23));
-		vst1q_u8(&layer[x].r, vbicq_u8(samples, vreinterpretq_u8_u32(nobody)));
+		const uint32x4_t transparent = vceqzq_u32(vandq_u32(vreinterpretq_u32_u8(samples), alphaBytes));
+		vst1q_u8(&layer[x].r, vbicq_u8(samples, vreinterpretq_u8_u32(transparent)));
 		const uint8x16_t under = loadRgb4(board + x);
 		const uint16x8_t c01 = blendPair(vmovl_u8(vget_low_u8(under)), h01, opacity);
 		const uint16x8_t c23 = blendPair(vmovl_u8(vget_high_u8(under)), h23, opacity);

@@ -1,20 +1,20 @@
 // SSE2 row of algo/board_warp_rows.hpp: four pixels per step. Each pixel has
 // its own source, so the taps are gathered with scalar 8-byte loads (two
-// neighbours with their alpha each), but the weighting is done for two
-// pixels per register: 16-bit lanes [pixel a r g b a, pixel b r g b a], each
-// pixel's own fractions and blend weight spread over its four lanes. Every
-// step is the C row's (a * (256 - f) + b * f + 128) >> 8, an integer of at
-// most 255 * 256 + 128 = 65408 for f <= 256, so it fits a 16-bit lane
-// (lerp16 below) and the bytes are the C row's. A group with nobody in it is
-// the board, transparent, without the arithmetic; a group with an unseen
-// pixel, and the last count % 4 pixels, run the C row's pixel. Built
-// without SSE2 it is the C row.
+// neighbours with their alpha each; board_warp_rows_x86.hpp), but the
+// weighting is done for two pixels per register: 16-bit lanes [pixel a r g
+// b a, pixel b r g b a], each pixel's own fractions and blend weight spread
+// over its four lanes. Every step is the C row's (a * (256 - f) + b * f +
+// 128) >> 8, an integer of at most 255 * 256 + 128 = 65408 for f <= 256, so
+// it fits a 16-bit lane (lerp16 below) and the bytes are the C row's. A
+// group with nobody in it is the board, transparent, without the arithmetic;
+// a group with an unseen pixel, and the last count % 4 pixels, run the C
+// row's pixel. Built without SSE2 it is the C row.
 #include "algo/board_warp_rows.hpp"
 
 #include <cstring>
 
 #if defined(__SSE2__)
-#include <emmintrin.h>
+#include "algo/board_warp_rows_x86.hpp"
 #endif
 
 namespace depthkey {
@@ -29,7 +29,6 @@ struct Constants {
 	// compositeWeight(o, a) = (p + (p >> 8)) >> 8 with p = o a + 128 < 65536:
 	// exactly the high half of p * 257.
 	const __m128i v257 = _mm_set1_epi16(257);
-	const __m128i alphaBytes = _mm_set1_epi32(int(0xFF000000u));
 	// Two RGB pixels in a 64-bit lane, bytes 0-2 and 3-5; as RGBx, 0-2 and 4-6.
 	const __m128i firstRgb = _mm_set1_epi64x(0x0000000000FFFFFFll);
 	const __m128i secondRgbx = _mm_set1_epi64x(0x00FFFFFF00000000ll);
@@ -88,62 +87,30 @@ inline void storeRgb4(const Constants &k, Rgb8 *p, __m128i rgbx)
 	std::memcpy(b + 8, &last, 4);
 }
 
-inline __m128i load8(const Rgba8 *p)
-{
-	return _mm_loadl_epi64(reinterpret_cast<const __m128i *>(p));
-}
-
 } // namespace
 
 void boardWarpRow_SSE2(const BoardWarpRow &r, int opacityQ8)
 {
 	const Constants k;
-	const __m128i opacity = _mm_set1_epi16(short(opacityQ8)), unseen = _mm_set1_epi32(kOutsideView);
-	// Locals: the stores below are through byte pointers, which may alias r.
-	const int32_t *index = r.index;
-	const uint16_t *frac = r.frac;
-	const Rgba8 *source = r.source;
-	const ptrdiff_t stride = r.stride;
-	const Rgb8 *board = r.board;
-	Rgb8 *composite = r.composite;
-	Rgba8 *layer = r.layer;
-	const int n = r.count;
+	const __m128i opacity = _mm_set1_epi16(short(opacityQ8));
+	const warp_x86::RowPointers p(r);
 	int x = 0;
-	for (; x + 4 <= n; x += 4) {
-		if (_mm_movemask_epi8(_mm_cmpeq_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i *>(index + x)), unseen))) {
-			for (int i = x; i < x + 4; ++i)
-				boardWarpPixel_C(r, i, opacityQ8);
+	for (; x + 4 <= p.count; x += 4) {
+		warp_x86::GroupTaps t;
+		if (warp_x86::groupWithoutArithmetic(r, p, x, opacityQ8, t))
 			continue;
-		}
-		const Rgba8 *s0 = source + index[x], *s1 = source + index[x + 1], *s2 = source + index[x + 2],
-			    *s3 = source + index[x + 3];
-		const __m128i top01 = _mm_unpacklo_epi64(load8(s0), load8(s1));
-		const __m128i top23 = _mm_unpacklo_epi64(load8(s2), load8(s3));
-		const __m128i bottom01 = _mm_unpacklo_epi64(load8(s0 + stride), load8(s1 + stride));
-		const __m128i bottom23 = _mm_unpacklo_epi64(load8(s2 + stride), load8(s3 + stride));
-		// Per pixel: is there any alpha in its four taps (32-bit lanes)?
-		const __m128 any01 = _mm_castsi128_ps(_mm_or_si128(top01, bottom01));
-		const __m128 any23 = _mm_castsi128_ps(_mm_or_si128(top23, bottom23));
-		const __m128i any = _mm_castps_si128(_mm_or_ps(_mm_shuffle_ps(any01, any23, _MM_SHUFFLE(2, 0, 2, 0)),
-							       _mm_shuffle_ps(any01, any23, _MM_SHUFFLE(3, 1, 3, 1))));
-		const __m128i nobody = _mm_cmpeq_epi32(_mm_and_si128(any, k.alphaBytes), k.zero);
-		if (_mm_movemask_epi8(nobody) == 0xFFFF) {
-			std::memcpy(composite + x, board + x, 4 * sizeof(Rgb8));
-			_mm_storeu_si128(reinterpret_cast<__m128i *>(layer + x), k.zero);
-			continue;
-		}
-		const __m128i fr = _mm_unpacklo_epi8(_mm_loadl_epi64(reinterpret_cast<const __m128i *>(frac + x)), k.zero);
-		const __m128i h01 = samplePair(k, top01, bottom01, _mm_unpacklo_epi16(fr, fr));
-		const __m128i h23 = samplePair(k, top23, bottom23, _mm_unpackhi_epi16(fr, fr));
-		// Nobody's pixels transparent, their colour samples dropped (their
-		// composite is the board already: alpha 0 weighs the samples 0).
-		_mm_storeu_si128(reinterpret_cast<__m128i *>(layer + x), _mm_andnot_si128(nobody, _mm_packus_epi16(h01, h23)));
-		const __m128i under = loadRgb4(k, board + x);
+		const __m128i fr = _mm_unpacklo_epi8(_mm_loadl_epi64(reinterpret_cast<const __m128i *>(p.frac + x)), k.zero);
+		const __m128i h01 = samplePair(k, t.top01, t.bottom01, _mm_unpacklo_epi16(fr, fr));
+		const __m128i h23 = samplePair(k, t.top23, t.bottom23, _mm_unpackhi_epi16(fr, fr));
+		// Transparent samples have no colour (their composite is the board
+		// already: alpha 0 weighs the samples 0).
+		_mm_storeu_si128(reinterpret_cast<__m128i *>(p.layer + x), warp_x86::dropTransparent(_mm_packus_epi16(h01, h23)));
+		const __m128i under = loadRgb4(k, p.board + x);
 		const __m128i c01 = blendPair(k, _mm_unpacklo_epi8(under, k.zero), h01, opacity);
 		const __m128i c23 = blendPair(k, _mm_unpackhi_epi8(under, k.zero), h23, opacity);
-		storeRgb4(k, composite + x, _mm_packus_epi16(c01, c23));
+		storeRgb4(k, p.composite + x, _mm_packus_epi16(c01, c23));
 	}
-	for (; x < n; ++x)
+	for (; x < p.count; ++x)
 		boardWarpPixel_C(r, x, opacityQ8);
 }
 

@@ -36,7 +36,7 @@ void lecturerLayerRow_C(const Rgb8 *colour, const uint8_t *alpha, Rgba8 *out, in
 void compositeRow(KernelPath path, const Rgb8 *lecturer, const uint8_t *alpha, const Rgb8 *board,
 		  int opacityQ8, Rgb8 *out, int width)
 {
-	if (path == KernelPath::Sse2)
+	if (sse2Rows(path))
 		compositeRow_SSE2(lecturer, alpha, board, opacityQ8, out, width);
 	else if (path == KernelPath::Neon)
 		compositeRow_NEON(lecturer, alpha, board, opacityQ8, out, width);
@@ -46,7 +46,7 @@ void compositeRow(KernelPath path, const Rgb8 *lecturer, const uint8_t *alpha, c
 
 void lecturerLayerRow(KernelPath path, const Rgb8 *colour, const uint8_t *alpha, Rgba8 *out, int width)
 {
-	if (path == KernelPath::Sse2)
+	if (sse2Rows(path))
 		lecturerLayerRow_SSE2(colour, alpha, out, width);
 	else if (path == KernelPath::Neon)
 		lecturerLayerRow_NEON(colour, alpha, out, width);

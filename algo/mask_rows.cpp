@@ -55,7 +55,7 @@ void maskAndRow_SSE2(uint8_t *acc, const uint8_t *src, int width) { maskAndRow_C
 
 MaskRowFn maskRow(KernelPath path, bool erode)
 {
-	if (path == KernelPath::Sse2)
+	if (sse2Rows(path))
 		return erode ? maskAndRow_SSE2 : maskOrRow_SSE2;
 	if (path == KernelPath::Neon)
 		return erode ? maskAndRow_NEON : maskOrRow_NEON;

@@ -1,4 +1,4 @@
-// The SSE2 and NEON rows of the board warp give the C row's bytes, for random
+// The SSE2, SSSE3 and NEON rows of the board warp give the C row's bytes, for random
 // sources, fractions (0 and 255 included), unseen pixels, zero and full
 // alpha, and every opacity class; for every count up to a few groups of four
 // and a long odd one, at every start offset (unaligned map, layer and
@@ -71,6 +71,9 @@ TEST(BoardWarpRows, SimdRowsMatchC)
 							ASSERT_EQ(sComposite[x], was) << "written outside the row: x " << x;
 							ASSERT_EQ(sLayer[x], wasLayer) << "written outside the row: x " << x;
 						}
+						if (inRow && cLayer[x].a == 0) {
+							ASSERT_EQ(cLayer[x], (Rgba8{ 0, 0, 0, 0 })) << "a transparent pixel has no colour: x " << x;
+						}
 						lit += cLayer[x].a > 0;
 					}
 					if (count == kMaxCount) {
@@ -96,4 +99,14 @@ TEST(BoardWarpRows, NobodyIsTheBoardAndTransparent)
 			EXPECT_EQ(layer[x], (Rgba8{ 0, 0, 0, 0 })) << x;
 		}
 	}
+}
+
+// Each path runs its own row where this CPU has the instructions (else the
+// comparisons above would hold trivially).
+TEST(BoardWarpRows, EachPathRunsItsOwnRow)
+{
+	EXPECT_EQ(boardWarpRowFn(KernelPath::C), &boardWarpRow_C);
+	EXPECT_EQ(boardWarpRowFn(KernelPath::Sse2), &boardWarpRow_SSE2);
+	EXPECT_EQ(boardWarpRowFn(KernelPath::Ssse3), cpuHasSsse3() ? &boardWarpRow_SSSE3 : &boardWarpRow_SSE2);
+	EXPECT_EQ(boardWarpRowFn(KernelPath::Neon), &boardWarpRow_NEON);
 }

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <iterator>
 #include <random>
 #include <vector>
 
@@ -25,7 +26,7 @@ TEST(Morphology, ErodeAndDilateMatchBruteForce)
 			in.data()[i] = on(rng) ? 255 : 0;
 		for (int r = 0; r <= 5; ++r)
 			for (bool erode : { true, false }) {
-				KernelPath path = simd_test::kAllPaths[trial % 3];
+				KernelPath path = simd_test::kAllPaths[trial % std::size(simd_test::kAllPaths)];
 				(erode ? erodeSquare : dilateSquare)(in, r, out, scratch, path);
 				for (int y = 0; y < in.height(); ++y)
 					for (int x = 0; x < in.width(); ++x) {

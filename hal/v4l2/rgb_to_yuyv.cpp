@@ -32,7 +32,7 @@ void rgbToYuyvRow_C(const Rgb8 *rgb, uint8_t *yuyv, int width)
 
 int rgbToYuyv(const RgbImage &image, uint8_t *yuyv, size_t bytes, KernelPath path)
 {
-	auto row = path == KernelPath::Sse2   ? rgbToYuyvRow_SSE2
+	auto row = sse2Rows(path)	      ? rgbToYuyvRow_SSE2
 		   : path == KernelPath::Neon ? rgbToYuyvRow_NEON
 					      : rgbToYuyvRow_C;
 	const int width = image.width(), height = image.height();
