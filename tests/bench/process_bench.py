@@ -2,7 +2,7 @@
 """Whole-process figures of the built binaries (`make bench-process`).
 
     tests/bench/process_bench.py BIN BUILD [--seconds N] [--runs N]
-                                 [--siox IMAGE TRIMAP]
+                                 [--siox IMAGE TRIMAP] [--breakdown]
 
 Prints, for issue 15's targets (figures, never a pass/fail: no timed test):
   - the shared libraries each binary in BIN maps (`ldd | wc -l`);
@@ -13,6 +13,12 @@ Prints, for issue 15's targets (figures, never a pass/fail: no timed test):
     N seconds VmRSS, VmHWM and VmRSS split into anonymous memory (heap,
     frame buffers), file-backed pages (code and libraries) and shared memory
     (the output rings), from /proc/PID/status;
+  - the same on replayed cameras at 640x480: a sequence of the simulated
+    lecture recorded once by depthkey-eval into BUILD/bench-sequence, the
+    board a solid colour. Sim minus replay is what the simulator costs;
+  - with --breakdown: where the last run's VmRSS is, per mapping of
+    /proc/PID/smaps (the heap, other anonymous memory, thread stacks, each
+    shared-memory ring, each library), in kB;
   - `depthkey-siox --help`: process start to exit, the median of many runs;
   - with --siox: a whole `depthkey-siox IMAGE TRIMAP OUT` run, the same way.
 Medians of --runs runs. Figures are this machine's: under qemu-user they
@@ -40,10 +46,11 @@ def ldd_counts(bin_dir):
     return rows
 
 
-def bench_config(build, bin_dir, work, colour_board=False):
+def bench_config(build, bin_dir, work, colour_board=False, replay=None):
     """BUILD/run.toml (as daemon/run-sim.sh makes it) with our own names;
     colour_board: the board a solid colour, composited in the colour
-    camera's geometry (640x480) instead of the simulated board's 1920x780."""
+    camera's geometry (640x480) instead of the simulated board's 1920x780;
+    replay: a recorded folder both cameras replay instead of the simulator."""
     config = subprocess.run(["sh", "daemon/run-sim.sh", bin_dir, build], check=True, capture_output=True,
                             text=True, env=dict(os.environ, RUN_SIM_PREPARE_ONLY="1")).stdout.strip()
     tag = "bench%d" % os.getpid()
@@ -55,22 +62,81 @@ def bench_config(build, bin_dir, work, colour_board=False):
         "snapshot_dir": '""',
         "record_dir": '""',
     }
-    board = {"backend": '"colour"', "homography_file": '""'} if colour_board else {}
+    sections = {"board": {"backend": '"colour"', "homography_file": '""'} if colour_board else {}}
+    if replay:
+        sections["colour"] = sections["depth"] = {"backend": '"replay"'}
+        sections["replay"] = {"path": '"%s"' % replay}
     lines, section = [], None
     with open(config) as f:
         for line in f:
             if line.startswith("["):
                 section = line.strip().strip("[]")
             key = line.split("=", 1)[0].strip()
-            if "=" in line and section == "board" and key in board:
-                line = "%s = %s\n" % (key, board[key])
+            if "=" in line and key in sections.get(section, {}):
+                line = "%s = %s\n" % (key, sections[section][key])
             elif "=" in line and key in replace:
                 line = "%s = %s\n" % (key, replace[key])
             lines.append(line)
-    path = os.path.join(work, "bench-colour-board.toml" if colour_board else "bench.toml")
+    name = "bench-replay.toml" if replay else "bench-colour-board.toml" if colour_board else "bench.toml"
+    path = os.path.join(work, name)
     with open(path, "w") as f:
         f.writelines(lines)
     return path, tag
+
+
+def replay_sequence(build, bin_dir):
+    """A 640x480 sequence of the simulated lecture (seed 1, 100 frames),
+    recorded once by depthkey-eval into BUILD/bench-sequence."""
+    folder = os.path.abspath(os.path.join(build, "bench-sequence"))
+    if not os.path.exists(os.path.join(folder, "rgb.txt")):
+        config = os.path.join(build, "bench-sequence.toml")
+        with open(config, "w") as f:
+            f.write('[colour]\nwidth = 640\nheight = 480\n[board]\nbackend = "colour"\n')
+        subprocess.run([os.path.join(bin_dir, "depthkey-eval"), "--config", config, "--sim", "1", "--frames", "100",
+                        "--save-sequence", folder], check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    return folder
+
+
+def smaps_breakdown(pid):
+    """Resident kB per kind of mapping: the heap, thread stacks (found by
+    each thread's stack pointer), other anonymous memory (large malloc
+    blocks are mmapped, malloc arenas of other threads), each shared-memory
+    file and each library or binary."""
+    stack_pointers = []
+    for tid in os.listdir("/proc/%d/task" % pid):
+        try:
+            with open("/proc/%d/task/%s/syscall" % (pid, tid)) as f:
+                fields = f.read().split()
+            with open("/proc/%d/task/%s/comm" % (pid, tid)) as f:
+                comm = f.read().strip()
+        except OSError:
+            continue
+        if len(fields) >= 2 and fields[0] != "running":
+            stack_pointers.append((int(fields[-2], 16), comm))
+    rows, current = {}, None
+    with open("/proc/%d/smaps" % pid) as f:
+        for line in f:
+            head = line.split()
+            if "-" in head[0] and not head[0].endswith(":"):
+                lo, hi = (int(x, 16) for x in head[0].split("-"))
+                path = head[5] if len(head) > 5 else ""
+                if path == "[heap]":
+                    current = "[heap] (brk: malloc's main arena)"
+                elif path == "[stack]":
+                    current = "[stack] (main thread)"
+                elif path.startswith("/dev/shm/"):
+                    current = "shm " + path[len("/dev/shm/"):]
+                elif path.startswith("/"):
+                    current = os.path.basename(path)
+                elif path:
+                    current = path
+                else:
+                    threads = [c for sp, c in stack_pointers if lo <= sp < hi]
+                    current = ("thread stack (%s)" % ", ".join(threads)) if threads else \
+                        "anonymous (mmapped malloc blocks, arenas)"
+            elif line.startswith("Rss:") and current:
+                rows[current] = rows.get(current, 0) + int(head[1])
+    return rows
 
 
 def status_kb(pid):
@@ -106,6 +172,7 @@ def run_daemon(bin_dir, config, work, seconds):
         if proc.poll() is not None:
             raise RuntimeError("depthkeyd exited early (see %s/daemon.log)" % work)
         status = status_kb(proc.pid)
+        breakdown = smaps_breakdown(proc.pid)
     finally:
         proc.terminate()
         try:
@@ -115,7 +182,7 @@ def run_daemon(bin_dir, config, work, seconds):
             proc.wait()
         sock.close()
         log.close()
-    return ready_ms, status
+    return ready_ms, status, breakdown
 
 
 def wall_ms(argv, runs):
@@ -139,6 +206,7 @@ def main():
     parser.add_argument("--seconds", type=float, default=10.0)
     parser.add_argument("--runs", type=int, default=3)
     parser.add_argument("--siox", nargs=2, metavar=("IMAGE", "TRIMAP"))
+    parser.add_argument("--breakdown", action="store_true", help="VmRSS per mapping (smaps) of each config's last run")
     args = parser.parse_args()
     bin_dir = os.path.abspath(args.bin)
 
@@ -147,12 +215,16 @@ def main():
         print("  %4d  %s" % (count, name))
 
     with tempfile.TemporaryDirectory(prefix="depthkey-bench-") as work:
-        for colour_board, title in ((False, "make run's config: the simulated board, composite at 1920x780"),
-                                    (True, "the board a solid colour, composite at the cameras' 640x480")):
-            config, tag = bench_config(args.build, bin_dir, work, colour_board)
+        sequence = replay_sequence(args.build, bin_dir)
+        for colour_board, replay, title in (
+                (False, None, "the simulated cameras, make run's config: the simulated board, composite at 1920x780"),
+                (True, None, "the simulated cameras, the board a solid colour, composite at the cameras' 640x480"),
+                (True, sequence, "replayed cameras (the simulator's lecture recorded), the board a solid colour, "
+                 "composite at 640x480")):
+            config, tag = bench_config(args.build, bin_dir, work, colour_board, replay)
             ready, rss = [], {}
             for _ in range(args.runs):
-                ms, status = run_daemon(bin_dir, config, work, args.seconds)
+                ms, status, breakdown = run_daemon(bin_dir, config, work, args.seconds)
                 ready.append(ms)
                 for key in ("VmRSS", "VmHWM", "RssAnon", "RssFile", "RssShmem"):
                     rss.setdefault(key, []).append(status.get(key, 0) / 1024.0)
@@ -161,13 +233,20 @@ def main():
                     os.unlink("/dev/shm/depthkey-%s.%s" % (tag, name))
                 except FileNotFoundError:
                     pass
-            print("depthkeyd on the simulated cameras, %s:" % title)
+            print("depthkeyd on %s:" % title)
             print("  exec to READY=1: %s" % spread(ready, "ms"))
             for key, label in (("VmRSS", "VmRSS after %gs" % args.seconds), ("VmHWM", "VmHWM (peak)"),
                                ("RssAnon", "  of it anonymous (heap, buffers)"),
                                ("RssFile", "  of it file-backed (code, libraries)"),
                                ("RssShmem", "  of it shared memory (output rings)")):
                 print("  %-38s %s" % (label + ":", spread(rss[key], "MB")))
+            if args.breakdown:
+                print("  VmRSS of the last run by mapping (kB, /proc/PID/smaps):")
+                for name, kb in sorted(breakdown.items(), key=lambda item: -item[1]):
+                    if kb >= 64:
+                        print("    %8d  %s" % (kb, name))
+                small = [kb for kb in breakdown.values() if kb < 64]
+                print("    %8d  %d more mappings under 64 kB each" % (sum(small), len(small)))
 
         siox = os.path.join(bin_dir, "depthkey-siox")
         wall_ms([siox, "--help"], 3)  # warm the page cache
