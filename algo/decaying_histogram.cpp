@@ -56,7 +56,7 @@ void DecayingHistogram::rescale(int shift)
 		incrementExact_ /= 256.0;
 }
 
-size_t DecayingHistogram::collect(const QuantisedLabTable &lab, WeightedLab *out) const
+size_t DecayingHistogram::collect(const QuantisedLab &lab, WeightedLab *out) const
 {
 	size_t n = 0;
 	for (uint32_t i = 0; i < kQuantisedColours; ++i)

@@ -122,7 +122,7 @@ void BM_PipelineFrameLecture(benchmark::State &state)
 
 // The stages one by one, with the state a running pipeline has.
 struct Stages {
-	QuantisedLabTable lab;
+	QuantisedLab lab;
 	SioxClassifier classifier{ lab };
 	ColourLearner learner{ lab };
 	DepthMapper mapper;
