@@ -228,7 +228,7 @@ soak: deps
 # Whole-process figures (issue 15): ldd lines per binary, depthkeyd's time to
 # READY=1 and its VmRSS (anonymous / file-backed / shared memory) on the
 # simulated cameras, depthkey-siox's process start; medians, no verdict.
-#   make bench-process [BENCH_PROCESS_ARGS="--seconds 10 --runs 3 --siox IMAGE TRIMAP --breakdown"]
+#   make bench-process [BENCH_PROCESS_ARGS="--seconds 10 --runs 3 --siox IMAGE TRIMAP --breakdown --blocks"]
 bench-process: deps
 	@$(MAKE) --no-print-directory -j$(JOBS) all $(SIM_CALIBRATION) $(SIM_BOARD_CALIBRATION)
 	@python3 tests/bench/process_bench.py $(BIN) $(BUILD) $(BENCH_PROCESS_ARGS)

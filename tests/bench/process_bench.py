@@ -2,7 +2,7 @@
 """Whole-process figures of the built binaries (`make bench-process`).
 
     tests/bench/process_bench.py BIN BUILD [--seconds N] [--runs N]
-                                 [--siox IMAGE TRIMAP] [--breakdown]
+                                 [--siox IMAGE TRIMAP] [--breakdown] [--blocks]
 
 Prints, for issue 15's targets (figures, never a pass/fail: no timed test):
   - the shared libraries each binary in BIN maps (`ldd | wc -l`);
@@ -19,6 +19,10 @@ Prints, for issue 15's targets (figures, never a pass/fail: no timed test):
   - with --breakdown: where the last run's VmRSS is, per mapping of
     /proc/PID/smaps (the heap, other anonymous memory, thread stacks, each
     shared-memory ring, each library), in kB;
+  - with --blocks: one more run of each config with tests/bench/rss_blocks.c
+    preloaded (built with cc): the resident kB of every live heap block of
+    64 KiB or more after N seconds, summed by where it was allocated (the
+    first two frames of depthkeyd's own code, addr2line).
   - `depthkey-siox --help`: process start to exit, the median of many runs;
   - with --siox: a whole `depthkey-siox IMAGE TRIMAP OUT` run, the same way.
 Medians of --runs runs. Figures are this machine's: under qemu-user they
@@ -26,7 +30,9 @@ measure the emulator, not the code.
 """
 
 import argparse
+import collections
 import os
+import re
 import socket
 import statistics
 import subprocess
@@ -149,13 +155,13 @@ def status_kb(pid):
     return fields
 
 
-def run_daemon(bin_dir, config, work, seconds):
+def run_daemon(bin_dir, config, work, seconds, extra_env=None):
     sock_path = os.path.join(work, "notify.sock")
     if os.path.exists(sock_path):
         os.unlink(sock_path)
     sock = socket.socket(socket.AF_UNIX, socket.SOCK_DGRAM)
     sock.bind(sock_path)
-    env = dict(os.environ, NOTIFY_SOCKET=sock_path, DEPTHKEY_LOG="stderr")
+    env = dict(os.environ, NOTIFY_SOCKET=sock_path, DEPTHKEY_LOG="stderr", **(extra_env or {}))
     env.pop("WATCHDOG_USEC", None)
     log = open(os.path.join(work, "daemon.log"), "w")
     start = time.monotonic()
@@ -185,6 +191,53 @@ def run_daemon(bin_dir, config, work, seconds):
     return ready_ms, status, breakdown
 
 
+def build_blocks_preload(work):
+    here = os.path.dirname(os.path.abspath(__file__))
+    out = os.path.join(work, "rss_blocks.so")
+    subprocess.run(["cc", "-O1", "-shared", "-fPIC", "-o", out, os.path.join(here, "rss_blocks.c"), "-lpthread"],
+                   check=True)
+    return out
+
+
+def heap_blocks(bin_dir, config, work, seconds, preload):
+    """Resident and asked kB per allocation site, from one run with
+    rss_blocks.so preloaded (see its header)."""
+    report = os.path.join(work, "blocks.txt")
+    after = max(1, int(seconds))
+    run_daemon(bin_dir, config, work, after + 2,
+               {"LD_PRELOAD": preload, "RSS_BLOCKS_AFTER": str(after), "RSS_BLOCKS_OUT": report})
+    binary = os.path.join(bin_dir, "depthkeyd")
+    blocks, current = [], None
+    with open(report) as f:
+        for line in f:
+            if line.startswith("BLOCK "):
+                _, size, resident = line.split()
+                current = {"asked": int(size), "resident": int(resident), "frames": []}
+                blocks.append(current)
+            elif current is not None:
+                m = re.search(r"depthkeyd\(\+(0x[0-9a-f]+)\)", line)
+                if m:
+                    current["frames"].append(int(m.group(1), 16) - 1)  # inside the call
+    addresses = sorted({a for b in blocks for a in b["frames"]})
+    names = {}
+    if addresses:
+        out = subprocess.run(["addr2line", "-C", "-f", "-e", binary] + [hex(a) for a in addresses],
+                             capture_output=True, text=True).stdout.splitlines()
+        for i, a in enumerate(addresses):
+            function = re.sub(r"\(.*", "", out[2 * i]).replace("depthkey::", "")
+            where = os.path.basename(out[2 * i + 1].split(" ")[0])
+            names[a] = "%s (%s)" % (function, where)
+    plumbing = re.compile(r"^(std::|__gnu_cxx|operator new|void std|\?\?|.*::resize |.*Image<.*>::|.*_M_)")
+    sites = collections.defaultdict(lambda: [0, 0, 0])
+    for b in blocks:
+        own = [names[a] for a in b["frames"] if not plumbing.match(names[a])][:2]
+        site = sites[" <- ".join(own) if own else "(libraries)"]
+        site[0] += b["resident"]
+        site[1] += b["asked"]
+        site[2] += 1
+    return sites
+
+
 def wall_ms(argv, runs):
     times = []
     for _ in range(runs):
@@ -207,6 +260,7 @@ def main():
     parser.add_argument("--runs", type=int, default=3)
     parser.add_argument("--siox", nargs=2, metavar=("IMAGE", "TRIMAP"))
     parser.add_argument("--breakdown", action="store_true", help="VmRSS per mapping (smaps) of each config's last run")
+    parser.add_argument("--blocks", action="store_true", help="resident heap blocks >= 64 KiB by allocation site")
     args = parser.parse_args()
     bin_dir = os.path.abspath(args.bin)
 
@@ -216,6 +270,7 @@ def main():
 
     with tempfile.TemporaryDirectory(prefix="depthkey-bench-") as work:
         sequence = replay_sequence(args.build, bin_dir)
+        preload = build_blocks_preload(work) if args.blocks else None
         for colour_board, replay, title in (
                 (False, None, "the simulated cameras, make run's config: the simulated board, composite at 1920x780"),
                 (True, None, "the simulated cameras, the board a solid colour, composite at the cameras' 640x480"),
@@ -247,6 +302,18 @@ def main():
                         print("    %8d  %s" % (kb, name))
                 small = [kb for kb in breakdown.values() if kb < 64]
                 print("    %8d  %d more mappings under 64 kB each" % (sum(small), len(small)))
+            if args.blocks:
+                sites = heap_blocks(bin_dir, config, work, args.seconds, preload)
+                print("  heap blocks of 64 KiB or more after %ds, by allocation site (one run):" % max(1, int(args.seconds)))
+                print("    %8s %8s  %s" % ("resident", "asked", "kB, where (first frames of depthkeyd's own code)"))
+                for site, (resident, asked, count) in sorted(sites.items(), key=lambda item: -item[1][0]):
+                    print("    %8d %8d  x%-2d %s" % (resident, asked // 1024, count, site[:150]))
+                print("    %8d %8d  in all" % (sum(v[0] for v in sites.values()), sum(v[1] for v in sites.values()) // 1024))
+            for name in ("composite", "lecturer", "lecturer.board"):
+                try:
+                    os.unlink("/dev/shm/depthkey-%s.%s" % (tag, name))
+                except FileNotFoundError:
+                    pass
 
         siox = os.path.join(bin_dir, "depthkey-siox")
         wall_ms([siox, "--help"], 3)  # warm the page cache
