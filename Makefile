@@ -75,8 +75,16 @@ LDFLAGS += -L$(ARCH_LINKS)
 # skip (DEPTHKEY_NO_IMGCODECS).
 CXXFLAGS_ARCH := -DDEPTHKEY_NO_IMGCODECS
 ARCH_LIBS = $(ARCH_LINKS)/libopencv_imgcodecs.a $(ARCH_LINKS)/libopencv_calib3d.so $(ARCH_LINKS)/libopencv_features2d.so
-# qemu-user; -L: where the arm64 dynamic loader and libc are.
-RUN := qemu-aarch64-static -L /usr/aarch64-linux-gnu
+# qemu-user, with the multiarch arm64 loader (/lib/ld-linux-aarch64.so.1 of
+# libc6:arm64, which the :arm64 -dev packages pull in) and so the libc of
+# the same build. No -L /usr/aarch64-linux-gnu: that loader is the cross
+# toolchain's (libc6-arm64-cross, glibc 2.36-8), but the libraries it then
+# finds through the host's ld.so.cache are the multiarch ones, libc6:arm64
+# (2.36-9+deb12uN); a loader and libc of different builds disagree on their
+# private _rtld_global, and every pthread_create spun for ever walking the
+# "stack cache" at the wrong offset (the unit suite hung at its first
+# thread: BackgroundJob, then HostileSequence's FIFO writer).
+RUN := qemu-aarch64-static
 # The process tests run the daemon and tools with execve(): only where the
 # kernel hands arm64 binaries to qemu (binfmt_misc), else reported skipped.
 PROCESS_RUN := tests/arm64/process-check.sh $(RUN) --
