@@ -75,8 +75,16 @@ LDFLAGS += -L$(ARCH_LINKS)
 # skip (DEPTHKEY_NO_IMGCODECS).
 CXXFLAGS_ARCH := -DDEPTHKEY_NO_IMGCODECS
 ARCH_LIBS = $(ARCH_LINKS)/libopencv_imgcodecs.a $(ARCH_LINKS)/libopencv_calib3d.so $(ARCH_LINKS)/libopencv_features2d.so
-# qemu-user; -L: where the arm64 dynamic loader and libc are.
-RUN := qemu-aarch64-static -L /usr/aarch64-linux-gnu
+# qemu-user, with the multiarch arm64 loader (/lib/ld-linux-aarch64.so.1 of
+# libc6:arm64, which the :arm64 -dev packages pull in) and so the libc of
+# the same build. No -L /usr/aarch64-linux-gnu: that loader is the cross
+# toolchain's (libc6-arm64-cross, glibc 2.36-8), but the libraries it then
+# finds through the host's ld.so.cache are the multiarch ones, libc6:arm64
+# (2.36-9+deb12uN); a loader and libc of different builds disagree on their
+# private _rtld_global, and every pthread_create spun for ever walking the
+# "stack cache" at the wrong offset (the unit suite hung at its first
+# thread: BackgroundJob, then HostileSequence's FIFO writer).
+RUN := qemu-aarch64-static
 # The process tests run the daemon and tools with execve(): only where the
 # kernel hands arm64 binaries to qemu (binfmt_misc), else reported skipped.
 PROCESS_RUN := tests/arm64/process-check.sh $(RUN) --
@@ -107,8 +115,12 @@ BIN := $(BUILD)/bin
 OBJ := $(BUILD)/obj
 
 PKGS := libsystemd tomlplusplus libusb-1.0 libgpiodcxx libturbojpeg libpng eigen3 libmicrohttpd libxcrypt
-# Every binary may use OpenCV's core and imgproc. Only depthkey-calibrate
-# fits homographies and finds circle grids (calib3d, features2d), and only
+# The tools and tests may use OpenCV's core and imgproc; depthkeyd links no
+# OpenCV at all (its pictures, NO SIGNAL and the stage previews, are drawn by
+# the project: about 4.5 MB of resident libraries less, issue 15), so its
+# link line has none and a cv:: call in its objects fails to link. Only
+# depthkey-calibrate fits homographies and finds circle grids (calib3d,
+# features2d), and only
 # the tests use imgcodecs: an independent PNG/JPEG codec to check
 # hal/png_codec against (Debian's imgcodecs maps GDAL, poppler, HDF5 and
 # ~130 more libraries: issue 15). Those go on the link lines that need them,
@@ -122,7 +134,8 @@ OPENCV_CODEC_LIBS := -lopencv_imgcodecs
 CXXFLAGS ?= -O2 -g
 CXXFLAGS += -std=c++20 -Wall -Wextra -Werror -MMD -MP -I. -isystem /usr/include/opencv4 $(SANFLAGS) $(CXXFLAGS_ARCH)
 PKG_CFLAGS = $(shell $(PKG_CONFIG) --cflags $(PKGS))
-LDLIBS = $(shell $(PKG_CONFIG) --libs $(PKGS)) $(OPENCV_LIBS) -lpthread -lrt
+DAEMON_LDLIBS = $(shell $(PKG_CONFIG) --libs $(PKGS)) -lpthread -lrt
+LDLIBS = $(DAEMON_LDLIBS) $(OPENCV_LIBS)
 LDFLAGS += -Wl,--as-needed $(SANFLAGS)
 
 LIB_SRCS := $(filter-out daemon/main.cpp,$(wildcard algo/*.cpp hal/*.cpp hal/*/*.cpp config/*.cpp wiring/*.cpp daemon/*.cpp))
@@ -223,7 +236,7 @@ soak: deps
 # Whole-process figures (issue 15): ldd lines per binary, depthkeyd's time to
 # READY=1 and its VmRSS (anonymous / file-backed / shared memory) on the
 # simulated cameras, depthkey-siox's process start; medians, no verdict.
-#   make bench-process [BENCH_PROCESS_ARGS="--seconds 10 --runs 3 --siox IMAGE TRIMAP"]
+#   make bench-process [BENCH_PROCESS_ARGS="--seconds 10 --runs 3 --siox IMAGE TRIMAP --breakdown --blocks"]
 bench-process: deps
 	@$(MAKE) --no-print-directory -j$(JOBS) all $(SIM_CALIBRATION) $(SIM_BOARD_CALIBRATION)
 	@python3 tests/bench/process_bench.py $(BIN) $(BUILD) $(BENCH_PROCESS_ARGS)
@@ -246,7 +259,7 @@ $(LIB): $(call obj,$(LIB_SRCS))
 
 $(DAEMON): $(call obj,daemon/main.cpp) $(LIB)
 	@mkdir -p $(dir $@)
-	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -o $@
+	$(CXX) $(LDFLAGS) $^ $(DAEMON_LDLIBS) -o $@
 
 $(BIN)/depthkey-%: $(OBJ)/tools/%.o $(LIB)
 	@mkdir -p $(dir $@)

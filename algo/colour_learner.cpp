@@ -52,7 +52,7 @@ static void coarseDensity(const DecayingHistogram &h, std::vector<uint64_t> &cel
 
 static size_t collectUnrivalled(const DecayingHistogram &own, const std::vector<uint64_t> &ownCells,
 				const std::vector<uint64_t> &rivalCells, double rivalScale,
-				const QuantisedLabTable &lab, WeightedLab *out)
+				const QuantisedLab &lab, WeightedLab *out)
 {
 	size_t n = 0;
 	for (uint32_t i = 0; i < kQuantisedColours; ++i) {
@@ -68,7 +68,7 @@ static size_t collectUnrivalled(const DecayingHistogram &own, const std::vector<
 }
 
 void deriveSignatures(const DecayingHistogram &lecturer, const DecayingHistogram &board,
-		      const QuantisedLabTable &lab, SignatureScratch &scratch, SioxClassifier &classifier)
+		      const QuantisedLab &lab, SignatureScratch &scratch, SioxClassifier &classifier)
 {
 	std::vector<uint64_t> &lecturerCells = scratch.lecturerCells, &boardCells = scratch.boardCells;
 	WeightedLab *points = scratch.points.get();
@@ -83,7 +83,7 @@ void deriveSignatures(const DecayingHistogram &lecturer, const DecayingHistogram
 	classifier.signaturesChanged();
 }
 
-ColourLearner::ColourLearner(const QuantisedLabTable &lab) : lab_(lab)
+ColourLearner::ColourLearner(const QuantisedLab &lab) : lab_(lab)
 {
 }
 

@@ -36,12 +36,12 @@ struct SignatureScratch {
 // A colour more frequent in the other class's samples is left out of a
 // class's signature: it came from the seeds' errors.
 void deriveSignatures(const DecayingHistogram &lecturer, const DecayingHistogram &board,
-		      const QuantisedLabTable &lab, SignatureScratch &scratch, SioxClassifier &classifier);
+		      const QuantisedLab &lab, SignatureScratch &scratch, SioxClassifier &classifier);
 
 class ColourLearner
 {
 public:
-	explicit ColourLearner(const QuantisedLabTable &lab);
+	explicit ColourLearner(const QuantisedLab &lab);
 
 	void configure(const LearningSettings &settings);
 	void reset();
@@ -62,7 +62,7 @@ public:
 	double misfitRate() const { return misfit_; }
 
 private:
-	const QuantisedLabTable &lab_;
+	const QuantisedLab &lab_;
 	LearningSettings settings_;
 	DecayingHistogram lecturer_, board_;
 	SignatureScratch scratch_;

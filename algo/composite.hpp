@@ -51,7 +51,8 @@ void composite(const RgbImage &lecturer, const Gray8Image &alpha, const RgbImage
 	       int opacityQ8, RgbImage &out, KernelPath path = bestKernelPath());
 // The same where alpha is known to be 0 outside roi: the composite is the
 // board there, so those pixels are copied (memcpy) and only the ROI is
-// blended. An empty roi gives the board.
+// blended. An empty roi gives the board. A board one row high stands for
+// every row (a solid colour: the pipeline keeps no image of it).
 void compositeRoi(const RgbImage &lecturer, const Gray8Image &alpha, const RgbImage &board, const Roi &roi,
 		  int opacityQ8, RgbImage &out, KernelPath path = bestKernelPath());
 void lecturerLayer(const RgbImage &colour, const Gray8Image &alpha, RgbaImage &out,

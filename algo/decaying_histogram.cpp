@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <new>
 
 namespace depthkey {
@@ -23,8 +22,12 @@ void DecayingHistogram::setRate(double rate)
 void DecayingHistogram::clear()
 {
 	// Every count is in total_ (rescale() keeps it so): none, nothing to zero.
+	// Only non-zero bins are written: a page of colours never seen stays
+	// the kernel's zero page, not resident memory (see rescale()).
 	if (total_ != 0)
-		std::memset(bins_.get(), 0, kQuantisedColours * sizeof(uint32_t));
+		for (uint32_t i = 0; i < kQuantisedColours; ++i)
+			if (bins_[i])
+				bins_[i] = 0;
 	total_ = 0;
 	incrementExact_ = kStartIncrement;
 	increment_ = kStartIncrement;
@@ -46,17 +49,21 @@ void DecayingHistogram::endFrame()
 
 void DecayingHistogram::rescale(int shift)
 {
+	// Empty bins are only read: writing them would make every page of the
+	// 1 MB resident, where a scene's colours fill only some (issue 15).
 	uint64_t total = 0;
-	for (uint32_t i = 0; i < kQuantisedColours; ++i) {
-		bins_[i] >>= shift;
-		total += bins_[i];
-	}
+	for (uint32_t i = 0; i < kQuantisedColours; ++i)
+		if (uint32_t b = bins_[i]) {
+			b >>= shift;
+			bins_[i] = b;
+			total += b;
+		}
 	total_ = total;
 	if (shift == 8)
 		incrementExact_ /= 256.0;
 }
 
-size_t DecayingHistogram::collect(const QuantisedLabTable &lab, WeightedLab *out) const
+size_t DecayingHistogram::collect(const QuantisedLab &lab, WeightedLab *out) const
 {
 	size_t n = 0;
 	for (uint32_t i = 0; i < kQuantisedColours; ++i)

@@ -39,7 +39,7 @@ public:
 
 	// Writes the non-empty bins as weighted Lab points to out (room for
 	// kQuantisedColours) and returns how many.
-	size_t collect(const QuantisedLabTable &lab, WeightedLab *out) const;
+	size_t collect(const QuantisedLab &lab, WeightedLab *out) const;
 
 private:
 	void rescale(int shift);

@@ -16,6 +16,7 @@
 
 #include "algo/mapping_model.hpp"
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -37,7 +38,7 @@ public:
 	void map(int i, int zMm, int32_t &xQ8, int32_t &yQ8) const
 	{
 		const Terms &t = terms_[i];
-		const int64_t r = reciprocal_[zMm];
+		const int64_t r = kReciprocal[zMm];
 		xQ8 = int32_t(t.sx + ((t.tzx * zMm) >> 16) + timesReciprocal(t.tinvx, r));
 		yQ8 = int32_t(t.sy + ((t.tzy * zMm) >> 16) + timesReciprocal(t.tinvy, r));
 	}
@@ -54,7 +55,7 @@ private:
 	}
 
 	std::vector<Terms> terms_;
-	std::vector<uint32_t> reciprocal_;  // round(2^32 / z) for z = 1..65535 (z = 1: 2^32 - 1)
+	static const std::array<uint32_t, 65536> kReciprocal; // round(2^32 / z) (z = 1: 2^32 - 1)
 	int tofWidth_ = 0, tofHeight_ = 0, colourWidth_ = 0, colourHeight_ = 0;
 };
 

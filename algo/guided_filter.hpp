@@ -12,9 +12,15 @@
 // Only pixels within 2r of the matte's edge can change: where a window's p
 // is constant, a = 0 and b = p exactly. So a, b and q are computed only
 // within 2r of an edge; the rest of the ROI is copied. Windows are
-// clipped to the ROI (the matte is 0 outside it). Box sums come from integral
-// images of I, p, I^2 and I p over the ROI, kept modulo 2^32 (a box sum is
-// below 2^32, so differences of wrapped sums are exact).
+// clipped to the ROI (the matte is 0 outside it).
+//
+// Box sums slide: per column, the sums of I, p, I^2 and I p over the rows
+// of the window (a row added at the bottom, one taken off the top), then
+// along the row; a and b of a row go into a ring of 2r + 2 rows, whose
+// column sums slide the same way for q, r rows behind. Memory is a few rows
+// (O(r W)), not whole-image integrals (24 bytes a pixel, 7 MB at 640x480:
+// issue 15). Sums are kept modulo 2^32 (a box sum is below 2^32, so
+// differences of wrapped sums are exact).
 //   a in Q16 (|a| <= 255 / (2 sqrt(eps)) < 2^8), b in Q8: their box sums
 //   fit 32 bits for r <= 7. The two divisions per pixel are 64-bit.
 // Allocation-free once sized; tests compare it with a double reference.
@@ -47,9 +53,21 @@ public:
 private:
 	int radius_ = 3, eps_ = 400;
 	size_t changed_ = 0;
+	void markNearEdges(const Gray8Image &matte, const Roi &roi);
+	// Row y of the ROI: the moments' column sums from the rows of y's
+	// window, then a and b into the ring.
+	void coefficientsRow(const Gray8Image &matte, const Roi &roi, int y);
+	// Row y of the ROI: q from the a and b of the windows holding it.
+	void outputRow(const Gray8Image &matte, const Roi &roi, int y, Gray8Image &out);
+
+	int ringRows() const { return 2 * radius_ + 2; }
+
 	Gray8Image guide_, near_;              // luma; 1 = within 2r of an edge
-	std::vector<uint32_t> sumI_, sumP_, sumII_, sumIP_; // the last two hold a's and b's later
-	std::vector<int32_t> a_, b_;            // per ROI pixel, Q16 and Q8
+	// Per ROI column, the sums over the rows [momentTop_, momentEnd_) of
+	// I, p, I^2 and I p, and over [ringTop_, ringEnd_) of a and b.
+	std::vector<uint32_t> colI_, colP_, colII_, colIP_, colA_, colB_;
+	int momentTop_ = 0, momentEnd_ = 0, ringTop_ = 0, ringEnd_ = 0;
+	std::vector<int32_t> a_, b_;            // ring of ROI rows, Q16 and Q8
 };
 
 } // namespace depthkey

@@ -9,7 +9,8 @@
 namespace depthkey {
 
 // Renders grey bars and the text (e.g. "NO SIGNAL: colour camera") into out,
-// at out's size. Called once per size/reason, not per frame.
+// at out's size (the text on several lines where one is too wide). Called once
+// per size/reason, not per frame.
 void renderNoSignalFrame(const std::string &text, RgbImage &out);
 
 } // namespace depthkey

@@ -87,13 +87,16 @@ void Pipeline::ensureSizes(int colourWidth, int colourHeight, int depthWidth, in
 
 void Pipeline::renderBoard(int width, int height)
 {
-	board_.resize(width, height);
 	if (boardSource_.empty()) {
+		// A solid colour: one row of it serves every row (compositeRoi),
+		// a colour frame's memory (0.9 MB at 640x480) not kept.
+		board_ = RgbImage(width, 1);
 		uint32_t c = settings_.boardColour;
 		Rgb8 colour{ uint8_t(c >> 16), uint8_t(c >> 8), uint8_t(c) };
 		std::fill(board_.data(), board_.data() + board_.size(), colour);
 		return;
 	}
+	board_.resize(width, height);
 	const int sw = boardSource_.width(), sh = boardSource_.height();
 	for (int y = 0; y < height; ++y)
 		for (int x = 0; x < width; ++x)

@@ -121,7 +121,7 @@ private:
 	int opacityQ8_ = 128;
 	KernelPath kernelPath_ = bestKernelPath();
 
-	QuantisedLabTable lab_;
+	QuantisedLab lab_;
 	SioxClassifier classifier_;
 	ColourLearner learner_;
 	DepthMapper mapper_;

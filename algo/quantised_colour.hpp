@@ -8,8 +8,6 @@
 #include "algo/lab_converter.hpp"
 
 #include <cstdint>
-#include <memory>
-#include <vector>
 
 namespace depthkey {
 
@@ -28,36 +26,23 @@ inline Rgb8 quantisedCentre(uint32_t index)
 		 uint8_t((index & 63) * 4 + 2) };
 }
 
-// Lab16 of every cell centre (1.5 MB) so that signatures and the decision
-// cache never convert colours per frame. Only the colours of the cells
-// looked up are ever needed (a histogram's non-empty cells, a decision
-// cache miss), never a pixel's own lookup.
-class QuantisedLabTable
+// Lab16 of a cell's centre, converted when asked. Only the colours of the
+// cells looked up are ever needed (a histogram's non-empty cells when a
+// signature is derived, a decision cache miss), never a pixel's own
+// lookup, so no table: one conversion (a few table lookups and multiplies
+// in LabConverter) is small beside the two k-d tree searches of a cache miss,
+// and a table of every cell cost 1.5 MB of resident memory (issue 15).
+class QuantisedLab
 {
 public:
-	// Eager: every cell at construction (about 5 ms): the daemon, whose
-	// table is read by more than one stage and must never change after.
-	// OnDemand: a cell the first time it is asked for: depthkey-siox, which
-	// looks up the few thousand colours of one photo and would otherwise
-	// spend longer building the table than segmenting (issue 15). One
-	// thread only: a lookup may write the cell.
-	enum class Fill { Eager, OnDemand };
-	explicit QuantisedLabTable(Fill fill = Fill::Eager);
-
-	const Lab16 &operator[](uint32_t index) const
+	Lab16 operator[](uint32_t index) const
 	{
-		if (!((known_[index >> 6] >> (index & 63)) & 1)) [[unlikely]]
-			fill(index);
-		return lab_[index];
+		Rgb8 c = quantisedCentre(index);
+		return converter_.convert(c.r, c.g, c.b);
 	}
 
 private:
-	void fill(uint32_t index) const;
-
 	LabConverter converter_;
-	// Left uninitialised: pages of cells never filled are never touched.
-	std::unique_ptr<Lab16[]> lab_;
-	mutable std::vector<uint64_t> known_; // a bit a cell: lab_ holds it
 };
 
 } // namespace depthkey

@@ -24,7 +24,7 @@ uint32_t integerSqrt(uint32_t v)
 	return result;
 }
 
-SioxClassifier::SioxClassifier(const QuantisedLabTable &lab) : lab_(lab), cache_(kQuantisedColours, 0)
+SioxClassifier::SioxClassifier(const QuantisedLab &lab) : lab_(lab), cache_(kQuantisedColours, 0)
 {
 }
 

@@ -25,7 +25,7 @@ constexpr uint8_t kConfidenceLecturer = 128; // confidence >= this: lecturer
 class SioxClassifier
 {
 public:
-	explicit SioxClassifier(const QuantisedLabTable &lab);
+	explicit SioxClassifier(const QuantisedLab &lab);
 
 	ColourSignature &lecturer() { return lecturer_; }
 	ColourSignature &board() { return board_; }
@@ -50,7 +50,7 @@ public:
 private:
 	uint8_t decide(uint32_t quantised);
 
-	const QuantisedLabTable &lab_;
+	const QuantisedLab &lab_;
 	ColourSignature lecturer_, board_;
 	std::vector<uint8_t> cache_;
 };

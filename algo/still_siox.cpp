@@ -7,7 +7,7 @@
 
 namespace depthkey {
 
-StillSiox::StillSiox() : lab_(QuantisedLabTable::Fill::OnDemand), classifier_(lab_)
+StillSiox::StillSiox() : classifier_(lab_)
 {
 }
 

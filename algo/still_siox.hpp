@@ -2,8 +2,7 @@
 // depthkey-siox): every surely-lecturer pixel is a lecturer sample, every
 // surely-board pixel a board sample (the reference's "known" pixels), then
 // the same classification, post-processing and soft alpha as the pipeline.
-// Its colour table is filled on demand (QuantisedLabTable::Fill::OnDemand),
-// so a StillSiox is for one thread.
+// A StillSiox is for one thread (its decision cache fills as it goes).
 #pragma once
 
 #include "algo/colour_learner.hpp"
@@ -29,7 +28,7 @@ public:
 	const SioxClassifier &classifier() const { return classifier_; }
 
 private:
-	QuantisedLabTable lab_;
+	QuantisedLab lab_;
 	SioxClassifier classifier_;
 	SioxRefiner refiner_;
 	DecayingHistogram lecturer_, board_;

@@ -42,11 +42,10 @@ void BoardOutput::start(EventLoop &loop, const Settings &settings, SourceFactory
 	pipeline_ = &pipeline;
 	onStatus_ = std::move(onStatus);
 	onGeometry_ = std::move(onGeometry);
-	int w, h;
-	expectedSize(settings.board, w, h);
-	picture_.resize(w, h);
-	uint32_t c = settings.board.colour;
-	std::fill(picture_.data(), picture_.data() + picture_.size(), Rgb8{ uint8_t(c >> 16), uint8_t(c >> 8), uint8_t(c) });
+	expectedSize(settings.board, pictureWidth_, pictureHeight_);
+	picture_ = RgbImage();
+	if (!solidColour())
+		fillSolid(picture_);
 	loadHomography();
 	updateGeometry();
 	startSource();
@@ -84,14 +83,19 @@ void BoardOutput::apply(const Settings &next)
 
 void BoardOutput::onPicture(const ColourFrame &frame)
 {
-	bool resized = frame.rgb.width() != picture_.width() || frame.rgb.height() != picture_.height();
-	picture_ = frame.rgb; // same size: no allocation
+	bool resized = frame.rgb.width() != pictureWidth_ || frame.rgb.height() != pictureHeight_;
+	pictureWidth_ = frame.rgb.width();
+	pictureHeight_ = frame.rgb.height();
+	if (!solidColour())
+		picture_ = frame.rgb; // same size: no allocation
+	else if (!picture_.empty())
+		fillSolid(picture_);
 	if (resized)
 		updateGeometry();
 	if (boardGeometry())
 		scalePicture();
 	else if (pipeline_)
-		pipeline_->setBoardImage(cameraGeometryBoard());
+		pipeline_->setBoardImage(pipelineBoard());
 }
 
 void BoardOutput::loadHomography()
@@ -121,7 +125,7 @@ void BoardOutput::loadHomography()
 void BoardOutput::updateGeometry()
 {
 	const int cw = settings_.colour.width, ch = settings_.colour.height;
-	const int pw = picture_.width(), ph = picture_.height();
+	const int pw = pictureWidth_, ph = pictureHeight_;
 	const int ow = settings_.board.outputWidth ? settings_.board.outputWidth : pw;
 	const int oh = settings_.board.outputHeight ? settings_.board.outputHeight : ph;
 	const BoardCalibration &c = calibration_;
@@ -155,8 +159,10 @@ void BoardOutput::updateGeometry()
 		if (notCalibrated_.empty())
 			notCalibrated_ = "the board calibration's homography is singular";
 		compositor_.clear();
+		if (solidColour())
+			picture_ = RgbImage(); // the pipeline fills its board with the colour itself
 		if (pipeline_)
-			pipeline_->setBoardImage(cameraGeometryBoard());
+			pipeline_->setBoardImage(pipelineBoard());
 	}
 	if (outputWidth() * 100000 + outputHeight() != before && onGeometry_)
 		onGeometry_();
@@ -197,11 +203,24 @@ void BoardOutput::showBoardOnly()
 
 // A solid colour needs no picture in the pipeline: with none it fills the
 // board with the same [board] colour at the frame's size, and keeps no copy
-// of a board-sized picture (6.2 MB at the default 1920x1080).
-const RgbImage &BoardOutput::cameraGeometryBoard() const
+// of a board-sized picture (6.2 MB at the default 1920x1080). In board
+// geometry the pipeline's composite is not published: no picture either.
+const RgbImage &BoardOutput::pipelineBoard() const
 {
 	static const RgbImage none;
-	return settings_.board.backend == "colour" ? none : picture_;
+	return boardGeometry() || solidColour() ? none : picture_;
+}
+
+bool BoardOutput::solidColour() const
+{
+	return settings_.board.backend == "colour";
+}
+
+void BoardOutput::fillSolid(RgbImage &picture) const
+{
+	picture.resize(pictureWidth_, pictureHeight_);
+	uint32_t c = settings_.board.colour;
+	std::fill(picture.data(), picture.data() + picture.size(), Rgb8{ uint8_t(c >> 16), uint8_t(c >> 8), uint8_t(c) });
 }
 
 bool BoardOutput::sourceOk() const

@@ -46,7 +46,9 @@ public:
 	int outputHeight() const { return compositor_.outputHeight(); }
 	const RgbImage &composite() const { return composite_; }
 	const RgbaImage &lecturer() const { return lecturer_; }
-	const RgbImage &picture() const { return picture_; }
+	// What the pipeline composites on in camera geometry (Pipeline::setBoardImage):
+	// the picture, or none where the pipeline needs none.
+	const RgbImage &pipelineBoard() const;
 
 	bool sourceOk() const;
 	// "board sim-board streaming, board geometry 1920x780" or "...; board not calibrated (why)".
@@ -59,7 +61,11 @@ private:
 	void updateGeometry();
 	void scalePicture();
 	const RgbImage &outputPicture() const { return scaled_.empty() ? picture_ : scaled_; }
-	const RgbImage &cameraGeometryBoard() const;
+	// [board] backend "colour": the picture is the [board] colour at
+	// pictureWidth_ x pictureHeight_, its pixels (picture_) made only while
+	// the board geometry composites on them.
+	bool solidColour() const;
+	void fillSolid(RgbImage &picture) const;
 
 	EventLoop *loop_ = nullptr;
 	Settings settings_;
@@ -70,6 +76,7 @@ private:
 	std::unique_ptr<ColourCamera> source_;
 
 	RgbImage picture_;            // last good board picture, the source's size
+	int pictureWidth_ = 0, pictureHeight_ = 0; // its size (also while a solid colour has no pixels)
 	RgbImage scaled_;             // the picture at the output size; empty at the source's size
 	BoardCalibration calibration_;
 	bool haveCalibration_ = false; // last good H

@@ -205,6 +205,7 @@ void Daemon::keyDueFrames()
 void Daemon::keyFrame(const PairingQueue::Keying &keying)
 {
 	const uint64_t startUs = loop_.nowUs();
+	noSignal_.forget();
 	const ColourFrame &frame = *keying.colour;
 	uint32_t flags = DK_SHM_FLAG_COLOUR_OK;
 	const DepthFrame *depth = keying.depth.before ? keying.depth.before : keying.depth.after;

@@ -38,7 +38,7 @@ void Daemon::applyPipelineFiles(const PipelineFiles &files)
 	}
 
 	// The board picture is the board source's (its errors are its own).
-	configurePipeline(pipeline_, settings_, mapping_, board_.boardGeometry() ? RgbImage() : board_.picture());
+	configurePipeline(pipeline_, settings_, mapping_, board_.pipelineBoard());
 }
 
 // On the status tick, once frames of both cameras have arrived: the

@@ -38,7 +38,8 @@ int writePng(const std::string &path, const Gray8Image &image, std::string &erro
 int writePng(const std::string &path, const Gray16Image &image, std::string &error,
 	     int pngCompression = kDefaultPngCompression);
 // A picture drawn with OpenCV for people to look at (8-bit BGR or grey, as
-// imwrite took it). The same returns.
+// imwrite took it; depthkey-calibrate's views). The same returns. Only
+// cv::Mat's inline members: it adds no OpenCV library to a link.
 int writePicturePng(const std::string &path, const cv::Mat &picture, std::string &error,
 		    int pngCompression = kDefaultPngCompression);
 

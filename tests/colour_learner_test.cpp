@@ -42,7 +42,7 @@ bool nearAny(const ColourSignature &signature, Lab16 lab, uint32_t within)
 
 TEST(ColourLearner, ProvisionalSignaturesFromTheFirstFrame)
 {
-	QuantisedLabTable lab;
+	QuantisedLab lab;
 	SioxClassifier classifier(lab);
 	ColourLearner learner(lab);
 	LearningSettings settings;
@@ -64,7 +64,7 @@ TEST(ColourLearner, ProvisionalSignaturesFromTheFirstFrame)
 
 TEST(ColourLearner, BoardColoursAreLearnedOnlyBeyondTheMargin)
 {
-	QuantisedLabTable lab;
+	QuantisedLab lab;
 	const Lab16 stripe = lab[quantiseColour(kStripe)], board = lab[quantiseColour(kBoard)];
 	for (int margin : { 4, 12 }) {
 		SioxClassifier classifier(lab);
@@ -82,7 +82,7 @@ TEST(ColourLearner, BoardColoursAreLearnedOnlyBeyondTheMargin)
 
 TEST(ColourLearner, BoardSeenThroughTheSeedsIsLeftOutOfTheLecturer)
 {
-	QuantisedLabTable lab;
+	QuantisedLab lab;
 	const Lab16 board = lab[quantiseColour(kBoard)];
 	SioxClassifier classifier(lab);
 	ColourLearner learner(lab);

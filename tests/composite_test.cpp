@@ -185,3 +185,29 @@ TEST(Composite, RoiCompositeEqualsTheWholeImageComposite)
 		EXPECT_EQ(part, board);
 	}
 }
+
+// A solid board as one row (the pipeline's, issue 15) composites as the
+// whole board of that colour, inside and outside the ROI.
+TEST(Composite, AOneRowBoardStandsForEveryRow)
+{
+	std::mt19937 rng(4);
+	const int w = 83, h = 21;
+	const Rgb8 colour{ 30, 60, 40 };
+	RgbImage lecturer(w, h), whole, part;
+	Gray8Image alpha(w, h, 0);
+	const Roi roi{ 9, 4, 70, 17 };
+	for (int y = 0; y < h; ++y) {
+		RandomRows rows(w, rng);
+		std::copy(rows.lecturer.begin(), rows.lecturer.begin() + w, lecturer.row(y));
+		if (y >= roi.y0 && y < roi.y1)
+			std::copy(rows.alpha.begin() + roi.x0, rows.alpha.begin() + roi.x1, alpha.row(y) + roi.x0);
+	}
+	for (KernelPath path : simd_test::kAllPaths) {
+		compositeRoi(lecturer, alpha, RgbImage(w, h, colour), roi, 200, whole, path);
+		part = RgbImage(w, h, Rgb8{ 1, 2, 3 });
+		compositeRoi(lecturer, alpha, RgbImage(w, 1, colour), roi, 200, part, path);
+		EXPECT_EQ(part, whole);
+		compositeRoi(lecturer, alpha, RgbImage(w, 1, colour), Roi{}, 200, part, path);
+		EXPECT_EQ(part, RgbImage(w, h, colour));
+	}
+}

@@ -93,7 +93,7 @@ TEST(DecayingHistogram, CollectsTheNonEmptyBinsWithTheirWeights)
 		histogram.add(colour);
 	histogram.endFrame();
 	histogram.add(900);
-	QuantisedLabTable lab;
+	QuantisedLab lab;
 	std::vector<WeightedLab> points(kQuantisedColours);
 	ASSERT_EQ(histogram.collect(lab, points.data()), 2u);
 	EXPECT_EQ(points[0].weight, histogram.bin(3));

@@ -122,3 +122,35 @@ TEST(GuidedFilter, TheStaircaseEdgeMovesOntoTheColourEdge)
 	}
 	EXPECT_GT(filter.changedPixels(), 0u);
 }
+
+// The box sums slide over a ring of rows (issue 15): ROIs shorter and
+// narrower than a window, at the image's border, one after another on the
+// same filter, still match the reference, and nothing outside the ROI moves.
+TEST(GuidedFilter, SmallAndBorderRoisMatchTheReferenceOneAfterAnother)
+{
+	RgbImage colour;
+	Gray8Image matte;
+	scene(colour, matte, 3);
+	GuidedFilter filter;
+	for (const Roi &roi : { Roi{ 26, 10, 33, 14 }, Roi{ 0, 0, 64, 48 }, Roi{ 28, 0, 31, 48 }, Roi{ 0, 20, 64, 22 },
+				Roi{ 60, 44, 64, 48 }, Roi{ 20, 5, 40, 30 } })
+		for (int radius : { 1, 4, 7 }) {
+			filter.configure(radius, 400);
+			Gray8Image out(64, 48, 77);
+			filter.filter(colour, matte, roi, out);
+			std::vector<double> ref;
+			referenceGuided(colour, matte, roi, radius, 400.0, ref);
+			int worst = 0, outside = 0;
+			for (int y = 0; y < 48; ++y)
+				for (int x = 0; x < 64; ++x) {
+					if (x < roi.x0 || x >= roi.x1 || y < roi.y0 || y >= roi.y1) {
+						outside += out.at(x, y) != 77;
+						continue;
+					}
+					const double r = ref[size_t(y - roi.y0) * (roi.x1 - roi.x0) + (x - roi.x0)];
+					worst = std::max(worst, int(std::ceil(std::abs(out.at(x, y) - r) - 1e-9)));
+				}
+			EXPECT_LE(worst, 2) << "roi " << roi.x0 << "," << roi.y0 << " r " << radius;
+			EXPECT_EQ(outside, 0);
+		}
+}

@@ -3,6 +3,7 @@
 // header claims more pixels than any configured frame is refused before it
 // is decoded (case G), and an index file or image that is a FIFO is refused
 // without blocking (case H).
+#include "hal/image_file.hpp"
 #include "hal/image_file_reader.hpp"
 #include "hal/recording/sequence_reader.hpp"
 #include "tests/hostile_files.hpp"
@@ -12,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <iterator>
 #include <opencv2/imgcodecs.hpp>
 #include <sys/stat.h>
 
@@ -21,11 +23,17 @@ using depthkey::test::ScratchDir;
 
 namespace {
 
+// A PNG of one colour by the project's own encoder (hal/png_codec, checked
+// against OpenCV's in image_codec_test), so that these tests run where the
+// build has no OpenCV codecs too (ARCH=arm64: DEPTHKEY_NO_IMGCODECS).
 std::string pngBytes(int width, int height)
 {
-	std::vector<uchar> png;
-	cv::imencode(".png", cv::Mat(height, width, CV_8UC3, cv::Scalar(10, 20, 30)), png);
-	return std::string(png.begin(), png.end());
+	ScratchDir dir;
+	std::string error;
+	if (writePng(dir / "picture.png", RgbImage(width, height, Rgb8{ 30, 20, 10 }), error) < 0)
+		return {};
+	std::ifstream in(dir / "picture.png", std::ios::binary);
+	return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
 } // namespace

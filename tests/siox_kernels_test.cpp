@@ -174,7 +174,7 @@ TEST(SioxClassifier, CachedDecisionMatchesTheDoubleDecision)
 		auto ch = [&](int v) { return uint8_t(std::clamp(int(std::lround(v + n(rng))), 0, 255)); };
 		return Rgb8{ ch(c.r), ch(c.g), ch(c.b) };
 	};
-	QuantisedLabTable table;
+	QuantisedLab table;
 	SioxClassifier classifier(table);
 	std::vector<WeightedLab> fg, bg;
 	for (int i = 0; i < 4000; ++i) {
@@ -226,7 +226,7 @@ TEST(SioxClassifier, CachedDecisionMatchesTheDoubleDecision)
 
 TEST(SioxClassifier, ConfidenceIsConsistentWithTheDecision)
 {
-	QuantisedLabTable table;
+	QuantisedLab table;
 	SioxClassifier classifier(table);
 	std::vector<WeightedLab> fg = { { { 5000, 4000, 2000 }, 1 } }, bg = { { { 4000, -3000, 1000 }, 1 } };
 	classifier.lecturer().build(fg.data(), fg.size());
@@ -243,22 +243,23 @@ TEST(SioxClassifier, ConfidenceIsConsistentWithTheDecision)
 	}
 }
 
-// depthkey-siox fills its colour table on demand (issue 15): whatever order
-// the cells are asked for in, and however often, each is the eager table's.
-TEST(QuantisedLabTable, OnDemandCellsEqualTheEagerTable)
+// A cell's Lab is its centre's conversion, asked for in any order (no
+// table, no state: issue 15).
+TEST(QuantisedLab, ACellIsItsCentreConverted)
 {
-	QuantisedLabTable eager, onDemand(QuantisedLabTable::Fill::OnDemand);
+	QuantisedLab lab;
+	LabConverter converter;
 	std::vector<uint32_t> order(kQuantisedColours);
 	for (uint32_t i = 0; i < kQuantisedColours; ++i)
 		order[i] = i;
 	std::shuffle(order.begin(), order.end(), std::mt19937(15));
 	size_t differ = 0;
-	for (uint32_t i : order)
-		differ += !(onDemand[i] == eager[i]);
-	for (uint32_t i = 0; i < kQuantisedColours; i += 97) // again, now from the filled cells
-		differ += !(onDemand[i] == eager[i]);
+	for (uint32_t i : order) {
+		Rgb8 c = quantisedCentre(i);
+		differ += !(lab[i] == converter.convert(c.r, c.g, c.b));
+	}
 	EXPECT_EQ(differ, 0u);
-	// Not a table of zeros on both sides: white is L* 100, black 0.
-	EXPECT_EQ(eager[quantiseColour({ 255, 255, 255 })].l / 100, 99);
-	EXPECT_EQ(eager[quantiseColour({ 0, 0, 0 })].l / 100, 0);
+	// White is L* 100, black 0.
+	EXPECT_EQ(lab[quantiseColour({ 255, 255, 255 })].l / 100, 99);
+	EXPECT_EQ(lab[quantiseColour({ 0, 0, 0 })].l / 100, 0);
 }

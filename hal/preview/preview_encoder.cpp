@@ -134,21 +134,23 @@ void PreviewEncoder::encode(Slot &slot, const Work &work, JpegEncoder &jpeg)
 {
 	StageImage stage{ "", work.kind, work.rgb.empty() ? nullptr : &work.rgb,
 			  work.depth.empty() ? nullptr : &work.depth, work.gray.empty() ? nullptr : &work.gray };
-	cv::Mat picture = drawStagePicture(stage);
+	const StagePicture picture = drawStagePicture(stage);
 	if (picture.empty())
 		return;
 	// A new buffer per JPEG (on this thread, at most max_fps per stage):
 	// HTTP threads may still be sending the previous one.
 	auto frame = std::make_shared<EncodedFrame>();
-	const JpegPixels pixels = picture.channels() == 1 ? JpegPixels::Gray : JpegPixels::Bgr;
-	if (jpeg.encode(picture.data, picture.cols, picture.rows, static_cast<int>(picture.step), pixels, quality_,
-			frame->jpeg) < 0) {
+	const bool grey = picture.rgb.empty();
+	const uint8_t *data = grey ? picture.gray.data() : reinterpret_cast<const uint8_t *>(picture.rgb.data());
+	const int stride = picture.width() * (grey ? 1 : 3);
+	if (jpeg.encode(data, picture.width(), picture.height(), stride, grey ? JpegPixels::Gray : JpegPixels::Rgb,
+			quality_, frame->jpeg) < 0) {
 		failed_++;
 		return;
 	}
 	frame->captureNs = work.captureNs;
-	frame->width = picture.cols;
-	frame->height = picture.rows;
+	frame->width = picture.width();
+	frame->height = picture.height();
 	{
 		std::lock_guard lock(slot.outMutex);
 		frame->sequence = ++slot.sequence;

@@ -1,6 +1,5 @@
 #include "hal/preview/snapshot_writer.hpp"
 
-#include "hal/image_file.hpp"
 #include "hal/preview/stage_picture.hpp"
 
 #include <cerrno>
@@ -17,10 +16,10 @@ int writeStageImages(const std::string &dir, const std::string &prefix, const St
 		return ret;
 	}
 	for (const StageImage &stage : stages.items()) {
-		cv::Mat picture = drawStagePicture(stage);
+		StagePicture picture = drawStagePicture(stage);
 		if (picture.empty())
 			continue;
-		if (int ret = writePicturePng(dir + "/" + prefix + stage.name + ".png", picture, error); ret < 0)
+		if (int ret = writeStagePicturePng(dir + "/" + prefix + stage.name + ".png", picture, error); ret < 0)
 			return ret;
 	}
 	return 0;

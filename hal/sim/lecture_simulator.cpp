@@ -93,8 +93,10 @@ void LectureSimulator::ensureColourGrid()
 		return;
 	sim::StaticScene scene = sim::StaticScene::build(settings_.boardDistanceMm / 1000.0, settings_.table,
 							 target_ ? &*target_ : nullptr);
-	colourGrid_.configure(rig_.colour(), 1, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(), scene);
+	colourGrid_.configure(rig_.colour(), 1, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(), scene,
+			      sim::RayGrid::Channels::Colour);
 	colourReady_ = true;
+	boardCycle_ = ~0ull; // board_ holds the texels of the old grid's pixels
 	if (shownPicture_.empty())
 		return;
 	// The picture on the display, per colour pixel where the display is seen.
@@ -135,7 +137,8 @@ void LectureSimulator::ensureDepthGrid()
 		return;
 	sim::StaticScene scene = sim::StaticScene::build(settings_.boardDistanceMm / 1000.0, settings_.table,
 							 target_ ? &*target_ : nullptr);
-	depthGrid_.configure(rig_.tof(), kTofSamplesPerPixel, rig_.tofRotation(), rig_.tofOrigin(), scene);
+	depthGrid_.configure(rig_.tof(), kTofSamplesPerPixel, rig_.tofRotation(), rig_.tofOrigin(), scene,
+			     sim::RayGrid::Channels::Reflectivity);
 
 	// Vignetting: amplitude falls off as 1 / (1 + a r^2)^2 with r = 1 at the
 	// corner, where it is tofCornerAmplitude of the centre's.
@@ -166,7 +169,15 @@ void LectureSimulator::ensureBoard(double timeS)
 	uint64_t cycle = settings_.boardChanges ? script_.cycleOf(timeS) : 0;
 	if (cycle == boardCycle_)
 		return;
-	script_.rasterise(cycle, board_);
+	// The whole board's raster (2.5 mm texels, 5.2 MB) only while the
+	// texels the colour pixels show are picked from it: those are kept, one
+	// a pixel (2.4 MB at 640x480), the raster let go (issue 15).
+	std::vector<sim::BoardTexel> raster;
+	script_.rasterise(cycle, raster);
+	const std::vector<int32_t> &texelOf = colourGrid_.boardTexel();
+	board_.resize(texelOf.size());
+	for (size_t k = 0; k < texelOf.size(); ++k)
+		board_[k] = texelOf[k] >= 0 ? raster[static_cast<size_t>(texelOf[k])] : sim::BoardTexel{};
 	boardCycle_ = cycle;
 }
 
@@ -225,7 +236,7 @@ void LectureSimulator::renderColour(double timeS, ColourFrame &out, GroundTruth 
 			if (int32_t t = texelOf[k]; t >= 0 && !shown_.empty()) {
 				c = shown_[k];
 			} else if (t >= 0) {
-				const sim::BoardTexel &texel = board_[static_cast<size_t>(t)];
+				const sim::BoardTexel &texel = board_[k];
 				bool inked = texel.ink && tick >= texel.writeTick && tick < texel.eraseTick;
 				c = inked ? ink[texel.ink] : texel.background;
 			}

@@ -15,9 +15,10 @@ constexpr float kFar = std::numeric_limits<float>::max();
 } // namespace
 
 void RayGrid::configure(const LensModel &lens, int samplesPerPixel, const Eigen::Matrix3d &cameraRotation,
-			const Eigen::Vector3d &cameraOrigin, const StaticScene &scene)
+			const Eigen::Vector3d &cameraOrigin, const StaticScene &scene, Channels channels)
 {
 	lens_ = lens;
+	colour_ = channels == Channels::Colour;
 	samples_ = samplesPerPixel;
 	width_ = lens.width * samples_;
 	height_ = lens.height * samples_;
@@ -29,13 +30,20 @@ void RayGrid::configure(const LensModel &lens, int samplesPerPixel, const Eigen:
 	rayY_.resize(n);
 	rayZ_.resize(n);
 	staticZ_.assign(n, kFar);
-	staticReflectivity_.assign(n, 0.0f);
-	boardTexel_.assign(n, -1);
-	staticColour_.assign(n, Rgb8{ 0, 0, 0 });
 	lecZ_.assign(n, kFar);
 	lecAlpha_.assign(n, 0.0f);
-	lecReflectivity_.assign(n, 0.0f);
-	lecColour_.assign(n, Rgb8{ 0, 0, 0 });
+	// The channels not kept give their memory back.
+	const size_t colourSamples = colour_ ? n : 0, reflectivitySamples = colour_ ? 0 : n;
+	staticReflectivity_.assign(reflectivitySamples, 0.0f);
+	lecReflectivity_.assign(reflectivitySamples, 0.0f);
+	boardTexel_.assign(colourSamples, -1);
+	staticColour_.assign(colourSamples, Rgb8{ 0, 0, 0 });
+	lecColour_.assign(colourSamples, Rgb8{ 0, 0, 0 });
+	for (auto *v : { &staticReflectivity_, &lecReflectivity_ })
+		v->shrink_to_fit();
+	boardTexel_.shrink_to_fit();
+	staticColour_.shrink_to_fit();
+	lecColour_.shrink_to_fit();
 	dirtyX0_ = dirtyY0_ = 0;
 	dirtyX1_ = width_;
 	dirtyY1_ = height_;
@@ -76,18 +84,23 @@ void RayGrid::configure(const LensModel &lens, int samplesPerPixel, const Eigen:
 				best = t;
 				Eigen::Vector3d hit = cameraOrigin + dir * t;
 				staticZ_[k] = static_cast<float>(t * ray.z());
-				staticColour_[k] = q.colour;
-				staticReflectivity_[k] = q.reflectivity;
-				boardTexel_[k] = -1;
+				Rgb8 colour = q.colour;
+				float reflectivity = q.reflectivity;
+				int32_t texel = -1;
 				if (q.surface == QuadSurface::Board) {
 					int c = static_cast<int>((hit.x() - BoardGeometry::kLeft) / BoardGeometry::kTexelM);
 					int r = static_cast<int>((hit.y() - BoardGeometry::kTop) / BoardGeometry::kTexelM);
 					if (hit.x() >= BoardGeometry::kLeft && hit.y() >= BoardGeometry::kTop &&
 					    c < columns && r < rows)
-						boardTexel_[k] = r * columns + c;
+						texel = r * columns + c;
 				} else if (q.surface == QuadSurface::CalibrationTarget && scene.target) {
-					calibrationTargetSurface(*scene.target, s, u, t * footprint_,
-								 staticColour_[k], staticReflectivity_[k]);
+					calibrationTargetSurface(*scene.target, s, u, t * footprint_, colour, reflectivity);
+				}
+				if (colour_) {
+					staticColour_[k] = colour;
+					boardTexel_[k] = texel;
+				} else {
+					staticReflectivity_[k] = reflectivity;
 				}
 			}
 		}
@@ -181,11 +194,14 @@ void RayGrid::drawCapsule(const Capsule &c)
 			if (z < lecZ_[k] && (alpha >= 0.5f || lecAlpha_[k] < 0.5f)) {
 				lecZ_[k] = z;
 				// Rounder towards the middle: light falls off to the rim.
-				float shade = 0.62f + 0.38f * std::sqrt(inside) / r;
-				lecColour_[k] = { static_cast<uint8_t>(c.colour.r * shade),
-						  static_cast<uint8_t>(c.colour.g * shade),
-						  static_cast<uint8_t>(c.colour.b * shade) };
-				lecReflectivity_[k] = c.reflectivity;
+				if (colour_) {
+					float shade = 0.62f + 0.38f * std::sqrt(inside) / r;
+					lecColour_[k] = { static_cast<uint8_t>(c.colour.r * shade),
+							  static_cast<uint8_t>(c.colour.g * shade),
+							  static_cast<uint8_t>(c.colour.b * shade) };
+				} else {
+					lecReflectivity_[k] = c.reflectivity;
+				}
 			}
 			lecAlpha_[k] = std::max(lecAlpha_[k], alpha);
 		}

@@ -19,10 +19,17 @@ namespace depthkey::sim {
 class RayGrid
 {
 public:
+	// What a view keeps per sample besides depth and coverage: the colour
+	// camera the colours and board texels, the ToF the reflectivities. Each
+	// is 4-8 bytes a sample (2.4 MB of reflectivity at 640x480 that the
+	// colour camera never read: issue 15); an accessor of a channel not kept
+	// returns an empty vector.
+	enum class Channels { Colour, Reflectivity };
+
 	// cameraRotation/cameraOrigin: the camera's pose in the scene (colour)
 	// frame, p_scene = rotation * p_camera + origin.
 	void configure(const LensModel &lens, int samplesPerPixel, const Eigen::Matrix3d &cameraRotation,
-		       const Eigen::Vector3d &cameraOrigin, const StaticScene &scene);
+		       const Eigen::Vector3d &cameraOrigin, const StaticScene &scene, Channels channels);
 
 	int width() const { return width_; }
 	int height() const { return height_; }
@@ -53,6 +60,7 @@ private:
 	void drawCapsule(const Capsule &c);
 
 	LensModel lens_;
+	bool colour_ = true; // Channels::Colour, else Reflectivity
 	int samples_ = 1, width_ = 0, height_ = 0;
 	float footprint_ = 0; // radians per sample
 	Eigen::Matrix3f toCamera_ = Eigen::Matrix3f::Identity();

@@ -131,7 +131,7 @@ void BM_PipelineFrameLectureNoCut(benchmark::State &state)
 
 // The stages one by one, with the state a running pipeline has.
 struct Stages {
-	QuantisedLabTable lab;
+	QuantisedLab lab;
 	SioxClassifier classifier{ lab };
 	ColourLearner learner{ lab };
 	DepthMapper mapper;

@@ -36,9 +36,13 @@ void BM_PreviewJpeg640x480(benchmark::State &state)
 	JpegEncoder jpeg;
 	std::vector<uint8_t> out;
 	for (auto _ : state) {
-		cv::Mat picture = drawStagePicture(stage);
-		jpeg.encode(picture.data, picture.cols, picture.rows, static_cast<int>(picture.step),
-			    grey ? JpegPixels::Gray : JpegPixels::Bgr, 80, out);
+		StagePicture picture = drawStagePicture(stage);
+		if (grey)
+			jpeg.encode(picture.gray.data(), picture.width(), picture.height(), picture.width(), JpegPixels::Gray,
+				    80, out);
+		else
+			jpeg.encode(reinterpret_cast<const uint8_t *>(picture.rgb.data()), picture.width(), picture.height(), picture.width() * 3,
+				    JpegPixels::Rgb, 80, out);
 		benchmark::DoNotOptimize(out.data());
 	}
 	state.counters["jpeg_bytes"] = static_cast<double>(out.size());

@@ -2,7 +2,7 @@
 """Whole-process figures of the built binaries (`make bench-process`).
 
     tests/bench/process_bench.py BIN BUILD [--seconds N] [--runs N]
-                                 [--siox IMAGE TRIMAP]
+                                 [--siox IMAGE TRIMAP] [--breakdown] [--blocks]
 
 Prints, for issue 15's targets (figures, never a pass/fail: no timed test):
   - the shared libraries each binary in BIN maps (`ldd | wc -l`);
@@ -13,6 +13,16 @@ Prints, for issue 15's targets (figures, never a pass/fail: no timed test):
     N seconds VmRSS, VmHWM and VmRSS split into anonymous memory (heap,
     frame buffers), file-backed pages (code and libraries) and shared memory
     (the output rings), from /proc/PID/status;
+  - the same on replayed cameras at 640x480: a sequence of the simulated
+    lecture recorded once by depthkey-eval into BUILD/bench-sequence, the
+    board a solid colour. Sim minus replay is what the simulator costs;
+  - with --breakdown: where the last run's VmRSS is, per mapping of
+    /proc/PID/smaps (the heap, other anonymous memory, thread stacks, each
+    shared-memory ring, each library), in kB;
+  - with --blocks: one more run of each config with tests/bench/rss_blocks.c
+    preloaded (built with cc): the resident kB of every live heap block of
+    64 KiB or more after N seconds, summed by where it was allocated (the
+    first two frames of depthkeyd's own code, addr2line).
   - `depthkey-siox --help`: process start to exit, the median of many runs;
   - with --siox: a whole `depthkey-siox IMAGE TRIMAP OUT` run, the same way.
 Medians of --runs runs. Figures are this machine's: under qemu-user they
@@ -20,7 +30,9 @@ measure the emulator, not the code.
 """
 
 import argparse
+import collections
 import os
+import re
 import socket
 import statistics
 import subprocess
@@ -40,10 +52,11 @@ def ldd_counts(bin_dir):
     return rows
 
 
-def bench_config(build, bin_dir, work, colour_board=False):
+def bench_config(build, bin_dir, work, colour_board=False, replay=None):
     """BUILD/run.toml (as daemon/run-sim.sh makes it) with our own names;
     colour_board: the board a solid colour, composited in the colour
-    camera's geometry (640x480) instead of the simulated board's 1920x780."""
+    camera's geometry (640x480) instead of the simulated board's 1920x780;
+    replay: a recorded folder both cameras replay instead of the simulator."""
     config = subprocess.run(["sh", "daemon/run-sim.sh", bin_dir, build], check=True, capture_output=True,
                             text=True, env=dict(os.environ, RUN_SIM_PREPARE_ONLY="1")).stdout.strip()
     tag = "bench%d" % os.getpid()
@@ -55,22 +68,81 @@ def bench_config(build, bin_dir, work, colour_board=False):
         "snapshot_dir": '""',
         "record_dir": '""',
     }
-    board = {"backend": '"colour"', "homography_file": '""'} if colour_board else {}
+    sections = {"board": {"backend": '"colour"', "homography_file": '""'} if colour_board else {}}
+    if replay:
+        sections["colour"] = sections["depth"] = {"backend": '"replay"'}
+        sections["replay"] = {"path": '"%s"' % replay}
     lines, section = [], None
     with open(config) as f:
         for line in f:
             if line.startswith("["):
                 section = line.strip().strip("[]")
             key = line.split("=", 1)[0].strip()
-            if "=" in line and section == "board" and key in board:
-                line = "%s = %s\n" % (key, board[key])
+            if "=" in line and key in sections.get(section, {}):
+                line = "%s = %s\n" % (key, sections[section][key])
             elif "=" in line and key in replace:
                 line = "%s = %s\n" % (key, replace[key])
             lines.append(line)
-    path = os.path.join(work, "bench-colour-board.toml" if colour_board else "bench.toml")
+    name = "bench-replay.toml" if replay else "bench-colour-board.toml" if colour_board else "bench.toml"
+    path = os.path.join(work, name)
     with open(path, "w") as f:
         f.writelines(lines)
     return path, tag
+
+
+def replay_sequence(build, bin_dir):
+    """A 640x480 sequence of the simulated lecture (seed 1, 100 frames),
+    recorded once by depthkey-eval into BUILD/bench-sequence."""
+    folder = os.path.abspath(os.path.join(build, "bench-sequence"))
+    if not os.path.exists(os.path.join(folder, "rgb.txt")):
+        config = os.path.join(build, "bench-sequence.toml")
+        with open(config, "w") as f:
+            f.write('[colour]\nwidth = 640\nheight = 480\n[board]\nbackend = "colour"\n')
+        subprocess.run([os.path.join(bin_dir, "depthkey-eval"), "--config", config, "--sim", "1", "--frames", "100",
+                        "--save-sequence", folder], check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    return folder
+
+
+def smaps_breakdown(pid):
+    """Resident kB per kind of mapping: the heap, thread stacks (found by
+    each thread's stack pointer), other anonymous memory (large malloc
+    blocks are mmapped, malloc arenas of other threads), each shared-memory
+    file and each library or binary."""
+    stack_pointers = []
+    for tid in os.listdir("/proc/%d/task" % pid):
+        try:
+            with open("/proc/%d/task/%s/syscall" % (pid, tid)) as f:
+                fields = f.read().split()
+            with open("/proc/%d/task/%s/comm" % (pid, tid)) as f:
+                comm = f.read().strip()
+        except OSError:
+            continue
+        if len(fields) >= 2 and fields[0] != "running":
+            stack_pointers.append((int(fields[-2], 16), comm))
+    rows, current = {}, None
+    with open("/proc/%d/smaps" % pid) as f:
+        for line in f:
+            head = line.split()
+            if "-" in head[0] and not head[0].endswith(":"):
+                lo, hi = (int(x, 16) for x in head[0].split("-"))
+                path = head[5] if len(head) > 5 else ""
+                if path == "[heap]":
+                    current = "[heap] (brk: malloc's main arena)"
+                elif path == "[stack]":
+                    current = "[stack] (main thread)"
+                elif path.startswith("/dev/shm/"):
+                    current = "shm " + path[len("/dev/shm/"):]
+                elif path.startswith("/"):
+                    current = os.path.basename(path)
+                elif path:
+                    current = path
+                else:
+                    threads = [c for sp, c in stack_pointers if lo <= sp < hi]
+                    current = ("thread stack (%s)" % ", ".join(threads)) if threads else \
+                        "anonymous (mmapped malloc blocks, arenas)"
+            elif line.startswith("Rss:") and current:
+                rows[current] = rows.get(current, 0) + int(head[1])
+    return rows
 
 
 def status_kb(pid):
@@ -83,13 +155,13 @@ def status_kb(pid):
     return fields
 
 
-def run_daemon(bin_dir, config, work, seconds):
+def run_daemon(bin_dir, config, work, seconds, extra_env=None):
     sock_path = os.path.join(work, "notify.sock")
     if os.path.exists(sock_path):
         os.unlink(sock_path)
     sock = socket.socket(socket.AF_UNIX, socket.SOCK_DGRAM)
     sock.bind(sock_path)
-    env = dict(os.environ, NOTIFY_SOCKET=sock_path, DEPTHKEY_LOG="stderr")
+    env = dict(os.environ, NOTIFY_SOCKET=sock_path, DEPTHKEY_LOG="stderr", **(extra_env or {}))
     env.pop("WATCHDOG_USEC", None)
     log = open(os.path.join(work, "daemon.log"), "w")
     start = time.monotonic()
@@ -106,6 +178,7 @@ def run_daemon(bin_dir, config, work, seconds):
         if proc.poll() is not None:
             raise RuntimeError("depthkeyd exited early (see %s/daemon.log)" % work)
         status = status_kb(proc.pid)
+        breakdown = smaps_breakdown(proc.pid)
     finally:
         proc.terminate()
         try:
@@ -115,7 +188,54 @@ def run_daemon(bin_dir, config, work, seconds):
             proc.wait()
         sock.close()
         log.close()
-    return ready_ms, status
+    return ready_ms, status, breakdown
+
+
+def build_blocks_preload(work):
+    here = os.path.dirname(os.path.abspath(__file__))
+    out = os.path.join(work, "rss_blocks.so")
+    subprocess.run(["cc", "-O1", "-shared", "-fPIC", "-o", out, os.path.join(here, "rss_blocks.c"), "-lpthread"],
+                   check=True)
+    return out
+
+
+def heap_blocks(bin_dir, config, work, seconds, preload):
+    """Resident and asked kB per allocation site, from one run with
+    rss_blocks.so preloaded (see its header)."""
+    report = os.path.join(work, "blocks.txt")
+    after = max(1, int(seconds))
+    run_daemon(bin_dir, config, work, after + 2,
+               {"LD_PRELOAD": preload, "RSS_BLOCKS_AFTER": str(after), "RSS_BLOCKS_OUT": report})
+    binary = os.path.join(bin_dir, "depthkeyd")
+    blocks, current = [], None
+    with open(report) as f:
+        for line in f:
+            if line.startswith("BLOCK "):
+                _, size, resident = line.split()
+                current = {"asked": int(size), "resident": int(resident), "frames": []}
+                blocks.append(current)
+            elif current is not None:
+                m = re.search(r"depthkeyd\(\+(0x[0-9a-f]+)\)", line)
+                if m:
+                    current["frames"].append(int(m.group(1), 16) - 1)  # inside the call
+    addresses = sorted({a for b in blocks for a in b["frames"]})
+    names = {}
+    if addresses:
+        out = subprocess.run(["addr2line", "-C", "-f", "-e", binary] + [hex(a) for a in addresses],
+                             capture_output=True, text=True).stdout.splitlines()
+        for i, a in enumerate(addresses):
+            function = re.sub(r"\(.*", "", out[2 * i]).replace("depthkey::", "")
+            where = os.path.basename(out[2 * i + 1].split(" ")[0])
+            names[a] = "%s (%s)" % (function, where)
+    plumbing = re.compile(r"^(std::|__gnu_cxx|operator new|void std|\?\?|.*::resize |.*Image<.*>::|.*_M_)")
+    sites = collections.defaultdict(lambda: [0, 0, 0])
+    for b in blocks:
+        own = [names[a] for a in b["frames"] if not plumbing.match(names[a])][:2]
+        site = sites[" <- ".join(own) if own else "(libraries)"]
+        site[0] += b["resident"]
+        site[1] += b["asked"]
+        site[2] += 1
+    return sites
 
 
 def wall_ms(argv, runs):
@@ -139,6 +259,8 @@ def main():
     parser.add_argument("--seconds", type=float, default=10.0)
     parser.add_argument("--runs", type=int, default=3)
     parser.add_argument("--siox", nargs=2, metavar=("IMAGE", "TRIMAP"))
+    parser.add_argument("--breakdown", action="store_true", help="VmRSS per mapping (smaps) of each config's last run")
+    parser.add_argument("--blocks", action="store_true", help="resident heap blocks >= 64 KiB by allocation site")
     args = parser.parse_args()
     bin_dir = os.path.abspath(args.bin)
 
@@ -147,12 +269,17 @@ def main():
         print("  %4d  %s" % (count, name))
 
     with tempfile.TemporaryDirectory(prefix="depthkey-bench-") as work:
-        for colour_board, title in ((False, "make run's config: the simulated board, composite at 1920x780"),
-                                    (True, "the board a solid colour, composite at the cameras' 640x480")):
-            config, tag = bench_config(args.build, bin_dir, work, colour_board)
+        sequence = replay_sequence(args.build, bin_dir)
+        preload = build_blocks_preload(work) if args.blocks else None
+        for colour_board, replay, title in (
+                (False, None, "the simulated cameras, make run's config: the simulated board, composite at 1920x780"),
+                (True, None, "the simulated cameras, the board a solid colour, composite at the cameras' 640x480"),
+                (True, sequence, "replayed cameras (the simulator's lecture recorded), the board a solid colour, "
+                 "composite at 640x480")):
+            config, tag = bench_config(args.build, bin_dir, work, colour_board, replay)
             ready, rss = [], {}
             for _ in range(args.runs):
-                ms, status = run_daemon(bin_dir, config, work, args.seconds)
+                ms, status, breakdown = run_daemon(bin_dir, config, work, args.seconds)
                 ready.append(ms)
                 for key in ("VmRSS", "VmHWM", "RssAnon", "RssFile", "RssShmem"):
                     rss.setdefault(key, []).append(status.get(key, 0) / 1024.0)
@@ -161,13 +288,32 @@ def main():
                     os.unlink("/dev/shm/depthkey-%s.%s" % (tag, name))
                 except FileNotFoundError:
                     pass
-            print("depthkeyd on the simulated cameras, %s:" % title)
+            print("depthkeyd on %s:" % title)
             print("  exec to READY=1: %s" % spread(ready, "ms"))
             for key, label in (("VmRSS", "VmRSS after %gs" % args.seconds), ("VmHWM", "VmHWM (peak)"),
                                ("RssAnon", "  of it anonymous (heap, buffers)"),
                                ("RssFile", "  of it file-backed (code, libraries)"),
                                ("RssShmem", "  of it shared memory (output rings)")):
                 print("  %-38s %s" % (label + ":", spread(rss[key], "MB")))
+            if args.breakdown:
+                print("  VmRSS of the last run by mapping (kB, /proc/PID/smaps):")
+                for name, kb in sorted(breakdown.items(), key=lambda item: -item[1]):
+                    if kb >= 64:
+                        print("    %8d  %s" % (kb, name))
+                small = [kb for kb in breakdown.values() if kb < 64]
+                print("    %8d  %d more mappings under 64 kB each" % (sum(small), len(small)))
+            if args.blocks:
+                sites = heap_blocks(bin_dir, config, work, args.seconds, preload)
+                print("  heap blocks of 64 KiB or more after %ds, by allocation site (one run):" % max(1, int(args.seconds)))
+                print("    %8s %8s  %s" % ("resident", "asked", "kB, where (first frames of depthkeyd's own code)"))
+                for site, (resident, asked, count) in sorted(sites.items(), key=lambda item: -item[1][0]):
+                    print("    %8d %8d  x%-2d %s" % (resident, asked // 1024, count, site[:150]))
+                print("    %8d %8d  in all" % (sum(v[0] for v in sites.values()), sum(v[1] for v in sites.values()) // 1024))
+            for name in ("composite", "lecturer", "lecturer.board"):
+                try:
+                    os.unlink("/dev/shm/depthkey-%s.%s" % (tag, name))
+                except FileNotFoundError:
+                    pass
 
         siox = os.path.join(bin_dir, "depthkey-siox")
         wall_ms([siox, "--help"], 3)  # warm the page cache
