@@ -4,11 +4,28 @@
 #include "algo/siox_classifier.hpp"
 #include "algo/trimap.hpp"
 
-#include <opencv2/core.hpp>
-#include <opencv2/imgproc/detail/gcgraph.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <vector>
+
+// OpenCV's GCGraph is a header-only template: its one link-time need is
+// cv::error() behind CV_Assert, which would bring libopencv_core (and the
+// GL, X11 and LAPACK libraries it loads, some 4.5 MB resident) back into
+// the daemon, which links no OpenCV. Its assertions check what cut()
+// guarantees by construction (vertices that exist and differ, weights >= 0,
+// at least one edge), so a failure is a bug here: abort, as assert() would.
+// (cvdef.h: its types and MIN, no code.)
+#include <climits>
+#include <opencv2/core/cvdef.h>
+#define CV_Assert(expr) \
+	do { \
+		if (!(expr)) \
+			std::abort(); \
+	} while (0)
+#include <opencv2/imgproc/detail/gcgraph.hpp>
+#undef CV_Assert
 
 namespace depthkey {
 
