@@ -69,7 +69,9 @@ void BandGraphCut::cut(const RgbImage &colour, const Gray8Image &trimap, const s
 	for (int y = h; y >= 0; --y)
 		rowFirstSpan_[size_t(y)] = std::min(rowFirstSpan_[size_t(y)], rowFirstSpan_[size_t(y) + 1]);
 
-	cv::detail::GCGraph<int> graph(unsigned(pixels), unsigned(4 * pixels));
+	// 64-bit weights: the total flow sums up to (127 + 4 * cut_smoothness)
+	// a pixel over the band, beyond 2^31 for the largest settings.
+	cv::detail::GCGraph<int64_t> graph(unsigned(pixels), unsigned(4 * pixels));
 	int edges = 0;
 	terminal_.resize(size_t(pixels));
 	for (int k = 0; k < pixels; ++k)

@@ -12,7 +12,7 @@
 // superset's border instead of through the noise of the per-pixel decision.
 //
 // The max-flow is OpenCV's (cv::detail::GCGraph, the Boykov-Kolmogorov
-// algorithm grabCut uses), in integers. It has no reset, so its graph is
+// algorithm grabCut uses), in 64-bit integers. It has no reset, so its graph is
 // made anew each frame: the one stage that allocates per frame (a handful of
 // blocks, sized by the band; tests/pipeline_test.cpp bounds them).
 #pragma once
