@@ -271,13 +271,13 @@ if hil_section leak; then
 	# pools, per-thread arenas) is not a leak. Then 50 measured cycles.
 	for i in 1 2 3 4 5; do replug_cycle >/dev/null; done
 	shm_watch --until "$ONLINE=$ONLINE" --count 5 --timeout 30 >/dev/null
-	fds_before=$(fd_count) rss_before=$(rss_kb)
+	fds_before=$(fd_count) rss_before=$(rss_settled_kb)
 	cycles=0 why=""
 	while [ "$cycles" -lt 50 ] && why=$(replug_cycle); do
 		cycles=$((cycles + 1))
 	done
 	shm_watch --until "$ONLINE=$ONLINE" --count 5 --timeout 30 >/dev/null
-	fds_after=$(fd_count) rss_after=$(rss_kb)
+	fds_after=$(fd_count) rss_after=$(rss_settled_kb)
 	if [ "$cycles" -eq 50 ]; then
 		hil_pass sr2-50-replug-cycles "50 cycles, each back online"
 		[ "$fds_after" -eq "$fds_before" ] && hil_pass no-fd-leak "$fds_before fds before, $fds_after after" ||

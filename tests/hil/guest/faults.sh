@@ -111,6 +111,19 @@ again_at() { grep "$1 streaming again" "$DK_LOG" | tail -n1 | sed 's/^\[\([0-9.]
 daemon_alive() { kill -0 "$DK_PID" 2>/dev/null; }
 fd_count() { local n=0 f; for f in /proc/"$DK_PID"/fd/*; do n=$((n + 1)); done; echo "$n"; }
 rss_kb() { sed -n 's/^VmRSS:[[:space:]]*\([0-9]*\) kB/\1/p' /proc/"$DK_PID"/status; }
+# rss_settled_kb: the least VmRSS of five samples 0.2 s apart. Large blocks
+# live for a moment (a NO SIGNAL picture, a frame in flight) are mmapped and
+# returned as they are freed, so one sample swings by a megabyte or two
+# either way; a leak raises the least of them too.
+rss_settled_kb() {
+	local least="" kb i
+	for i in 1 2 3 4 5; do
+		kb=$(rss_kb)
+		{ [ -z "$least" ] || [ "$kb" -lt "$least" ]; } && least=$kb
+		sleep 0.2
+	done
+	echo "$least"
+}
 
 # elapsed_ms SINCE UNTIL: milliseconds between two uptimes; ms_seconds MS:
 # those as seconds with three decimals.
