@@ -32,13 +32,12 @@ namespace depthkey {
 void BandGraphCut::configure(int smoothness, int edgeSigma)
 {
 	smoothness_ = std::max(0, smoothness);
-	edgeSigma_ = std::max(1, edgeSigma);
 	weightByDistance2_.clear();
 	if (!smoothness_)
 		return;
 	// Built once per configuration (floating point here is setup, not
 	// per-pixel work): every squared distance until the weight rounds to 0.
-	const double twoSigma2 = 2.0 * edgeSigma_ * edgeSigma_;
+	const double sigma = std::max(1, edgeSigma), twoSigma2 = 2.0 * sigma * sigma;
 	for (int d2 = 0;; ++d2) {
 		const int w = int(std::lround(smoothness_ * std::exp(-d2 / twoSigma2)));
 		if (w <= 0)

@@ -48,7 +48,7 @@ public:
 	int edgeWeight(Rgb8 a, Rgb8 b) const;
 
 private:
-	int smoothness_ = 0, edgeSigma_ = 7;
+	int smoothness_ = 0;
 	// smoothness * exp(-d2 / (2 sigma^2)) by squared RGB distance d2, up to
 	// where it rounds to 0.
 	std::vector<int> weightByDistance2_;

@@ -59,12 +59,10 @@ void SioxRefiner::refine(const RgbImage &colour, const Gray8Image &trimap, const
 	std::memset(alpha.data(), 0, alpha.size());
 	spans_.clear();
 	bandPixels_ = 0;
-	lastCut_ = false;
 	if (roi.empty() || trimap.width() != width_ || trimap.height() != height_)
 		return;
 	collectAndClassify(trimap, roi, evidence);
-	lastCut_ = cut_.enabled() && bandPixels_ <= cutMaxBandPixels_;
-	if (lastCut_)
+	if (cut_.enabled() && bandPixels_ <= cutMaxBandPixels_)
 		decideByCut(colour, trimap);
 	else if (settings_.smoothing > 0)
 		smooth();

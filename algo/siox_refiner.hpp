@@ -64,8 +64,6 @@ public:
 		cut_.configure(smoothness, edgeSigma);
 		cutMaxBandPixels_ = maxBandPixels;
 	}
-	// Whether the last refine() decided its band by the cut.
-	bool lastCut() const { return lastCut_; }
 	// The band scan's row kernel (algo/band_scan.hpp); the best by default.
 	void setKernelPath(KernelPath path) { kernelPath_ = path; }
 
@@ -114,7 +112,6 @@ private:
 	std::vector<Span> spans_;
 	BandGraphCut cut_;
 	size_t cutMaxBandPixels_ = 0;
-	bool lastCut_ = false;
 	size_t bandPixels_ = 0;
 	std::vector<uint8_t> colourConfidence_, next_;
 	std::vector<int32_t> stack_;
