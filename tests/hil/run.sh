@@ -95,5 +95,7 @@ if [ -s "$results/recovery" ]; then
 fi
 end=$(date +%s)
 echo "hil: setup $((prepared - start)) s, VM $((end - prepared)) s; logs in $results"
+# The failures again, last: a CI log often keeps only the tail.
+grep '^FAIL ' "$results/results" 2>/dev/null | sed 's/^/hil: failed: /'
 echo "hil: ${passed:-0} passed, ${failed:-0} failed, ${skipped:-0} skipped"
 [ "${failed:-0}" -eq 0 ]
