@@ -31,6 +31,7 @@ void Pipeline::configure(const PipelineSettings &settings, const MappingModel &m
 			     size_t(settings.decision.cutMaxBandPixels));
 	evidence_.configure(settings.decision);
 	guided_.configure(settings.siox.guidedRadius, settings.siox.guidedEps);
+	unmixing_.configure(settings.decision.edgeUnmixing);
 	if (reseed)
 		restartLearning();
 }
@@ -182,6 +183,7 @@ void Pipeline::guideAlpha(const RgbImage &colour, Gray8Image &alpha)
 		for (int x = roi.x0; x < roi.x1; ++x)
 			m[x] = a[x] >= kConfidenceLecturer ? 255 : 0;
 	}
+	unmixing_.refine(colour, keyed_.trimap, boardModel_, roi, matte_);
 	guided_.filter(colour, matte_, roi, alpha);
 }
 

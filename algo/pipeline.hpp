@@ -19,6 +19,7 @@
 #include "algo/frames.hpp"
 #include "algo/fused_evidence.hpp"
 #include "algo/guided_filter.hpp"
+#include "algo/boundary_unmixing.hpp"
 #include "algo/kernel_path.hpp"
 #include "algo/mapping_model.hpp"
 #include "algo/pipeline_settings.hpp"
@@ -131,6 +132,7 @@ private:
 	BoardModel boardModel_;
 	FusedEvidence evidence_;
 	GuidedFilter guided_;
+	BoundaryUnmixing unmixing_;
 	Gray8Image matte_;               // the hard decision, the guided filter's input
 	Gray8Image previousAlpha_;
 	RgbImage previousColour_;

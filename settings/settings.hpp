@@ -124,6 +124,7 @@ struct DecisionSettings {
 	int cutSmoothness = 1000;           // 0..10000: the band's minimum cut (algo/band_graph_cut.hpp); 0 = off
 	int cutEdgeSigma = 7;               // 1..64: colour difference (8-bit RGB levels) the cut follows
 	int cutMaxBandPixels = 150000;      // 0..8294400: a larger band is smoothed instead (the cut's time)
+	int edgeUnmixing = 100;             // 0..195075: least |F - B|^2 to unmix edge pixels (algo/boundary_unmixing.hpp); 0 = off
 	bool operator==(const DecisionSettings &) const = default;
 };
 

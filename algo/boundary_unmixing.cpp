@@ -1,0 +1,110 @@
+#include "algo/boundary_unmixing.hpp"
+
+#include <algorithm>
+
+namespace depthkey {
+
+namespace {
+
+// The matte at (x, y): 0 outside roi (board there).
+inline uint8_t at(const Gray8Image &m, const Roi &roi, int x, int y)
+{
+	return (x < roi.x0 || x >= roi.x1 || y < roi.y0 || y >= roi.y1) ? 0 : m.row(y)[x];
+}
+
+// Sums of R, G, B and a count.
+struct ColourSum {
+	int64_t c[3] = { 0, 0, 0 };
+	int64_t n = 0;
+	void add(Rgb8 p)
+	{
+		c[0] += p.r;
+		c[1] += p.g;
+		c[2] += p.b;
+		++n;
+	}
+};
+
+} // namespace
+
+int BoundaryUnmixing::refine(const RgbImage &colour, const Gray8Image &trimap, const BoardModel &board, const Roi &roi,
+			     Gray8Image &matte)
+{
+	if (minContrast2_ <= 0 || roi.empty() || board.empty())
+		return 0;
+	before_.resize(matte.width(), matte.height());
+	kind_.resize(matte.width(), matte.height());
+	int changed = 0;
+	for (int p = 0; p < kPasses; ++p)
+		changed += pass(colour, trimap, board, roi, matte);
+	return changed;
+}
+
+int BoundaryUnmixing::pass(const RgbImage &colour, const Gray8Image &trimap, const BoardModel &board, const Roi &roi,
+			   Gray8Image &matte)
+{
+	// What each pixel is before this pass: inside the lecturer, inside the
+	// board (all 4-neighbours alike), or on the edge.
+	for (int y = roi.y0; y < roi.y1; ++y) {
+		std::copy(matte.row(y) + roi.x0, matte.row(y) + roi.x1, before_.row(y) + roi.x0);
+		uint8_t *k = kind_.row(y);
+		for (int x = roi.x0; x < roi.x1; ++x) {
+			const int around = at(matte, roi, x, y) + at(matte, roi, x - 1, y) + at(matte, roi, x + 1, y) +
+					   at(matte, roi, x, y - 1) + at(matte, roi, x, y + 1);
+			k[x] = around == 5 * 255 ? kLecturerInside : around == 0 ? kBoardInside : kEdge;
+		}
+	}
+	const int *gain = board.gainQ8();
+	int changed = 0;
+	for (int y = roi.y0; y < roi.y1; ++y) {
+		const Rgba8 *model = board.row(y);
+		for (int x = roi.x0; x < roi.x1; ++x) {
+			const uint8_t label = trimap.row(y)[x];
+			if (kind_.row(y)[x] != kEdge || before_.row(y)[x] || label == kTrimapBoard)
+				continue;
+			ColourSum lecturer, near;
+			const int wy0 = std::max(roi.y0, y - kWindowRadius), wy1 = std::min(roi.y1, y + kWindowRadius + 1);
+			const int wx0 = std::max(roi.x0, x - kWindowRadius), wx1 = std::min(roi.x1, x + kWindowRadius + 1);
+			for (int wy = wy0; wy < wy1; ++wy) {
+				const uint8_t *k = kind_.row(wy);
+				const Rgb8 *c = colour.row(wy);
+				for (int wx = wx0; wx < wx1; ++wx) {
+					if (k[wx] == kLecturerInside)
+						lecturer.add(c[wx]);
+					else if (k[wx] == kBoardInside)
+						near.add(c[wx]);
+				}
+			}
+			if (lecturer.n == 0 || near.n == 0)
+				continue; // no side to compare with: a speck, a one-pixel line
+			// B n and F n - B n, I n - B n: in units of 1/n level.
+			const int64_t n = lecturer.n;
+			const Rgba8 m = model[x];
+			const bool learned = m.a >= BoardModel::kLearnedVisits;
+			const int64_t boardLevel[3] = {
+				learned ? (m.r * gain[0] + 128) >> 8 : 0,
+				learned ? (m.g * gain[1] + 128) >> 8 : 0,
+				learned ? (m.b * gain[2] + 128) >> 8 : 0,
+			};
+			const Rgb8 px = colour.row(y)[x];
+			const int64_t level[3] = { px.r, px.g, px.b };
+			int64_t dot = 0, norm = 0;
+			for (int c = 0; c < 3; ++c) {
+				// Unlearned: the local board mean, rescaled to 1/n units.
+				const int64_t bn = learned ? boardLevel[c] * n : (near.c[c] * n + near.n / 2) / near.n;
+				const int64_t d = lecturer.c[c] - bn;
+				norm += d * d;
+				dot += (level[c] * n - bn) * d;
+			}
+			if (norm < int64_t(minContrast2_) * n * n)
+				continue;
+			if (2 * dot >= norm && !before_.row(y)[x]) {
+				matte.row(y)[x] = 255;
+				++changed;
+			}
+		}
+	}
+	return changed;
+}
+
+} // namespace depthkey
