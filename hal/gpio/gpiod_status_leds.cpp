@@ -8,7 +8,11 @@ namespace depthkey {
 
 namespace {
 
-constexpr unsigned kLedRetryTicks = kLedTicksPerCycle; // missing lines retried once a second
+// Missing lines are retried once a second, by the clock: a busy loop runs
+// the LED timer late (each late tick moves the schedule), and counting ticks
+// made "once a second" several seconds on a slow machine (the HIL VM under
+// load took 8-11 s to take a returned chip back).
+constexpr uint64_t kLedRetryUs = 1000000;
 
 int errnoOf(const std::exception &e)
 {
@@ -48,6 +52,8 @@ int GpiodStatusLeds::open(EventLoop &loop, const LedSettings &settings)
 	chipReported_ = false;
 	patterns_ = ledPatternsFor(StatusSummary{});
 	tick_ = 0;
+	loop_ = &loop;
+	lastRetryUs_ = loop.nowUs();
 	std::string why;
 	int r = openChip(why);
 	if (r < 0 && onFault_) {
@@ -165,8 +171,11 @@ int GpiodStatusLeds::linesInUse() const
 
 void GpiodStatusLeds::tick()
 {
-	if (tick_ % kLedRetryTicks == 0)
+	const uint64_t now = loop_->nowUs();
+	if (now - lastRetryUs_ >= kLedRetryUs) {
+		lastRetryUs_ = now;
 		retryMissing();
+	}
 	for (size_t i = 0; i < kStatusLedCount; i++) {
 		if (!lines_[i])
 			continue;

@@ -58,7 +58,9 @@ private:
 	LedSettings settings_;
 	LedPatterns patterns_{};
 	EventSource timer_;
+	EventLoop *loop_ = nullptr;
 	unsigned tick_ = 0;
+	uint64_t lastRetryUs_ = 0;
 };
 
 } // namespace depthkey
