@@ -5,14 +5,20 @@
 #include "hal/depthkey_shm.h"
 #include "wiring/pipeline_setup.hpp"
 
+#include <algorithm>
 #include <csignal>
 
 namespace depthkey {
 
 namespace {
 
-// Without a colour frame for this many frame periods, publish NO SIGNAL.
+// Without a colour frame for this many frame periods, and at least
+// kColourStaleMinNs, publish NO SIGNAL. One lost or error-flagged buffer is
+// two periods without a frame (80 ms at 25 fps), and a loaded box adds the
+// time a keying holds the loop: the HIL suite saw a NO SIGNAL frame for one
+// error buffer (webcam-error-buffer-dropped) with three periods alone.
 constexpr uint64_t kColourStalePeriods = 3;
+constexpr uint64_t kColourStaleMinNs = 250'000'000;
 // Reader heartbeats are sampled this often: a dead reader is gone within
 // DK_SHM_READER_TIMEOUT_MS plus this.
 constexpr uint64_t kReaderTickUs = 250'000;
@@ -248,10 +254,10 @@ void Daemon::publish(uint64_t captureNs, uint32_t flags)
 void Daemon::onFrameTick()
 {
 	uint64_t nowNs = loop_.nowUs() * 1000u;
-	uint64_t periodNs = 1'000'000'000u / settings_.colour.fps;
+	uint64_t staleNs = std::max<uint64_t>(kColourStalePeriods * 1'000'000'000u / settings_.colour.fps, kColourStaleMinNs);
 	// Frames still held for pairing (pairing.delay_ms) are on their way out:
 	// a NO SIGNAL frame now would come between them, out of order.
-	if (haveColour_ && (pairing_.queue().held() > 0 || lastColourNs_ + kColourStalePeriods * periodNs > nowNs))
+	if (haveColour_ && (pairing_.queue().held() > 0 || lastColourNs_ + staleNs > nowNs))
 		return;
 	publishNoSignal(nowNs);
 }
