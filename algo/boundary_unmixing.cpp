@@ -48,9 +48,16 @@ int BoundaryUnmixing::pass(const RgbImage &colour, const Gray8Image &trimap, con
 	for (int y = roi.y0; y < roi.y1; ++y) {
 		std::copy(matte.row(y) + roi.x0, matte.row(y) + roi.x1, before_.row(y) + roi.x0);
 		uint8_t *k = kind_.row(y);
+		// The ROI's border columns and rows see board beyond it; inside,
+		// row pointers (this runs over the whole ROI, three times a frame).
+		const uint8_t *up = y > roi.y0 ? matte.row(y - 1) : nullptr;
+		const uint8_t *m = matte.row(y);
+		const uint8_t *down = y + 1 < roi.y1 ? matte.row(y + 1) : nullptr;
 		for (int x = roi.x0; x < roi.x1; ++x) {
-			const int around = at(matte, roi, x, y) + at(matte, roi, x - 1, y) + at(matte, roi, x + 1, y) +
-					   at(matte, roi, x, y - 1) + at(matte, roi, x, y + 1);
+			const bool inner = x > roi.x0 && x + 1 < roi.x1 && up && down;
+			const int around = inner ? m[x] + m[x - 1] + m[x + 1] + up[x] + down[x]
+						 : at(matte, roi, x, y) + at(matte, roi, x - 1, y) + at(matte, roi, x + 1, y) +
+							   at(matte, roi, x, y - 1) + at(matte, roi, x, y + 1);
 			k[x] = around == 5 * 255 ? kLecturerInside : around == 0 ? kBoardInside : kEdge;
 		}
 	}

@@ -90,13 +90,13 @@ MappingModel identity(int w, int h)
 	return m;
 }
 
-void pipelineFrame(benchmark::State &state, const Inputs &in, bool graphCut = true)
+void pipelineFrame(benchmark::State &state, const Inputs &in, void (*adjust)(PipelineSettings &) = nullptr)
 {
 	const int w = int(state.range(0)), h = int(state.range(1));
 	auto pipeline = std::make_unique<Pipeline>();
 	PipelineSettings settings;
-	if (!graphCut)
-		settings.decision.cutSmoothness = 0; // the band smoothed instead (algo/siox_refiner.hpp)
+	if (adjust)
+		adjust(settings);
 	pipeline->configure(settings, identity(w, h));
 	pipeline->setKernelPath(kernelPathFromEnvironment());
 	PipelineOutput out;
@@ -126,7 +126,16 @@ void BM_PipelineFrameLecture(benchmark::State &state)
 // The same without the band's minimum cut: what the cut costs.
 void BM_PipelineFrameLectureNoCut(benchmark::State &state)
 {
-	pipelineFrame(state, lectureInputs(int(state.range(0)), int(state.range(1))), false);
+	// The band smoothed instead (algo/siox_refiner.hpp).
+	pipelineFrame(state, lectureInputs(int(state.range(0)), int(state.range(1))),
+		      [](PipelineSettings &s) { s.decision.cutSmoothness = 0; });
+}
+
+// The same without the edge unmixing: what it costs.
+void BM_PipelineFrameLectureNoUnmixing(benchmark::State &state)
+{
+	pipelineFrame(state, lectureInputs(int(state.range(0)), int(state.range(1))),
+		      [](PipelineSettings &s) { s.decision.edgeUnmixing = 0; });
 }
 
 // The stages one by one, with the state a running pipeline has.
@@ -235,6 +244,7 @@ void BM_DepthkeySioxStillCold(benchmark::State &state)
 BENCHMARK(BM_PipelineFrame) SIZES;
 BENCHMARK(BM_PipelineFrameLecture) SIZES;
 BENCHMARK(BM_PipelineFrameLectureNoCut) SIZES;
+BENCHMARK(BM_PipelineFrameLectureNoUnmixing) SIZES;
 BENCHMARK(BM_SeedAndMap) SIZES;
 BENCHMARK(BM_Learn) SIZES;
 BENCHMARK(BM_SioxBand) SIZES;
