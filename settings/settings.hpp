@@ -157,7 +157,7 @@ struct OutputSettings {
 	std::string compositeName = "/depthkey.composite";
 	std::string lecturerName = "/depthkey.lecturer";
 	std::string boardLecturerName = "/depthkey.lecturer.board"; // the layer in board geometry
-	int slots = 3;                      // 2..8 ring slots per stream
+	int slots = 2;                      // 2..8 ring slots per stream
 	std::string group = "";             // group owning the objects (mode 0660); "" = own group
 	// The virtual webcam: the composite as YUYV to this v4l2loopback node
 	// (hal/v4l2/v4l2_output.hpp); "" = off. Not part of the shared memory:

@@ -96,7 +96,16 @@ void LectureSimulator::ensureColourGrid()
 	colourGrid_.configure(rig_.colour(), 1, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(), scene,
 			      sim::RayGrid::Channels::Colour);
 	colourReady_ = true;
-	boardCycle_ = ~0ull; // board_ holds the texels of the old grid's pixels
+	// One colour table a pixel (issue 15): a pixel off the board display
+	// keeps its static colour as an uninked texel's background, so that the
+	// grid's static colours need not be kept beside the board's texels.
+	const std::vector<Rgb8> staticColour = colourGrid_.takeStaticColour();
+	const std::vector<int32_t> &texelOf = colourGrid_.boardTexel();
+	board_.assign(texelOf.size(), sim::BoardTexel{});
+	for (size_t k = 0; k < texelOf.size(); ++k)
+		if (texelOf[k] < 0)
+			board_[k].background = staticColour[k];
+	boardCycle_ = ~0ull; // board_ holds no texels of this grid's board pixels yet
 	if (shownPicture_.empty())
 		return;
 	// The picture on the display, per colour pixel where the display is seen.
@@ -152,13 +161,15 @@ void LectureSimulator::ensureDepthGrid()
 			vignette_[static_cast<size_t>(v) * kTofWidth + u] = static_cast<float>(1.0 / ((1 + a * r2) * (1 + a * r2)));
 		}
 	const int w = depthGrid_.width();
+	// The reflectivities are only read here: the grid keeps none.
+	const std::vector<float> reflectivity = depthGrid_.takeStaticReflectivity();
 	staticAmplitude_.resize(depthGrid_.size());
 	for (size_t k = 0; k < depthGrid_.size(); ++k) {
 		int u = static_cast<int>(k % w) / kTofSamplesPerPixel, v = static_cast<int>(k / w) / kTofSamplesPerPixel;
 		float z = depthGrid_.staticZ()[k];
 		float d = static_cast<float>(kReferenceDistanceM) / z;
 		staticAmplitude_[k] = static_cast<float>(settings_.tofAmplitude) / kBoardReflectivity *
-				      depthGrid_.staticReflectivity()[k] * d * d *
+				      reflectivity[k] * d * d *
 				      vignette_[static_cast<size_t>(v) * kTofWidth + u];
 	}
 	depthReady_ = true;
@@ -175,9 +186,9 @@ void LectureSimulator::ensureBoard(double timeS)
 	std::vector<sim::BoardTexel> raster;
 	script_.rasterise(cycle, raster);
 	const std::vector<int32_t> &texelOf = colourGrid_.boardTexel();
-	board_.resize(texelOf.size());
 	for (size_t k = 0; k < texelOf.size(); ++k)
-		board_[k] = texelOf[k] >= 0 ? raster[static_cast<size_t>(texelOf[k])] : sim::BoardTexel{};
+		if (texelOf[k] >= 0) // the other pixels hold their static colour
+			board_[k] = raster[static_cast<size_t>(texelOf[k])];
 	boardCycle_ = cycle;
 }
 
@@ -199,7 +210,7 @@ void LectureSimulator::renderColour(double timeS, ColourFrame &out, GroundTruth 
 	ensureColourGrid();
 	ensureBoard(timeS);
 	poseLecturer(timeS, capsules_);
-	colourGrid_.drawCapsules(capsules_);
+	colourGrid_.setCapsules(capsules_);
 
 	const int w = colourWidth_, h = colourHeight_;
 	out.rgb.resize(w, h);
@@ -218,11 +229,7 @@ void LectureSimulator::renderColour(double timeS, ColourFrame &out, GroundTruth 
 	const uint64_t noiseKey = timeKey(settings_.seed, 3, timeS);
 	const bool noise = settings_.colourNoise > 0;
 	const auto &texelOf = colourGrid_.boardTexel();
-	const auto &staticColour = colourGrid_.staticColour();
 	const auto &staticZ = colourGrid_.staticZ();
-	const auto &lecAlpha = colourGrid_.lecturerAlpha();
-	const auto &lecColour = colourGrid_.lecturerColour();
-	const auto &lecZ = colourGrid_.lecturerZ();
 	const int dx0 = colourGrid_.dirtyX0(), dx1 = colourGrid_.dirtyX1();
 	const int dy0 = colourGrid_.dirtyY0(), dy1 = colourGrid_.dirtyY1();
 
@@ -230,20 +237,21 @@ void LectureSimulator::renderColour(double timeS, ColourFrame &out, GroundTruth 
 		Rgb8 *row = out.rgb.row(y);
 		const size_t base = static_cast<size_t>(y) * w;
 		const bool lecturerRow = y >= dy0 && y < dy1;
+		const sim::RayGrid::Row lecturer = lecturerRow ? colourGrid_.drawRow(y) : sim::RayGrid::Row{};
 		for (int x = 0; x < w; ++x) {
 			const size_t k = base + x;
-			Rgb8 c = staticColour[k];
-			if (int32_t t = texelOf[k]; t >= 0 && !shown_.empty()) {
+			Rgb8 c;
+			if (texelOf[k] >= 0 && !shown_.empty()) {
 				c = shown_[k];
-			} else if (t >= 0) {
+			} else { // off the board: an uninked texel of the static colour
 				const sim::BoardTexel &texel = board_[k];
 				bool inked = texel.ink && tick >= texel.writeTick && tick < texel.eraseTick;
 				c = inked ? ink[texel.ink] : texel.background;
 			}
 			int alpha256 = 0;
-			if (lecturerRow && x >= dx0 && x < dx1 && lecAlpha[k] > 0) {
-				alpha256 = static_cast<int>(lecAlpha[k] * 256.0f + 0.5f);
-				const Rgb8 l = lecColour[k];
+			if (lecturerRow && x >= dx0 && x < dx1 && lecturer.alpha[x] > 0) {
+				alpha256 = static_cast<int>(lecturer.alpha[x] * 256.0f + 0.5f);
+				const Rgb8 l = lecturer.colour[x];
 				c = { static_cast<uint8_t>(c.r + (((l.r - c.r) * alpha256) >> 8)),
 				      static_cast<uint8_t>(c.g + (((l.g - c.g) * alpha256) >> 8)),
 				      static_cast<uint8_t>(c.b + (((l.b - c.b) * alpha256) >> 8)) };
@@ -259,9 +267,9 @@ void LectureSimulator::renderColour(double timeS, ColourFrame &out, GroundTruth 
 			if (truth) {
 				uint8_t a8 = static_cast<uint8_t>(std::min(255, alpha256 - (alpha256 >> 8)));
 				truth->alpha.row(y)[x] = a8;
-				bool lecturer = alpha256 >= 128;
-				truth->mask.row(y)[x] = lecturer ? 255 : 0;
-				float z = lecturer ? lecZ[k] : staticZ[k];
+				bool covered = alpha256 >= 128;
+				truth->mask.row(y)[x] = covered ? 255 : 0;
+				float z = covered ? lecturer.z[x] : staticZ[k];
 				truth->depthMm.row(y)[x] = static_cast<uint16_t>(std::min(65535.0f, z * 1000.0f + 0.5f));
 			}
 		}
@@ -276,29 +284,30 @@ void LectureSimulator::renderDepth(double timeS, DepthFrame &out)
 	const int times = settings_.motionBlur && !target_ ? kMotionBlurSamples : 1;
 	const double exposure = settings_.tofExposureMs / 1000.0;
 	const auto &staticZ = depthGrid_.staticZ();
-	const auto &lecAlpha = depthGrid_.lecturerAlpha();
-	const auto &lecZ = depthGrid_.lecturerZ();
-	const auto &lecRefl = depthGrid_.lecturerReflectivity();
 	for (int ti = 0; ti < times; ++ti) {
 		double t = times == 1 ? timeS : timeS + exposure * (ti / (times - 1.0) - 0.5);
 		poseLecturer(t, capsules_);
-		depthGrid_.drawCapsules(capsules_);
-		for (int j = 0; j < depthGrid_.height(); ++j)
+		depthGrid_.setCapsules(capsules_);
+		for (int j = 0; j < depthGrid_.height(); ++j) {
+			// Alpha 0 all along a row no capsule reaches.
+			const sim::RayGrid::Row lecturer = depthGrid_.drawRow(j);
 			for (int i = 0; i < sw; ++i) {
 				size_t k = static_cast<size_t>(j) * sw + i;
 				size_t pixel = static_cast<size_t>(j / ss) * kTofWidth + i / ss;
-				float a = lecAlpha[k];
+				float a = lecturer.alpha[i];
 				tof_.add(pixel, staticAmplitude_[k] * (1.0f - a), staticZ[k]);
 				if (a > 0) {
-					float d = static_cast<float>(kReferenceDistanceM) / lecZ[k];
+					const float z = lecturer.z[i];
+					float d = static_cast<float>(kReferenceDistanceM) / z;
 					float amp = static_cast<float>(settings_.tofAmplitude) / kBoardReflectivity *
-						    lecRefl[k] * d * d * vignette_[pixel];
-					tof_.add(pixel, a * amp, lecZ[k]);
+						    lecturer.reflectivity[i] * d * d * vignette_[pixel];
+					tof_.add(pixel, a * amp, z);
 					tof_.lecturerAmp[pixel] += a * amp;
-					tof_.lecturerAmpZ[pixel] += a * amp * lecZ[k];
+					tof_.lecturerAmpZ[pixel] += a * amp * z;
 					tof_.lecturerCover[pixel] += a;
 				}
 			}
+		}
 	}
 	tof_.samples = times * ss * ss;
 	sim::finishTofFrame(tof_, settings_, timeKey(settings_.seed, 4, timeS), out);

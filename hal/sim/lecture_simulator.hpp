@@ -84,7 +84,7 @@ private:
 	bool colourReady_ = false, depthReady_ = false;
 	bool lecturerVisible_ = true;
 	std::vector<sim::Capsule> capsules_;
-	std::vector<sim::BoardTexel> board_; // per colour pixel: the board texel it shows
+	std::vector<sim::BoardTexel> board_; // per colour pixel: the board texel it shows, off the board its colour
 	RgbImage shownPicture_;
 	std::vector<Rgb8> shown_;            // per colour pixel, when shownPicture_ is set
 	uint64_t boardCycle_ = ~0ull;

@@ -26,27 +26,23 @@ void RayGrid::configure(const LensModel &lens, int samplesPerPixel, const Eigen:
 	toCamera_ = cameraRotation.transpose().cast<float>();
 	origin_ = cameraOrigin.cast<float>();
 	size_t n = static_cast<size_t>(width_) * height_;
-	rayX_.resize(n);
-	rayY_.resize(n);
-	rayZ_.resize(n);
+	rays_.begin(lens, samples_);
 	staticZ_.assign(n, kFar);
-	lecZ_.assign(n, kFar);
-	lecAlpha_.assign(n, 0.0f);
 	// The channels not kept give their memory back.
 	const size_t colourSamples = colour_ ? n : 0, reflectivitySamples = colour_ ? 0 : n;
 	staticReflectivity_.assign(reflectivitySamples, 0.0f);
-	lecReflectivity_.assign(reflectivitySamples, 0.0f);
 	boardTexel_.assign(colourSamples, -1);
 	staticColour_.assign(colourSamples, Rgb8{ 0, 0, 0 });
-	lecColour_.assign(colourSamples, Rgb8{ 0, 0, 0 });
-	for (auto *v : { &staticReflectivity_, &lecReflectivity_ })
-		v->shrink_to_fit();
+	staticReflectivity_.shrink_to_fit();
 	boardTexel_.shrink_to_fit();
 	staticColour_.shrink_to_fit();
-	lecColour_.shrink_to_fit();
-	dirtyX0_ = dirtyY0_ = 0;
-	dirtyX1_ = width_;
-	dirtyY1_ = height_;
+	rowZ_.assign(width_, kFar);
+	rowAlpha_.assign(width_, 0.0f);
+	rowColour_.assign(colour_ ? width_ : 0, Rgb8{ 0, 0, 0 });
+	rowReflectivity_.assign(colour_ ? 0 : width_, 0.0f);
+	rowX0_ = rowX1_ = 0;
+	posed_.clear();
+	dirtyX0_ = dirtyY0_ = dirtyX1_ = dirtyY1_ = 0;
 
 	const int columns = BoardGeometry::texelColumns(), rows = BoardGeometry::texelRows();
 	struct Prepared {
@@ -59,12 +55,8 @@ void RayGrid::configure(const LensModel &lens, int samplesPerPixel, const Eigen:
 	for (int j = 0; j < height_; ++j)
 		for (int i = 0; i < width_; ++i) {
 			size_t k = static_cast<size_t>(j) * width_ + i;
-			double xn, yn;
-			lens.undistort((i + 0.5) / samples_ - 0.5, (j + 0.5) / samples_ - 0.5, xn, yn);
-			Eigen::Vector3d ray = Eigen::Vector3d(xn, yn, 1.0).normalized();
-			rayX_[k] = static_cast<float>(ray.x());
-			rayY_[k] = static_cast<float>(ray.y());
-			rayZ_[k] = static_cast<float>(ray.z());
+			Eigen::Vector3d ray = SampleRays::exactRay(lens, samples_, i, j);
+			rays_.put(i, j, ray);
 			Eigen::Vector3d dir = cameraRotation * ray;
 			double best = std::numeric_limits<double>::max();
 			for (size_t qi = 0; qi < scene.quads.size(); ++qi) {
@@ -104,45 +96,46 @@ void RayGrid::configure(const LensModel &lens, int samplesPerPixel, const Eigen:
 				}
 			}
 		}
+	// Never seen: a lens whose mirrored samples round differently keeps
+	// every ray.
+	if (!rays_.exact()) {
+		rays_.begin(lens, samples_, false);
+		for (int j = 0; j < height_; ++j)
+			for (int i = 0; i < width_; ++i)
+				rays_.put(i, j, SampleRays::exactRay(lens, samples_, i, j));
+	}
 }
 
-void RayGrid::clearDirty()
+void RayGrid::setCapsules(const std::vector<Capsule> &sceneCapsules)
 {
-	for (int j = dirtyY0_; j < dirtyY1_; ++j) {
-		size_t row = static_cast<size_t>(j) * width_;
-		std::fill(lecZ_.begin() + row + dirtyX0_, lecZ_.begin() + row + dirtyX1_, kFar);
-		std::fill(lecAlpha_.begin() + row + dirtyX0_, lecAlpha_.begin() + row + dirtyX1_, 0.0f);
-	}
+	posed_.clear(); // keeps its capacity: no allocation once the lecturer has been posed
 	dirtyX0_ = width_;
 	dirtyY0_ = height_;
 	dirtyX1_ = dirtyY1_ = 0;
-}
-
-void RayGrid::drawCapsules(const std::vector<Capsule> &sceneCapsules)
-{
-	clearDirty();
 	for (const Capsule &c : sceneCapsules) {
-		Capsule local = c;
-		local.a = toCamera_ * (c.a - origin_);
-		local.b = toCamera_ * (c.b - origin_);
-		drawCapsule(local);
+		PosedCapsule p;
+		if (!pose(c, p))
+			continue;
+		posed_.push_back(p);
+		dirtyX0_ = std::min(dirtyX0_, p.x0);
+		dirtyX1_ = std::max(dirtyX1_, p.x1);
+		dirtyY0_ = std::min(dirtyY0_, p.y0);
+		dirtyY1_ = std::max(dirtyY1_, p.y1);
 	}
+	if (posed_.empty())
+		dirtyX0_ = dirtyY0_ = dirtyX1_ = dirtyY1_ = 0;
 }
 
-// Closest approach of the ray t*d (|d| = 1) to the segment a + s*(b - a):
-//   s = (B (d.a) - ba.a) / (C - B^2),  B = d.ba, C = ba.ba, clamped to [0, 1]
-//   t = d.a + s B
-//   dist^2 = t^2 - 2 t (d.a) - 2 t s B + a.a + 2 s (a.ba) + s^2 C
-// all from per-capsule constants and two dot products per sample.
-void RayGrid::drawCapsule(const Capsule &c)
+// The capsule in camera coordinates and its samples: the screen bounding box
+// of the corners of its 3D box; a sample or two of margin covers the lens
+// bending the box's edges.
+bool RayGrid::pose(const Capsule &scene, PosedCapsule &out) const
 {
-	const Eigen::Vector3f a = c.a, ba = c.b - c.a;
-	const float r = c.radius;
-	// Screen bounding box from the corners of the capsule's 3D box; a sample
-	// or two of margin covers the lens bending the box's edges.
-	Eigen::Vector3f lo = a.cwiseMin(c.b).array() - r, hi = a.cwiseMax(c.b).array() + r;
+	const Eigen::Vector3f a = toCamera_ * (scene.a - origin_), b = toCamera_ * (scene.b - origin_);
+	const float r = scene.radius;
+	Eigen::Vector3f lo = a.cwiseMin(b).array() - r, hi = a.cwiseMax(b).array() + r;
 	if (hi.z() < 0.05f)
-		return;
+		return false;
 	lo.z() = std::max(lo.z(), 0.05f);
 	double minX = 1e9, minY = 1e9, maxX = -1e9, maxY = -1e9;
 	for (int corner = 0; corner < 8; ++corner) {
@@ -156,55 +149,84 @@ void RayGrid::drawCapsule(const Capsule &c)
 		maxY = std::max(maxY, y);
 	}
 	auto toSample = [this](double pixel) { return (pixel + 0.5) * samples_ - 0.5; };
-	int x0 = std::max(0, static_cast<int>(std::floor(toSample(minX))) - 2 * samples_);
-	int x1 = std::min(width_, static_cast<int>(std::ceil(toSample(maxX))) + 2 * samples_ + 1);
-	int y0 = std::max(0, static_cast<int>(std::floor(toSample(minY))) - 2 * samples_);
-	int y1 = std::min(height_, static_cast<int>(std::ceil(toSample(maxY))) + 2 * samples_ + 1);
-	if (x0 >= x1 || y0 >= y1)
-		return;
-	dirtyX0_ = std::min(dirtyX0_, x0);
-	dirtyX1_ = std::max(dirtyX1_, x1);
-	dirtyY0_ = std::min(dirtyY0_, y0);
-	dirtyY1_ = std::max(dirtyY1_, y1);
+	out.x0 = std::max(0, static_cast<int>(std::floor(toSample(minX))) - 2 * samples_);
+	out.x1 = std::min(width_, static_cast<int>(std::ceil(toSample(maxX))) + 2 * samples_ + 1);
+	out.y0 = std::max(0, static_cast<int>(std::floor(toSample(minY))) - 2 * samples_);
+	out.y1 = std::min(height_, static_cast<int>(std::ceil(toSample(maxY))) + 2 * samples_ + 1);
+	if (out.x0 >= out.x1 || out.y0 >= out.y1)
+		return false;
+	out.a = a;
+	out.ba = b - a;
+	out.r = r;
+	out.C = out.ba.squaredNorm();
+	out.aa = a.squaredNorm();
+	out.aba = a.dot(out.ba);
+	out.colour = scene.colour;
+	out.reflectivity = scene.reflectivity;
+	return true;
+}
 
-	const float C = ba.squaredNorm(), aa = a.squaredNorm(), aba = a.dot(ba);
-	for (int j = y0; j < y1; ++j) {
-		size_t row = static_cast<size_t>(j) * width_;
-		for (int i = x0; i < x1; ++i) {
-			size_t k = row + i;
-			float dx = rayX_[k], dy = rayY_[k], dz = rayZ_[k];
-			float da = dx * a.x() + dy * a.y() + dz * a.z();
-			float B = dx * ba.x() + dy * ba.y() + dz * ba.z();
-			float denom = C - B * B;
-			float s = denom > 1e-9f ? (B * da - aba) / denom : 0.0f;
-			s = std::clamp(s, 0.0f, 1.0f);
-			float t = da + s * B;
-			if (t <= 0.05f)
-				continue;
-			float dist2 = t * t - 2 * t * da - 2 * t * s * B + aa + 2 * s * aba + s * s * C;
-			float dist = std::sqrt(std::max(dist2, 0.0f));
-			float fp = t * footprint_;
-			float alpha = std::clamp((r - dist) / fp + 0.5f, 0.0f, 1.0f);
-			if (alpha <= 0.0f)
-				continue;
-			float inside = std::max(0.0f, r * r - dist2);
-			float z = (t - std::sqrt(inside)) * dz;
-			if (z >= staticZ_[k])
-				continue; // behind the desk or the board
-			if (z < lecZ_[k] && (alpha >= 0.5f || lecAlpha_[k] < 0.5f)) {
-				lecZ_[k] = z;
-				// Rounder towards the middle: light falls off to the rim.
-				if (colour_) {
-					float shade = 0.62f + 0.38f * std::sqrt(inside) / r;
-					lecColour_[k] = { static_cast<uint8_t>(c.colour.r * shade),
-							  static_cast<uint8_t>(c.colour.g * shade),
-							  static_cast<uint8_t>(c.colour.b * shade) };
-				} else {
-					lecReflectivity_[k] = c.reflectivity;
-				}
-			}
-			lecAlpha_[k] = std::max(lecAlpha_[k], alpha);
+RayGrid::Row RayGrid::drawRow(int j)
+{
+	std::fill(rowZ_.begin() + rowX0_, rowZ_.begin() + rowX1_, kFar);
+	std::fill(rowAlpha_.begin() + rowX0_, rowAlpha_.begin() + rowX1_, 0.0f);
+	rowX0_ = width_;
+	rowX1_ = 0;
+	// Capsule by capsule in their order, as each sample's result depends on.
+	for (const PosedCapsule &c : posed_)
+		if (j >= c.y0 && j < c.y1) {
+			drawSpan(c, j, c.x0, c.x1);
+			rowX0_ = std::min(rowX0_, c.x0);
+			rowX1_ = std::max(rowX1_, c.x1);
 		}
+	rowX1_ = std::max(rowX1_, rowX0_);
+	return { rowZ_.data(), rowAlpha_.data(), rowColour_.data(), rowReflectivity_.data() };
+}
+
+// Closest approach of the ray t*d (|d| = 1) to the segment a + s*(b - a):
+//   s = (B (d.a) - ba.a) / (C - B^2),  B = d.ba, C = ba.ba, clamped to [0, 1]
+//   t = d.a + s B
+//   dist^2 = t^2 - 2 t (d.a) - 2 t s B + a.a + 2 s (a.ba) + s^2 C
+// all from per-capsule constants and two dot products per sample.
+void RayGrid::drawSpan(const PosedCapsule &c, int j, int x0, int x1)
+{
+	const Eigen::Vector3f a = c.a, ba = c.ba;
+	const float r = c.r, C = c.C, aa = c.aa, aba = c.aba;
+	const size_t row = static_cast<size_t>(j) * width_;
+	for (int i = x0; i < x1; ++i) {
+		const SampleRays::Ray ray = rays_.at(i, j);
+		float dx = ray.x, dy = ray.y, dz = ray.z;
+		float da = dx * a.x() + dy * a.y() + dz * a.z();
+		float B = dx * ba.x() + dy * ba.y() + dz * ba.z();
+		float denom = C - B * B;
+		float s = denom > 1e-9f ? (B * da - aba) / denom : 0.0f;
+		s = std::clamp(s, 0.0f, 1.0f);
+		float t = da + s * B;
+		if (t <= 0.05f)
+			continue;
+		float dist2 = t * t - 2 * t * da - 2 * t * s * B + aa + 2 * s * aba + s * s * C;
+		float dist = std::sqrt(std::max(dist2, 0.0f));
+		float fp = t * footprint_;
+		float alpha = std::clamp((r - dist) / fp + 0.5f, 0.0f, 1.0f);
+		if (alpha <= 0.0f)
+			continue;
+		float inside = std::max(0.0f, r * r - dist2);
+		float z = (t - std::sqrt(inside)) * dz;
+		if (z >= staticZ_[row + i])
+			continue; // behind the desk or the board
+		if (z < rowZ_[i] && (alpha >= 0.5f || rowAlpha_[i] < 0.5f)) {
+			rowZ_[i] = z;
+			// Rounder towards the middle: light falls off to the rim.
+			if (colour_) {
+				float shade = 0.62f + 0.38f * std::sqrt(inside) / r;
+				rowColour_[i] = { static_cast<uint8_t>(c.colour.r * shade),
+						  static_cast<uint8_t>(c.colour.g * shade),
+						  static_cast<uint8_t>(c.colour.b * shade) };
+			} else {
+				rowReflectivity_[i] = c.reflectivity;
+			}
+		}
+		rowAlpha_[i] = std::max(rowAlpha_[i], alpha);
 	}
 }
 

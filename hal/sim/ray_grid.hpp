@@ -1,8 +1,15 @@
 // One camera's view of the simulated scene, sampled on a regular grid
 // (samplesPerPixel^2 samples a pixel): a unit ray per sample through the
 // distorted lens, what the static scene shows along it (computed once in
-// configure()), and a z-buffer into which the lecturer's capsules are drawn
-// every frame, only inside their screen bounding boxes.
+// configure()), and the lecturer's capsules drawn one row of samples at a
+// time, only inside their screen bounding boxes.
+//
+// Memory (issue 15): the lecturer is drawn into one row of buffers that the
+// caller consumes before asking for the next row, not into whole-frame
+// z/alpha/colour planes (11 bytes a sample at 640x480: 3.4 MB), and the rays
+// are kept for one quadrant of the grid only (sample_rays.hpp). Both give
+// the same floats as the whole-frame planes did: each sample's result
+// depends only on the capsules in their order, never on other samples.
 //
 // Capsule coverage is anti-aliased analytically: the ray's distance to the
 // capsule's axis against its radius, over the sample's footprint, so edges
@@ -10,6 +17,7 @@
 #pragma once
 
 #include "hal/sim/camera_rig.hpp"
+#include "hal/sim/sample_rays.hpp"
 #include "hal/sim/scene_geometry.hpp"
 
 #include <vector>
@@ -35,29 +43,50 @@ public:
 	int height() const { return height_; }
 	int samplesPerPixel() const { return samples_; }
 	size_t size() const { return staticZ_.size(); }
+	const SampleRays &rays() const { return rays_; }
 
 	// Static background per sample.
 	const std::vector<float> &staticZ() const { return staticZ_; }          // camera-frame z, m
 	const std::vector<int32_t> &boardTexel() const { return boardTexel_; }  // -1: not the board display
-	const std::vector<Rgb8> &staticColour() const { return staticColour_; } // non-board surfaces, wall
-	const std::vector<float> &staticReflectivity() const { return staticReflectivity_; }
+	// The static colours (non-board surfaces, wall) and reflectivities are
+	// handed over once: the simulator folds them into tables of its own
+	// (the board's texels per pixel, the ToF's amplitudes) and the grid
+	// keeps no copy.
+	std::vector<Rgb8> takeStaticColour() { return std::move(staticColour_); }
+	std::vector<float> takeStaticReflectivity() { return std::move(staticReflectivity_); }
 
-	// Lecturer layer of the last drawCapsules(): nearest capsule's z and
-	// shaded colour, coverage in [0, 1] (0 outside the dirty rectangle).
-	void drawCapsules(const std::vector<Capsule> &sceneCapsules);
-	const std::vector<float> &lecturerZ() const { return lecZ_; }
-	const std::vector<float> &lecturerAlpha() const { return lecAlpha_; }
-	const std::vector<Rgb8> &lecturerColour() const { return lecColour_; }
-	const std::vector<float> &lecturerReflectivity() const { return lecReflectivity_; }
-	// Bounding box [x0, x1) x [y0, y1) of what the last draw touched.
+	// The lecturer of one frame: poses the capsules in this camera's frame
+	// and finds the samples each may cover. Then drawRow(j) for the rows
+	// wanted, in any order.
+	void setCapsules(const std::vector<Capsule> &sceneCapsules);
+	// Bounding box [x0, x1) x [y0, y1) of the samples the capsules may cover.
 	int dirtyX0() const { return dirtyX0_; }
 	int dirtyX1() const { return dirtyX1_; }
 	int dirtyY0() const { return dirtyY0_; }
 	int dirtyY1() const { return dirtyY1_; }
 
+	// The lecturer along sample row j: the nearest capsule's z and shaded
+	// colour (or reflectivity), coverage in [0, 1]. Every sample of the row
+	// is valid (alpha 0 where no capsule is); colour/reflectivity only where
+	// alpha > 0. Valid until the next drawRow() or setCapsules().
+	struct Row {
+		const float *z, *alpha;
+		const Rgb8 *colour;         // Channels::Colour
+		const float *reflectivity;  // Channels::Reflectivity
+	};
+	Row drawRow(int j);
+
 private:
-	void clearDirty();
-	void drawCapsule(const Capsule &c);
+	// A capsule in camera coordinates with the constants every sample uses.
+	struct PosedCapsule {
+		Eigen::Vector3f a, ba;
+		float r, C, aa, aba;
+		Rgb8 colour;
+		float reflectivity;
+		int x0, x1, y0, y1; // samples it may cover
+	};
+	bool pose(const Capsule &scene, PosedCapsule &out) const;
+	void drawSpan(const PosedCapsule &c, int j, int x0, int x1);
 
 	LensModel lens_;
 	bool colour_ = true; // Channels::Colour, else Reflectivity
@@ -65,12 +94,16 @@ private:
 	float footprint_ = 0; // radians per sample
 	Eigen::Matrix3f toCamera_ = Eigen::Matrix3f::Identity();
 	Eigen::Vector3f origin_ = Eigen::Vector3f::Zero();
-	std::vector<float> rayX_, rayY_, rayZ_;
+	SampleRays rays_;
 	std::vector<float> staticZ_, staticReflectivity_;
 	std::vector<int32_t> boardTexel_;
 	std::vector<Rgb8> staticColour_;
-	std::vector<float> lecZ_, lecAlpha_, lecReflectivity_;
-	std::vector<Rgb8> lecColour_;
+	std::vector<PosedCapsule> posed_;
+	// One row of the lecturer; [rowX0_, rowX1_) is what the last drawRow()
+	// may have written, cleared before the next.
+	std::vector<float> rowZ_, rowAlpha_, rowReflectivity_;
+	std::vector<Rgb8> rowColour_;
+	int rowX0_ = 0, rowX1_ = 0;
 	int dirtyX0_ = 0, dirtyX1_ = 0, dirtyY0_ = 0, dirtyY1_ = 0;
 };
 

@@ -155,6 +155,23 @@ def status_kb(pid):
     return fields
 
 
+def drain_for(sock, seconds):
+    """Reads the notify socket for `seconds`, as systemd would: depthkeyd
+    sends STATUS= every second, and sd_notify blocks once the socket's queue
+    (net.unix.max_dgram_qlen, 10 here) is full, which stalled the daemon
+    about 10 s after READY=1."""
+    end = time.monotonic() + seconds
+    while True:
+        left = end - time.monotonic()
+        if left <= 0:
+            return
+        sock.settimeout(left)
+        try:
+            sock.recv(4096)
+        except socket.timeout:
+            return
+
+
 def run_daemon(bin_dir, config, work, seconds, extra_env=None):
     sock_path = os.path.join(work, "notify.sock")
     if os.path.exists(sock_path):
@@ -174,7 +191,7 @@ def run_daemon(bin_dir, config, work, seconds, extra_env=None):
             message = sock.recv(4096).decode(errors="replace")
             if "READY=1" in message.split("\n"):
                 ready_ms = (time.monotonic() - start) * 1000.0
-        time.sleep(seconds)
+        drain_for(sock, seconds)
         if proc.poll() is not None:
             raise RuntimeError("depthkeyd exited early (see %s/daemon.log)" % work)
         status = status_kb(proc.pid)
