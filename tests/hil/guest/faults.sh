@@ -46,8 +46,10 @@ max_skew_ms = 350
 # The band's minimum cut costs some 25 ms a frame at 640x480 natively and
 # several hundred under TCG, more than a frame period here: colour frames
 # would leave unkeyed, without depth. This suite tests the devices, not the
-# segmentation (tests/process/accuracy_gate_test.cpp does): smoothing here.
+# segmentation (tests/process/accuracy_gate_test.cpp does): smoothing here,
+# and no edge unmixing (a few ms natively, tens under TCG).
 cut_smoothness = 0
+edge_unmixing = 0
 
 [mapping]
 # Fitted by tests/hil/run.sh with depthkey-calibrate --sim (640x480 colour).
