@@ -84,8 +84,8 @@ struct Server {
 		encoder.stop();
 	}
 
-	// Small pictures of every stage, every 5 ms (faster, the encoder thread
-	// took a third of the time re-encoding watched stages).
+	// Small pictures of every stage, every 5 ms (offered every millisecond,
+	// the encoder thread took a third of the time re-encoding watched stages).
 	void feed()
 	{
 		RgbImage rgb(32, 24, Rgb8{ 40, 90, 160 });
