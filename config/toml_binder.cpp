@@ -45,23 +45,34 @@ std::string quote(std::string_view s)
 	return '"' + std::string(s) + '"';
 }
 
-// Levenshtein distance, to suggest the key a typo was meant to be.
-size_t editDistance(std::string_view a, std::string_view b)
+// Levenshtein distance, to suggest the key a typo was meant to be, or
+// `bound` once it is clear the distance is at least that: only near names
+// are suggested, and a file of long or many unknown keys (up to the 1 MB
+// cap) must not cost seconds of full distances at a reload (issue 14).
+size_t editDistance(std::string_view a, std::string_view b, size_t bound)
 {
+	// The distance is at least the difference in length.
+	if ((a.size() > b.size() ? a.size() - b.size() : b.size() - a.size()) >= bound)
+		return bound;
 	std::vector<size_t> row(b.size() + 1);
 	for (size_t j = 0; j <= b.size(); j++)
 		row[j] = j;
 	for (size_t i = 1; i <= a.size(); i++) {
 		size_t diagonal = row[0];
 		row[0] = i;
+		size_t least = row[0];
 		for (size_t j = 1; j <= b.size(); j++) {
 			size_t above = row[j];
 			row[j] = std::min({ row[j] + 1, row[j - 1] + 1,
 					    diagonal + (a[i - 1] == b[j - 1] ? 0 : 1) });
 			diagonal = above;
+			least = std::min(least, row[j]);
 		}
+		// A row's least never shrinks in the rows below it.
+		if (least >= bound)
+			return bound;
 	}
-	return row[b.size()];
+	return std::min(row[b.size()], bound);
 }
 
 bool isHex(char c)
@@ -404,7 +415,7 @@ void TomlSection::reportUnknown()
 		const std::string *best = nullptr;
 		size_t bestDistance = 3;
 		for (const std::string &candidate : known_) {
-			size_t d = editDistance(name, candidate);
+			size_t d = editDistance(name, candidate, bestDistance);
 			if (d < bestDistance) {
 				best = &candidate;
 				bestDistance = d;
