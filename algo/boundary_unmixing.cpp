@@ -32,7 +32,6 @@ int BoundaryUnmixing::refine(const RgbImage &colour, const Gray8Image &trimap, c
 {
 	if (minContrast2_ <= 0 || roi.empty() || board.empty())
 		return 0;
-	before_.resize(matte.width(), matte.height());
 	kind_.resize(matte.width(), matte.height());
 	int changed = 0;
 	for (int p = 0; p < kPasses; ++p)
@@ -43,10 +42,9 @@ int BoundaryUnmixing::refine(const RgbImage &colour, const Gray8Image &trimap, c
 int BoundaryUnmixing::pass(const RgbImage &colour, const Gray8Image &trimap, const BoardModel &board, const Roi &roi,
 			   Gray8Image &matte)
 {
-	// What each pixel is before this pass: inside the lecturer, inside the
-	// board (all 4-neighbours alike), or on the edge.
+	// What each pixel is before this pass (the pass reads kinds only, so
+	// what it turns to lecturer counts from the next pass on).
 	for (int y = roi.y0; y < roi.y1; ++y) {
-		std::copy(matte.row(y) + roi.x0, matte.row(y) + roi.x1, before_.row(y) + roi.x0);
 		uint8_t *k = kind_.row(y);
 		// The ROI's border columns and rows see board beyond it; inside,
 		// row pointers (this runs over the whole ROI, three times a frame).
@@ -58,7 +56,10 @@ int BoundaryUnmixing::pass(const RgbImage &colour, const Gray8Image &trimap, con
 			const int around = inner ? m[x] + m[x - 1] + m[x + 1] + up[x] + down[x]
 						 : at(matte, roi, x, y) + at(matte, roi, x - 1, y) + at(matte, roi, x + 1, y) +
 							   at(matte, roi, x, y - 1) + at(matte, roi, x, y + 1);
-			k[x] = around == 5 * 255 ? kLecturerInside : around == 0 ? kBoardInside : kEdge;
+			k[x] = around == 5 * 255 ? kLecturerInside
+			       : around == 0	 ? kBoardInside
+			       : m[x]		 ? kLecturerEdge
+						 : kBoardEdge;
 		}
 	}
 	const int *gain = board.gainQ8();
@@ -67,7 +68,7 @@ int BoundaryUnmixing::pass(const RgbImage &colour, const Gray8Image &trimap, con
 		const Rgba8 *model = board.row(y);
 		for (int x = roi.x0; x < roi.x1; ++x) {
 			const uint8_t label = trimap.row(y)[x];
-			if (kind_.row(y)[x] != kEdge || before_.row(y)[x] || label == kTrimapBoard)
+			if (kind_.row(y)[x] != kBoardEdge || label == kTrimapBoard)
 				continue;
 			ColourSum lecturer, near;
 			const int wy0 = std::max(roi.y0, y - kWindowRadius), wy1 = std::min(roi.y1, y + kWindowRadius + 1);
@@ -105,7 +106,7 @@ int BoundaryUnmixing::pass(const RgbImage &colour, const Gray8Image &trimap, con
 			}
 			if (norm < int64_t(minContrast2_) * n * n)
 				continue;
-			if (2 * dot >= norm && !before_.row(y)[x]) {
+			if (2 * dot >= norm) {
 				matte.row(y)[x] = 255;
 				++changed;
 			}

@@ -55,12 +55,14 @@ public:
 		   Gray8Image &matte);
 
 private:
-	enum Kind : uint8_t { kEdge = 0, kLecturerInside = 1, kBoardInside = 2 };
+	// What a pixel is before a pass: inside one side (all 4-neighbours
+	// alike), or on the edge, and on which side.
+	enum Kind : uint8_t { kBoardEdge = 0, kLecturerEdge = 1, kLecturerInside = 2, kBoardInside = 3 };
 	int pass(const RgbImage &colour, const Gray8Image &trimap, const BoardModel &board, const Roi &roi,
 		 Gray8Image &matte);
 
 	int minContrast2_ = 0;
-	Gray8Image before_, kind_;
+	Gray8Image kind_;
 };
 
 } // namespace depthkey
