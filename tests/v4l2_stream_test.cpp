@@ -4,6 +4,7 @@
 // the stream reporting Lost once and Stopped after stop(). Capture from a
 // real device is tested in device_backends_test.cpp and the HIL suite.
 #include "hal/event_loop.hpp"
+#include "hal/v4l2/query_capabilities_error.hpp"
 #include "hal/v4l2/v4l2_stream.hpp"
 #include "hal/v4l2/v4l2_video_device.hpp"
 
@@ -90,4 +91,15 @@ TEST(V4l2VideoDevice, OpenFailuresAreErrnoAndLeaveNoFd)
 	EXPECT_EQ(device.fd(), -1);
 	device.close(); // closing what is closed is harmless
 	EXPECT_EQ(device.fd(), -1);
+}
+
+TEST(V4l2VideoDevice, QueryCapabilitiesUnemulatedIsNotAV4l2Node)
+{
+	// qemu-user's ENOSYS for an ioctl it does not emulate reads as a
+	// kernel's ENOTTY; every other reason is kept as it is.
+	EXPECT_EQ(queryCapabilitiesError(-ENOSYS), -ENOTTY);
+	EXPECT_EQ(queryCapabilitiesError(-ENOTTY), -ENOTTY);
+	EXPECT_EQ(queryCapabilitiesError(-EBUSY), -EBUSY);
+	EXPECT_EQ(queryCapabilitiesError(-ENODEV), -ENODEV);
+	EXPECT_EQ(queryCapabilitiesError(0), 0);
 }

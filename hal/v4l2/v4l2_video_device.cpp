@@ -1,5 +1,7 @@
 #include "hal/v4l2/v4l2_video_device.hpp"
 
+#include "hal/v4l2/query_capabilities_error.hpp"
+
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
@@ -34,7 +36,7 @@ int V4l2VideoDevice::open(const std::string &path)
 	if (!fd_.isValid())
 		return -errno;
 	v4l2_capability cap = {};
-	int ret = ioctlRetry(VIDIOC_QUERYCAP, &cap);
+	int ret = queryCapabilitiesError(ioctlRetry(VIDIOC_QUERYCAP, &cap));
 	uint32_t caps = cap.capabilities & V4L2_CAP_DEVICE_CAPS ? cap.device_caps : cap.capabilities;
 	if (ret == 0 && (!(caps & V4L2_CAP_VIDEO_CAPTURE) || !(caps & V4L2_CAP_STREAMING)))
 		ret = -ENODEV; // a metadata node, an output, or multi-planar only

@@ -1,5 +1,6 @@
 #include "hal/v4l2/video_output_device.hpp"
 
+#include "hal/v4l2/query_capabilities_error.hpp"
 #include "hal/v4l2/v4l2_video_device.hpp"
 
 #include <cerrno>
@@ -37,7 +38,7 @@ int V4l2OutputDevice::open(const std::string &path, int width, int height, size_
 	if (!fd.isValid())
 		return failed("open", -errno);
 	v4l2_capability cap = {};
-	int ret = ioctlRetry(fd.get(), VIDIOC_QUERYCAP, &cap);
+	int ret = queryCapabilitiesError(ioctlRetry(fd.get(), VIDIOC_QUERYCAP, &cap));
 	if (ret < 0)
 		return failed("not a V4L2 device (query capabilities)", ret);
 	uint32_t caps = cap.capabilities & V4L2_CAP_DEVICE_CAPS ? cap.device_caps : cap.capabilities;
