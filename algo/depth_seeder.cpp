@@ -1,5 +1,7 @@
 #include "algo/depth_seeder.hpp"
 
+#include "algo/halo_board_depth.hpp"
+
 #include "algo/trimap.hpp"
 
 #include <algorithm>
@@ -80,6 +82,18 @@ void DepthSeeder::seed(const DepthFrame &depth, DepthSeeds &out)
 	keepCoreWhereDepthIsSure(out);
 }
 
+namespace {
+
+// The sum over [x0, x1) x [y0, y1) of an integral image with a zero first
+// row and column (stride = width + 1).
+uint32_t boxSum(const std::vector<uint32_t> &s, int stride, int x0, int y0, int x1, int y1)
+{
+	return s[size_t(y1) * stride + x1] - s[size_t(y0) * stride + x1] - s[size_t(y1) * stride + x0] +
+	       s[size_t(y0) * stride + x0];
+}
+
+} // namespace
+
 void DepthSeeder::keepCoreWhereDepthIsSure(DepthSeeds &out)
 {
 	// Erosion keeps a gap the lecturer encloses (between the legs, between
@@ -121,6 +135,9 @@ void DepthSeeder::weighDepth(const DepthFrame &depth, DepthSeeds &out) const
 	const uint16_t *d = depth.depthMm.data(), *surface = out.surfaceMm.data();
 	const uint8_t *labels = out.labels.data();
 	uint8_t *evidence = out.evidence.data();
+	const int haloPx = settings_.haloPx, stride = w + 1;
+	const uint32_t haloArea = uint32_t(2 * haloPx + 1) * uint32_t(2 * haloPx + 1);
+	const int shareQ8 = int(settings_.haloShare * 256.0 + 0.5);
 	for (size_t i = 0; i < size_t(w) * h; ++i) {
 		if (labels[i] == kTrimapBoard) {
 			evidence[i] = 0;
@@ -133,8 +150,18 @@ void DepthSeeder::weighDepth(const DepthFrame &depth, DepthSeeds &out) const
 			continue;
 		}
 		const int zL = surface[i] ? surface[i] : out.lecturerDepthMm;
-		evidence[i] = depthEvidence(d[i], a, haveAmplitude ? depth.intensity.data()[i] : 0, zL,
-					    background_.meanMm(i));
+		int zB = background_.meanMm(i);
+		if (haloPx > 0) {
+			// The board as the halo lets it read here (algo/halo_board_depth.hpp),
+			// from his in-range depths in the box around the pixel.
+			const int x = int(i % size_t(w)), y = int(i / size_t(w));
+			const int x0 = std::max(0, x - haloPx), x1 = std::min(w, x + haloPx + 1);
+			const int y0 = std::max(0, y - haloPx), y1 = std::min(h, y + haloPx + 1);
+			const int zBoard = zB > zL + StaticBackground::kToleranceMm ? zB : zL + kUnknownBoardBehindMm;
+			zB = haloBoardDepthMm(zBoard, boxSum(depthSums_, stride, x0, y0, x1, y1),
+					      boxSum(counts_, stride, x0, y0, x1, y1), haloArea, shareQ8);
+		}
+		evidence[i] = depthEvidence(d[i], a, haveAmplitude ? depth.intensity.data()[i] : 0, zL, zB);
 	}
 }
 
@@ -173,12 +200,9 @@ void DepthSeeder::smoothSurface(const Gray16Image &depthMm, DepthSeeds &out)
 				continue;
 			}
 			const int x0 = std::max(0, x - radius), x1 = std::min(w, x + radius + 1);
-			auto box = [&](const std::vector<uint32_t> &s) {
-				return s[size_t(y1) * stride + x1] - s[size_t(y0) * stride + x1] - s[size_t(y1) * stride + x0] +
-				       s[size_t(y0) * stride + x0];
-			};
-			const uint32_t count = box(counts_);
-			surface[x] = count ? uint16_t((box(depthSums_) + count / 2) / count) : fallback;
+			const uint32_t count = boxSum(counts_, stride, x0, y0, x1, y1);
+			surface[x] = count ? uint16_t((boxSum(depthSums_, stride, x0, y0, x1, y1) + count / 2) / count)
+					   : fallback;
 		}
 	}
 }

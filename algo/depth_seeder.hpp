@@ -13,8 +13,10 @@
 //   undecided = superset minus core, where the evidence decides, graded
 //               by depth (algo/trimap.hpp): subset, in range, out of range;
 //   evidence  = per superset pixel, how much better its depth fits the
-//               lecturer's surface there than the board's learned depth,
-//               given the ToF noise at that pixel (depthEvidence below).
+//               lecturer's surface there than the board's learned depth
+//               as the scattered-light halo lets it read beside him
+//               (algo/halo_board_depth.hpp), given the ToF noise at that
+//               pixel (depthEvidence below).
 #pragma once
 
 #include "algo/frames.hpp"

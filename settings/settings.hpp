@@ -82,6 +82,8 @@ struct SegmentationSettings {
 	int erodePx = 2;                    // 0..20 ToF px: in-range mask -> surely lecturer
 	int dilatePx = 7;                   // 1..40 ToF px: surely lecturer -> superset
 	int corePx = 3;                     // 0..20 ToF px eroded beyond erode_px: the fixed core
+	int haloPx = 4;                     // 0..20 ToF px: the scattered-light halo's reach, 0 = none
+	double haloShare = 0.5;             // 0..0.9: its share where he covers half the box
 	bool operator==(const SegmentationSettings &) const = default;
 };
 

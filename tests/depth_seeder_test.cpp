@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 using namespace depthkey;
 
 namespace {
@@ -91,4 +93,34 @@ TEST(DepthSeeder, CoreLeavesAHaloFilledGapToTheEvidence)
 	EXPECT_EQ(seeds.labels.at(17, 15), kTrimapLecturer);
 	EXPECT_EQ(seeds.labels.at(20, 12), kTrimapLecturer);
 	EXPECT_GE(seeds.evidence.at(17, 15), DepthSeeder::kCoreMinEvidence);
+}
+
+TEST(DepthSeeder, HaloFilledGapReadsAsBoardWithTheHaloModel)
+{
+	// The gap of the test above, its depth the halo's half-way mix, with
+	// the board learned behind him (a few frames of the empty room first):
+	// against the board's own depth the gap looks like him; against the
+	// board as the halo lets it read there (halo_px 4, share 0.5), it is
+	// the board.
+	auto evidenceInGap = [](int haloPx) {
+		SegmentationSettings settings;
+		settings.erodePx = 1;
+		settings.dilatePx = 2;
+		settings.haloPx = haloPx;
+		DepthSeeder seeder;
+		seeder.configure(settings);
+		DepthSeeds seeds;
+		const DepthFrame empty = boardWithLecturer([](int, int) { return uint16_t(2000); });
+		for (int i = 0; i < 20; ++i)
+			seeder.seed(empty, seeds);
+		seeder.seed(boardWithLecturer([](int x, int y) {
+				    return uint16_t(x >= 19 && x < 21 && y >= 14 && y < 16 ? 1600 : 1200);
+			    }),
+			    seeds);
+		return int(seeds.evidence.at(20, 15));
+	};
+	const int without = evidenceInGap(0), with = evidenceInGap(4);
+	std::printf("gap's depth evidence: %d without the halo model, %d with\n", without, with);
+	EXPECT_LT(with, without);
+	EXPECT_LT(with, 128);
 }
