@@ -58,9 +58,26 @@ void BandGraphCut::cut(const RgbImage &colour, const Gray8Image &trimap, const s
 {
 	if (spans.empty())
 		return;
-	const int w = colour.width(), h = colour.height();
 	const BandSpan &last = spans.back();
 	const int pixels = last.first + (last.x1 - last.x0);
+	// The flow is at most the sum of the source capacities, (127 + 4 *
+	// cut_smoothness) a pixel: 32-bit weights whenever that fits (every band
+	// at the default smoothness, even the whole 640x480 frame), 64-bit
+	// beyond. The graph is the frame's largest block and comes and goes with
+	// it (GCGraph has no reset): 32-bit weights make it 80 bytes a band pixel
+	// instead of 104, and the cut is the same, integer arithmetic without
+	// overflow either way.
+	if (int64_t(pixels) * (int64_t(kConfidenceLecturer) + 4 * int64_t(smoothness_)) <= INT32_MAX)
+		cutWith<int32_t>(colour, trimap, spans, pixels, confidence, decisions);
+	else
+		cutWith<int64_t>(colour, trimap, spans, pixels, confidence, decisions);
+}
+
+template<typename Weight>
+void BandGraphCut::cutWith(const RgbImage &colour, const Gray8Image &trimap, const std::vector<BandSpan> &spans,
+			   int pixels, const uint8_t *confidence, uint8_t *decisions)
+{
+	const int w = colour.width(), h = colour.height();
 	// The first span of each row (spans are row-major), for the pixel below.
 	rowFirstSpan_.assign(size_t(h) + 2, int(spans.size()));
 	for (int i = int(spans.size()) - 1; i >= 0; --i)
@@ -68,9 +85,7 @@ void BandGraphCut::cut(const RgbImage &colour, const Gray8Image &trimap, const s
 	for (int y = h; y >= 0; --y)
 		rowFirstSpan_[size_t(y)] = std::min(rowFirstSpan_[size_t(y)], rowFirstSpan_[size_t(y) + 1]);
 
-	// 64-bit weights: the total flow sums up to (127 + 4 * cut_smoothness)
-	// a pixel over the band, beyond 2^31 for the largest settings.
-	cv::detail::GCGraph<int64_t> graph(unsigned(pixels), unsigned(4 * pixels));
+	cv::detail::GCGraph<Weight> graph(unsigned(pixels), unsigned(4 * pixels));
 	int edges = 0;
 	terminal_.resize(size_t(pixels));
 	for (int k = 0; k < pixels; ++k)

@@ -12,9 +12,10 @@
 // superset's border instead of through the noise of the per-pixel decision.
 //
 // The max-flow is OpenCV's (cv::detail::GCGraph, the Boykov-Kolmogorov
-// algorithm grabCut uses), in 64-bit integers. It has no reset, so its graph is
-// made anew each frame: the one stage that allocates per frame (a handful of
-// blocks, sized by the band; tests/pipeline_test.cpp bounds them).
+// algorithm grabCut uses), in 32-bit integers where the flow cannot overflow
+// them, else 64-bit. It has no reset, so its graph is made anew each frame:
+// the one stage that allocates per frame (a handful of blocks, sized by the
+// band; tests/pipeline_test.cpp bounds them).
 #pragma once
 
 #include "algo/image.hpp"
@@ -48,6 +49,10 @@ public:
 	int edgeWeight(Rgb8 a, Rgb8 b) const;
 
 private:
+	template<typename Weight>
+	void cutWith(const RgbImage &colour, const Gray8Image &trimap, const std::vector<BandSpan> &spans, int pixels,
+		     const uint8_t *confidence, uint8_t *decisions);
+
 	int smoothness_ = 0;
 	// smoothness * exp(-d2 / (2 sigma^2)) by squared RGB distance d2, up to
 	// where it rounds to 0.

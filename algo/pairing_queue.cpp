@@ -19,10 +19,14 @@ void PairingQueue::configure(int64_t offsetNs, uint64_t maxSkewNs, uint64_t dela
 
 size_t PairingQueue::slotsFor(uint64_t delayNs, int colourFps)
 {
-	// Frames arriving within the delay, one being keyed, one spare for
-	// jitter.
+	// The frames arriving within the delay: the newest and those before it
+	// whose delay has not run out (at 150 ms and 40 ms a frame: 0, 40, 80
+	// and 120 ms old). Holding them keys each at its time; a frame that
+	// comes early (jitter) finds the ring full and keys the oldest a little
+	// early (next() with makeRoom), as one more slot did before, which
+	// cost a whole frame (0.9 MB at 640x480) for that.
 	const uint64_t perFrameNs = 1'000'000'000ull / uint64_t(std::max(1, colourFps));
-	return std::clamp<size_t>(size_t(delayNs / perFrameNs) + 2, 1, kMaxSlots);
+	return std::clamp<size_t>(size_t(delayNs / perFrameNs) + 1, 1, kMaxSlots);
 }
 
 void PairingQueue::clear()
@@ -34,21 +38,21 @@ void PairingQueue::clear()
 void PairingQueue::addColour(const ColourFrame &frame, uint64_t nowNs)
 {
 	if (count_ == slotCount_)
-		pop(); // full: the caller did not key the oldest in time; it is lost
+		pop(); // full: the caller did not make room (next() with makeRoom); it is lost
 	Slot &slot = slots_[(first_ + count_) % slotCount_];
 	slot.frame = frame; // same size: the vector reuses its storage
 	slot.deadlineNs = nowNs + delayNs_;
 	count_++;
 }
 
-bool PairingQueue::due(const Slot &slot, uint64_t nowNs) const
+bool PairingQueue::due(const Slot &slot, uint64_t nowNs, bool makeRoom) const
 {
-	return count_ == slotCount_ || nowNs >= slot.deadlineNs;
+	return (makeRoom && count_ == slotCount_) || nowNs >= slot.deadlineNs;
 }
 
-bool PairingQueue::next(uint64_t nowNs, Keying &out)
+bool PairingQueue::next(uint64_t nowNs, Keying &out, bool makeRoom)
 {
-	if (!count_ || !due(slots_[first_], nowNs))
+	if (!count_ || !due(slots_[first_], nowNs, makeRoom))
 		return false;
 	out.colour = &slots_[first_].frame;
 	out.depth = pairer_.bracket(out.colour->timestampNs);

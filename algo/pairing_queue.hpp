@@ -7,8 +7,13 @@
 // before it and the one just after it (FramePairer::bracket).
 //
 // A held frame is due when it has waited delay_ms since it arrived, or when
-// the ring is full (a colour camera faster than configured); it is then
-// keyed with the depth frames around its capture that have come by then. A
+// the ring is full and another frame is about to come (a colour camera
+// faster than configured); it is then keyed with the depth frames around its
+// capture that have come by then. The ring holds the frames that arrive
+// within one delay and no more (4 at 150 ms, 25 fps): keying is synchronous,
+// so the frame being keyed needs no slot of its own, and the room a new
+// frame needs is made before it is added (next() with makeRoom) rather than
+// by a spare slot. A
 // constant delay, rather than leaving as soon as the later depth frame is
 // in, keeps the output as even as the input: a recorder or a virtual webcam
 // sees 25 frames a second, not a burst of three each time a depth frame
@@ -36,7 +41,7 @@ public:
 	static constexpr size_t kMaxSlots = 16;
 
 	// slots: frames held at most (1..kMaxSlots); slotsFor() gives what a
-	// delay needs at a frame rate.
+	// delay needs at a frame rate: the frames that arrive within it.
 	void configure(int64_t offsetNs, uint64_t maxSkewNs, uint64_t delayNs, size_t slots);
 	static size_t slotsFor(uint64_t delayNs, int colourFps);
 	void setOffset(int64_t offsetNs) { pairer_.configure(offsetNs, maxSkewNs_); }
@@ -47,12 +52,14 @@ public:
 	void addColour(const ColourFrame &frame, uint64_t nowNs);
 
 	// The oldest held frame when it is due at nowNs, bracketed with depth;
-	// nullptr when none is due. Valid until pop(), addColour() or addDepth().
+	// false when none is due. makeRoom: a colour frame is about to be
+	// added, so a full ring's oldest frame is due too (keyed early rather
+	// than lost). Valid until pop(), addColour() or addDepth().
 	struct Keying {
 		const ColourFrame *colour = nullptr;
 		FramePairer::Bracket depth;
 	};
-	bool next(uint64_t nowNs, Keying &out);
+	bool next(uint64_t nowNs, Keying &out, bool makeRoom = false);
 	void pop();
 
 	size_t held() const { return count_; }
@@ -65,7 +72,7 @@ private:
 		ColourFrame frame;
 		uint64_t deadlineNs = 0;
 	};
-	bool due(const Slot &slot, uint64_t nowNs) const;
+	bool due(const Slot &slot, uint64_t nowNs, bool makeRoom) const;
 
 	FramePairer pairer_;
 	std::array<Slot, kMaxSlots> slots_;

@@ -186,16 +186,19 @@ void Daemon::onColourFrame(const ColourFrame &frame)
 	colourHeight_ = frame.rgb.height();
 	recorder_.recordColour(frame);
 	lastColourNs_ = loop_.nowUs() * 1000u; // when it came: a late camera clock must not look stale
+	// A full ring keys its oldest frame first, early, rather than lose it.
+	keyDueFrames(true);
 	pairing_.addColour(frame, loop_.nowUs() * 1000u);
 	keyDueFrames();
 }
 
-void Daemon::keyDueFrames()
+void Daemon::keyDueFrames(bool makeRoom)
 {
 	const uint64_t nowNs = loop_.nowUs() * 1000u;
 	PairingQueue &queue = pairing_.queue();
 	PairingQueue::Keying keying;
-	while (queue.next(nowNs, keying)) {
+	while (queue.next(nowNs, keying, makeRoom)) {
+		makeRoom = false; // one frame's room
 		keyFrame(keying);
 		queue.pop();
 	}

@@ -54,7 +54,7 @@ private:
 	void onDepthFrame(const DepthFrame &frame);
 	// Keys and publishes every held colour frame that is due, then arms a
 	// timer for the next one (pairing.delay_ms).
-	void keyDueFrames();
+	void keyDueFrames(bool makeRoom = false);
 	void keyFrame(const PairingQueue::Keying &keying);
 	void onDeviceStatus(const std::string &device, const DeviceStatus &status);
 	void onFrameTick();

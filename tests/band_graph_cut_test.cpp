@@ -201,3 +201,38 @@ TEST(BandGraphCut, IsolatedBandPixelsAreDecidedByTheirOwnTerms)
 	cut.cut(colour, trimap, spans, confidence, decisions);
 	EXPECT_EQ(decisions[1], 255); // enclosed by the lecturer
 }
+
+TEST(BandGraphCut, TheSameCutWithTheNarrowAndTheWideWeights)
+{
+	// A band of 66 000 pixels (330 x 200), a clean colour edge at x = 170,
+	// evidence that says nothing: at cut_smoothness 5000 the flow's bound
+	// (66 000 * (128 + 4 * 5000)) fits 32-bit weights, at 10000 it does not
+	// and the graph is built with 64-bit ones. Both must cut along the edge
+	// (every weight is the smoothness or 0 there: any other cut costs rows
+	// of it), so the two cuts are the same one.
+	const int w = 340, h = 200, edge = 170;
+	RgbImage colour(w, h);
+	Gray8Image trimap(w, h);
+	for (int y = 0; y < h; ++y)
+		for (int x = 0; x < w; ++x) {
+			colour.at(x, y) = x < edge ? Rgb8{ 30, 40, 36 } : Rgb8{ 200, 200, 190 };
+			trimap.at(x, y) = x < 5 ? kTrimapLecturer : x >= 335 ? kTrimapBoard : kTrimapUndecided;
+		}
+	const std::vector<BandSpan> spans = spansOf(trimap);
+	const size_t n = size_t(spans.back().first + spans.back().x1 - spans.back().x0);
+	ASSERT_EQ(n, 66000u);
+	std::vector<uint8_t> confidence(n), narrow(n), wide(n);
+	for (size_t k = 0; k < n; ++k)
+		confidence[k] = uint8_t(120 + k % 17); // 120..136: no side
+	BandGraphCut cut;
+	cut.configure(5000, 7);
+	cut.cut(colour, trimap, spans, confidence.data(), narrow.data());
+	cut.configure(10000, 7);
+	cut.cut(colour, trimap, spans, confidence.data(), wide.data());
+	EXPECT_EQ(narrow, wide);
+	int wrong = 0;
+	for (const BandSpan &s : spans)
+		for (int x = s.x0; x < s.x1; ++x)
+			wrong += (wide[size_t(s.first + x - s.x0)] != 0) != (x < edge);
+	EXPECT_EQ(wrong, 0);
+}

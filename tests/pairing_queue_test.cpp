@@ -96,9 +96,35 @@ TEST(PairingQueue, AFullRingLetsTheOldestGoInOrder)
 	PairingQueue::Keying k;
 	for (uint64_t i = 0; i < 3; ++i)
 		q.addColour(colourAt(1000 + 40 * i, i), (1000 + 40 * i) * kMs);
-	// Full: the oldest is due although neither depth nor the delay came.
-	ASSERT_TRUE(q.next(1080 * kMs, k));
+	// Full, and a frame is coming: the oldest is due although neither depth
+	// nor the delay came. Full with no frame coming, it waits its time.
+	EXPECT_FALSE(q.next(1080 * kMs, k));
+	ASSERT_TRUE(q.next(1120 * kMs, k, true));
 	EXPECT_EQ(k.colour->sequence, 0u);
 	q.pop();
-	EXPECT_FALSE(q.next(1080 * kMs, k));
+	EXPECT_FALSE(q.next(1120 * kMs, k, true));
+}
+
+TEST(PairingQueue, HoldsTheFramesOfOneDelayAndKeysEachAtItsTime)
+{
+	// 150 ms at 25 fps: 0, 40, 80 and 120 ms old are held, 4 frames.
+	EXPECT_EQ(PairingQueue::slotsFor(150 * kMs, 25), 4u);
+	EXPECT_EQ(PairingQueue::slotsFor(0, 25), 1u);
+	PairingQueue q;
+	q.configure(0, 150 * kMs, 150 * kMs, PairingQueue::slotsFor(150 * kMs, 25));
+	PairingQueue::Keying k;
+	uint64_t keyed = 0;
+	for (uint64_t i = 0; i < 20; ++i) {
+		const uint64_t now = (1000 + 40 * i) * kMs;
+		// As the daemon does: what is due, room for the frame, the frame.
+		for (uint64_t t = now - 40 * kMs + kMs; t <= now; t += kMs)
+			while (q.next(t, k, t == now)) {
+				EXPECT_EQ(t, k.colour->timestampNs + 150 * kMs); // never early
+				EXPECT_EQ(k.colour->sequence, keyed++);
+				q.pop();
+			}
+		q.addColour(colourAt(1000 + 40 * i, i), now);
+	}
+	EXPECT_EQ(keyed, 16u);
+	EXPECT_EQ(q.held(), 4u);
 }

@@ -423,10 +423,12 @@ int main(int argc, char **argv)
 		if (!o.saveSequence.empty() && saveError >= 0)
 			saveError = saver.writeDepth(depth);
 	};
-	// Scores every held frame due at nowNs; false on a write error.
-	auto scoreDue = [&](uint64_t nowNs) {
+	// Scores every held frame due at nowNs (makeRoom: and a full ring's
+	// oldest, a frame is about to come); false on a write error.
+	auto scoreDue = [&](uint64_t nowNs, bool makeRoom) {
 		PairingQueue::Keying k;
-		while ((o.frames == 0 || average.frames() < o.frames) && queue.next(nowNs, k)) {
+		while ((o.frames == 0 || average.frames() < o.frames) && queue.next(nowNs, k, makeRoom)) {
+			makeRoom = false;
 			const ColourFrame &keyed = *k.colour;
 			const Gray8Image &truthOf = heldTruths.front();
 			const DepthFrame *depth = k.depth.before ? k.depth.before : k.depth.after;
@@ -479,15 +481,15 @@ int main(int argc, char **argv)
 		}
 		if (!depthSeen)
 			continue; // starting up: no depth camera has delivered yet
-		if (!scoreDue(colour.timestampNs))
+		if (!scoreDue(colour.timestampNs, true))
 			return 1;
 		queue.addColour(colour, colour.timestampNs);
 		heldTruths.push_back(truth);
-		if (!scoreDue(colour.timestampNs))
+		if (!scoreDue(colour.timestampNs, false))
 			return 1;
 	}
 	// A finished sequence: what is still held is keyed with what came.
-	if (ret == 0 && !scoreDue(UINT64_MAX))
+	if (ret == 0 && !scoreDue(UINT64_MAX, false))
 		return 1;
 	if (csv)
 		std::fclose(csv);

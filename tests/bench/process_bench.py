@@ -12,7 +12,9 @@ Prints, for issue 15's targets (figures, never a pass/fail: no timed test):
     READY=1 on a NOTIFY_SOCKET of ours, as systemd would see it, then after
     N seconds VmRSS, VmHWM and VmRSS split into anonymous memory (heap,
     frame buffers), file-backed pages (code and libraries) and shared memory
-    (the output rings), from /proc/PID/status;
+    (the output rings), from /proc/PID/status, and the largest VmRSS read
+    every 0.2 s over the second half of the N seconds (the per-frame graph of
+    the band's cut comes and goes: a single sample may or may not count it);
   - the same on replayed cameras at 640x480: a sequence of the simulated
     lecture recorded once by depthkey-eval into BUILD/bench-sequence, the
     board a solid colour. Sim minus replay is what the simulator costs;
@@ -191,10 +193,18 @@ def run_daemon(bin_dir, config, work, seconds, extra_env=None):
             message = sock.recv(4096).decode(errors="replace")
             if "READY=1" in message.split("\n"):
                 ready_ms = (time.monotonic() - start) * 1000.0
-        drain_for(sock, seconds)
+        drain_for(sock, seconds / 2)
+        largest = 0
+        end = time.monotonic() + seconds / 2
+        while time.monotonic() < end:
+            drain_for(sock, min(0.2, end - time.monotonic()))
+            if proc.poll() is not None:
+                break
+            largest = max(largest, status_kb(proc.pid).get("VmRSS", 0))
         if proc.poll() is not None:
             raise RuntimeError("depthkeyd exited early (see %s/daemon.log)" % work)
         status = status_kb(proc.pid)
+        status["VmRSSLargest"] = max(largest, status.get("VmRSS", 0))
         breakdown = smaps_breakdown(proc.pid)
     finally:
         proc.terminate()
@@ -298,7 +308,7 @@ def main():
             for _ in range(args.runs):
                 ms, status, breakdown = run_daemon(bin_dir, config, work, args.seconds)
                 ready.append(ms)
-                for key in ("VmRSS", "VmHWM", "RssAnon", "RssFile", "RssShmem"):
+                for key in ("VmRSS", "VmRSSLargest", "VmHWM", "RssAnon", "RssFile", "RssShmem"):
                     rss.setdefault(key, []).append(status.get(key, 0) / 1024.0)
             for name in ("composite", "lecturer", "lecturer.board"):
                 try:
@@ -307,7 +317,9 @@ def main():
                     pass
             print("depthkeyd on %s:" % title)
             print("  exec to READY=1: %s" % spread(ready, "ms"))
-            for key, label in (("VmRSS", "VmRSS after %gs" % args.seconds), ("VmHWM", "VmHWM (peak)"),
+            for key, label in (("VmRSS", "VmRSS after %gs" % args.seconds),
+                               ("VmRSSLargest", "largest VmRSS, %g-%gs" % (args.seconds / 2, args.seconds)),
+                               ("VmHWM", "VmHWM (peak)"),
                                ("RssAnon", "  of it anonymous (heap, buffers)"),
                                ("RssFile", "  of it file-backed (code, libraries)"),
                                ("RssShmem", "  of it shared memory (output rings)")):
