@@ -10,7 +10,9 @@ void boardWarpRow_C(const BoardWarpRow &r, int opacityQ8)
 
 BoardWarpRowFn boardWarpRowFn(KernelPath path)
 {
-	if (path == KernelPath::Ssse3 && cpuHasSsse3())
+	if (path == KernelPath::Avx2 && cpuHasAvx2())
+		return boardWarpRow_AVX2;
+	if ((path == KernelPath::Ssse3 || path == KernelPath::Avx2) && cpuHasSsse3())
 		return boardWarpRow_SSSE3;
 	if (sse2Rows(path))
 		return boardWarpRow_SSE2;

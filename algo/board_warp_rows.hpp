@@ -1,7 +1,8 @@
 // The row kernels of the board-geometry composite (algo/board_compositor.hpp),
-// a plain C reference (_C) and SSE2, SSSE3 and NEON variants (_SSE2,
-// board_warp_rows_sse2.cpp; _SSSE3, board_warp_rows_ssse3.cpp; _NEON,
-// board_warp_rows_neon.cpp) that give the same bytes
+// a plain C reference (_C) and SSE2, SSSE3, AVX2 and NEON variants (_SSE2,
+// board_warp_rows_sse2.cpp; _SSSE3, board_warp_rows_ssse3.cpp; _AVX2,
+// board_warp_rows_avx2.cpp; _NEON, board_warp_rows_neon.cpp) that give the
+// same bytes
 // (tests/board_warp_rows_test.cpp).
 //
 // Each output pixel has a precomputed source: the index of the top-left of
@@ -86,10 +87,13 @@ void boardWarpRow_C(const BoardWarpRow &row, int opacityQ8);
 void boardWarpRow_SSE2(const BoardWarpRow &row, int opacityQ8);
 // Only where cpuHasSsse3() (built for x86 alone: elsewhere the C row).
 void boardWarpRow_SSSE3(const BoardWarpRow &row, int opacityQ8);
+// Only where cpuHasAvx2() (which implies SSSE3; built for x86 alone).
+void boardWarpRow_AVX2(const BoardWarpRow &row, int opacityQ8);
 void boardWarpRow_NEON(const BoardWarpRow &row, int opacityQ8);
 
 using BoardWarpRowFn = void (*)(const BoardWarpRow &row, int opacityQ8);
-// The row of path on this CPU (Ssse3 without SSSE3: the SSE2 row); chosen
+// The row of path on this CPU (Avx2 without AVX2: the Ssse3 path's row;
+// Ssse3 without SSSE3: the SSE2 row); chosen
 // once per image.
 BoardWarpRowFn boardWarpRowFn(KernelPath path);
 void boardWarpRow(KernelPath path, const BoardWarpRow &row, int opacityQ8);

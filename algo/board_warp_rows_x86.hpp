@@ -1,7 +1,9 @@
-// What the SSE2 and SSSE3 rows of the board warp (board_warp_rows_sse2.cpp,
-// board_warp_rows_ssse3.cpp) share, in SSE2 alone: the row's pointers, a
-// group of four output pixels' source taps, and the groups that need no
-// arithmetic. Included only where __SSE2__ is defined.
+// What the SSE2, SSSE3 and AVX2 rows of the board warp
+// (board_warp_rows_sse2.cpp, board_warp_rows_ssse3.cpp,
+// board_warp_rows_avx2.cpp) share, in SSE2 alone: the row's pointers, a
+// group of four output pixels' source taps, the groups that need no
+// arithmetic, and the pshufb masks of the SSSE3 plan (the AVX2 row uses them
+// in each 128-bit half). Included only where __SSE2__ is defined.
 #pragma once
 
 #include "algo/board_warp_rows.hpp"
@@ -87,6 +89,55 @@ inline bool groupWithoutArithmetic(const BoardWarpRow &r, const RowPointers &p, 
 	std::memcpy(p.composite + x, p.board + x, 4 * sizeof(Rgb8));
 	_mm_storeu_si128(reinterpret_cast<__m128i *>(p.layer + x), _mm_setzero_si128());
 	return true;
+}
+
+// Four RGB pixels as 16 bytes, the first 12 theirs: one load where the row
+// has 16 bytes from p (whole = true), else no byte beyond read.
+inline __m128i loadRgbBytes(const Rgb8 *p, bool whole)
+{
+	if (whole)
+		return _mm_loadu_si128(reinterpret_cast<const __m128i *>(p));
+	uint32_t last;
+	std::memcpy(&last, reinterpret_cast<const uint8_t *>(p) + 8, 4);
+	return _mm_unpacklo_epi64(_mm_loadl_epi64(reinterpret_cast<const __m128i *>(p)), _mm_cvtsi32_si128(int(last)));
+}
+
+// The first 12 bytes of rgb stored (four RGB pixels), no byte beyond written.
+inline void storeRgbBytes(Rgb8 *p, __m128i rgb)
+{
+	uint8_t *b = reinterpret_cast<uint8_t *>(p);
+	_mm_storel_epi64(reinterpret_cast<__m128i *>(b), rgb);
+	const uint32_t last = uint32_t(_mm_cvtsi128_si32(_mm_srli_si128(rgb, 8)));
+	std::memcpy(b + 8, &last, 4);
+}
+
+// The pshufb masks of the SSSE3 plan (board_warp_rows_ssse3.cpp), per 128
+// bits; Z is a zero byte.
+namespace shuffle {
+constexpr char Z = char(0x80);
+// 8-byte tap pairs [a left, a right, b left, b right] -> 16-bit [a, b].
+alignas(16) inline constexpr char kLeftTaps[16] = { 0, Z, 1, Z, 2, Z, 3, Z, 8, Z, 9, Z, 10, Z, 11, Z };
+alignas(16) inline constexpr char kRightTaps[16] = { 4, Z, 5, Z, 6, Z, 7, Z, 12, Z, 13, Z, 14, Z, 15, Z };
+// 16-bit [fx0 fy0 fx1 fy1 fx2 fy2 fx3 fy3] -> a pair's fractions, four lanes each.
+alignas(16) inline constexpr char kFx01[16] = { 0, 1, 0, 1, 0, 1, 0, 1, 4, 5, 4, 5, 4, 5, 4, 5 };
+alignas(16) inline constexpr char kFy01[16] = { 2, 3, 2, 3, 2, 3, 2, 3, 6, 7, 6, 7, 6, 7, 6, 7 };
+alignas(16) inline constexpr char kFx23[16] = { 8, 9, 8, 9, 8, 9, 8, 9, 12, 13, 12, 13, 12, 13, 12, 13 };
+alignas(16) inline constexpr char kFy23[16] = { 10, 11, 10, 11, 10, 11, 10, 11, 14, 15, 14, 15, 14, 15, 14, 15 };
+// Four RGBA samples -> their alphas, 16-bit lanes 0-3.
+alignas(16) inline constexpr char kAlphaWords[16] = { 3, Z, 7, Z, 11, Z, 15, Z, Z, Z, Z, Z, Z, Z, Z, Z };
+// 16-bit lanes 0-3 -> a pair's, four lanes each.
+alignas(16) inline constexpr char kLanes01[16] = { 0, 1, 0, 1, 0, 1, 0, 1, 2, 3, 2, 3, 2, 3, 2, 3 };
+alignas(16) inline constexpr char kLanes23[16] = { 4, 5, 4, 5, 4, 5, 4, 5, 6, 7, 6, 7, 6, 7, 6, 7 };
+// Four RGB pixels (12 bytes) -> 16-bit RGBx of a pair.
+alignas(16) inline constexpr char kRgb01[16] = { 0, Z, 1, Z, 2, Z, Z, Z, 3, Z, 4, Z, 5, Z, Z, Z };
+alignas(16) inline constexpr char kRgb23[16] = { 6, Z, 7, Z, 8, Z, Z, Z, 9, Z, 10, Z, 11, Z, Z, Z };
+// Four RGBx pixels -> 12 RGB bytes.
+alignas(16) inline constexpr char kPackRgb[16] = { 0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, Z, Z, Z, Z };
+} // namespace shuffle
+
+inline __m128i loadMask(const char (&mask)[16])
+{
+	return _mm_load_si128(reinterpret_cast<const __m128i *>(mask));
 }
 
 } // namespace depthkey::warp_x86

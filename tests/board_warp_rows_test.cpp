@@ -1,4 +1,4 @@
-// The SSE2, SSSE3 and NEON rows of the board warp give the C row's bytes, for random
+// The SSE2, SSSE3, AVX2 and NEON rows of the board warp give the C row's bytes, for random
 // sources, fractions (0 and 255 included), unseen pixels, zero and full
 // alpha, and every opacity class; for every count up to a few groups of four
 // and a long odd one, at every start offset (unaligned map, layer and
@@ -43,7 +43,7 @@ TEST(BoardWarpRows, SimdRowsMatchC)
 		board[x] = { uint8_t(byte(rng)), uint8_t(byte(rng)), uint8_t(byte(rng)) };
 	}
 	std::vector<int> counts{ kMaxCount };
-	for (int c = 0; c <= 13; ++c)
+	for (int c = 0; c <= 25; ++c)
 		counts.push_back(c);
 	for (KernelPath path : simd_test::kSimdPaths)
 		for (int opacity : { 0, 1, 128, 255, 256 })
@@ -108,5 +108,8 @@ TEST(BoardWarpRows, EachPathRunsItsOwnRow)
 	EXPECT_EQ(boardWarpRowFn(KernelPath::C), &boardWarpRow_C);
 	EXPECT_EQ(boardWarpRowFn(KernelPath::Sse2), &boardWarpRow_SSE2);
 	EXPECT_EQ(boardWarpRowFn(KernelPath::Ssse3), cpuHasSsse3() ? &boardWarpRow_SSSE3 : &boardWarpRow_SSE2);
+	EXPECT_EQ(boardWarpRowFn(KernelPath::Avx2), cpuHasAvx2()    ? &boardWarpRow_AVX2
+						    : cpuHasSsse3() ? &boardWarpRow_SSSE3
+								    : &boardWarpRow_SSE2);
 	EXPECT_EQ(boardWarpRowFn(KernelPath::Neon), &boardWarpRow_NEON);
 }

@@ -23,8 +23,8 @@ TEST(KernelPath, ForceCEnvironmentVariableSelectsTheCRows)
 	else
 		unsetenv("DEPTHKEY_FORCE_C");
 #if defined(__x86_64__)
-	EXPECT_EQ(bestKernelPath(), cpuHasSsse3() ? KernelPath::Ssse3 : KernelPath::Sse2)
-		<< "SSE2 is the x86-64 baseline, SSSE3 where the CPU has it";
+	EXPECT_EQ(bestKernelPath(), cpuHasAvx2() ? KernelPath::Avx2 : cpuHasSsse3() ? KernelPath::Ssse3 : KernelPath::Sse2)
+		<< "SSE2 is the x86-64 baseline, SSSE3 and AVX2 where the CPU has them";
 #elif defined(__aarch64__)
 	EXPECT_EQ(bestKernelPath(), KernelPath::Neon) << "NEON is the AArch64 baseline";
 #endif

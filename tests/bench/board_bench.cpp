@@ -60,8 +60,9 @@ Frame lectureFrame(double timeS)
 // next (40 ms on) in turn, so that the layer is cleared where he no longer
 // is (the other cases repeat one frame: nothing to clear), 4 = as 3, with a
 // new board picture every frame (a capture stick's: the board copied whole,
-// not only where he was). range(2): 1 = the SSE2 rows where the CPU has
-// SSSE3 (what that saves), 0 = the best rows (DEPTHKEY_FORCE_C: the C rows).
+// not only where he was). range(2): which rows, 0 = the best this CPU has
+// (DEPTHKEY_FORCE_C: the C rows), 1 = the SSE2 rows, 2 = the SSSE3 rows
+// (what the better ones save).
 void BM_BoardWarpComposite(benchmark::State &state)
 {
 	constexpr double kFrameS = 0.04;
@@ -76,7 +77,8 @@ void BM_BoardWarpComposite(benchmark::State &state)
 	}
 	BoardCompositor compositor;
 	compositor.configure(f.colourToBoard, 640, 480, kBoardW, kBoardH);
-	compositor.setKernelPath(state.range(2) ? KernelPath::Sse2 : kernelPathFromEnvironment());
+	const KernelPath rows[] = { kernelPathFromEnvironment(), KernelPath::Sse2, KernelPath::Ssse3 };
+	compositor.setKernelPath(rows[state.range(2)]);
 	RgbImage composite;
 	RgbaImage layer, cameraLayer[2];
 	Roi rois[2] = { roi, roi };
@@ -121,12 +123,15 @@ void BM_CameraGeometryComposite(benchmark::State &state)
 BENCHMARK(BM_BoardWarpComposite)
 	->Args({ 1, 0, 0 })
 	->Args({ 1, 0, 1 })
+	->Args({ 1, 0, 2 })
 	->Args({ 1, 3, 0 })
 	->Args({ 1, 4, 0 })
-	->Args({ 1, 4, 1 })
+	->Args({ 1, 4, 2 })
 	->Args({ 8, 0, 0 })
+	->Args({ 8, 3, 0 })
+	->Args({ 8, 4, 0 })
 	->Args({ 8, 1, 0 })
 	->Args({ 8, 2, 0 })
-	->ArgNames({ "t", "whole", "sse2" })
+	->ArgNames({ "t", "whole", "rows" })
 	->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CameraGeometryComposite)->Args({ 1 })->Args({ 8 })->ArgNames({ "t" })->Unit(benchmark::kMicrosecond);
