@@ -95,7 +95,7 @@ struct dk_shm_header {
 	uint32_t version;       /* DK_SHM_VERSION */
 	uint32_t header_size;   /* sizeof(struct dk_shm_header) */
 	uint32_t slot_count;    /* DK_SHM_MIN_SLOTS..DK_SHM_MAX_SLOTS */
-	uint64_t generation;    /* new on every writer (re)start; 0 = header being written */
+	uint64_t generation;    /* new on every writer (re)start; 0 = header being written, or object retired */
 	uint32_t width;
 	uint32_t height;
 	uint32_t stride;        /* bytes per row */

@@ -116,8 +116,10 @@ int ShmRingWriter::resolveGroup(const std::string &group, unsigned int *gid)
 // An object left by an earlier writer (this process before a reload, a
 // crashed daemon, or anyone who created the name first) is never reused: its
 // owner, mode or group could be anybody's. Ours and unlocked, it is marked
-// stale for readers still mapping it (a new generation, offline: they get
-// -ESTALE and re-open by name) and unlinked. Another user's is refused.
+// retired (generation 0, offline) and unlinked. Readers still mapping it get
+// -ESTALE and re-open by name; a reader that opens it by name between the
+// mark and the unlink gets -EAGAIN and retries, so none can settle on an
+// object that will never change again. Another user's is refused.
 int ShmRingWriter::retireStale(const std::string &name)
 {
 	UniqueFd fd(shm_open(name.c_str(), O_RDWR | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0));
@@ -147,8 +149,7 @@ int ShmRingWriter::retireStale(const std::string &name)
 		if (map != MAP_FAILED) {
 			auto *h = static_cast<dk_shm_header *>(map);
 			__atomic_store_n(&h->online, 0, __ATOMIC_RELAXED);
-			uint64_t previous = __atomic_load_n(&h->generation, __ATOMIC_RELAXED);
-			__atomic_store_n(&h->generation, newGeneration(previous), __ATOMIC_RELEASE);
+			__atomic_store_n(&h->generation, 0, __ATOMIC_RELEASE);
 			munmap(map, sizeof(dk_shm_header));
 		}
 	}

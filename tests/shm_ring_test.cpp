@@ -236,6 +236,33 @@ TEST(ShmRing, WriterRestartChangesGeneration)
 	dk_shm_close(&r);
 }
 
+// A reader may open the old object by name in the instant between the new
+// writer marking it retired and unlinking it. Such a reader must be told to
+// try again, not settle on an object that never changes again (the cause of
+// a shmcat that timed out following a restart under load).
+TEST(ShmRing, RetiredObjectAsksReadersToTryAgain)
+{
+	ShmName name;
+	ShmRingWriter writer;
+	ASSERT_EQ(writer.open(name.str(), 8, 4, DK_SHM_FORMAT_RGB24, 3, ""), 0);
+	auto src = pattern(8, 4, 3, 24, 1);
+	ASSERT_EQ(writer.write(src.data(), 24, 5, DK_SHM_FLAG_ONLINE), 0);
+	// The old object as such a reader would find it: opened before the unlink.
+	const int oldFd = shm_open(name.c_str(), O_RDONLY, 0);
+	ASSERT_GE(oldFd, 0);
+	ASSERT_EQ(writer.open(name.str(), 8, 4, DK_SHM_FORMAT_RGB24, 3, ""), 0);
+	struct stat st{};
+	ASSERT_EQ(fstat(oldFd, &st), 0);
+	void *map = mmap(nullptr, static_cast<size_t>(st.st_size), PROT_READ, MAP_SHARED, oldFd, 0);
+	ASSERT_NE(map, MAP_FAILED);
+	const auto *old = static_cast<const dk_shm_header *>(map);
+	EXPECT_EQ(old->generation, 0u) << "retired: dk_shm_open answers -EAGAIN on it";
+	EXPECT_EQ(old->online, 0u);
+	EXPECT_NE(writer.generation(), 0u);
+	munmap(map, static_cast<size_t>(st.st_size));
+	close(oldFd);
+}
+
 // A reader still mapping the large object must not fault (SIGBUS) when the
 // writer restarts smaller: the restart creates a fresh object, and the old
 // one lives on, unlinked, for as long as it is mapped.
