@@ -47,7 +47,7 @@ void PreviewEncoder::stop()
 bool PreviewEncoder::wanted(PreviewStage stage, uint64_t nowNs) const
 {
 	const Slot &slot = slots_[static_cast<size_t>(stage)];
-	if (slot.watchers.load(std::memory_order_relaxed) == 0 || !thread_.joinable())
+	if (slot.waiting.load(std::memory_order_relaxed) == 0 || !thread_.joinable())
 		return false;
 	return nowNs - slot.lastOfferNs.load(std::memory_order_relaxed) >= periodNs_;
 }
@@ -103,7 +103,11 @@ std::shared_ptr<const EncodedFrame> PreviewEncoder::waitNewer(PreviewStage stage
 {
 	Slot &slot = slots_[static_cast<size_t>(stage)];
 	std::unique_lock lock(slot.outMutex);
-	slot.newFrame.wait_for(lock, timeout, [&] { return stopping_ || slot.sequence > after; });
+	if (timeout.count() > 0 && !stopping_ && slot.sequence <= after) {
+		slot.waiting++;
+		slot.newFrame.wait_for(lock, timeout, [&] { return stopping_ || slot.sequence > after; });
+		slot.waiting--;
+	}
 	if (stopping_ || slot.sequence <= after)
 		return nullptr;
 	return slot.latest;

@@ -6,8 +6,11 @@
 // Nothing here makes the pipeline wait: offer() only try-locks its stage's
 // slot and skips the frame when the worker is taking the previous one, and
 // the worker encodes whichever frame is newest when it gets to it (a slow
-// encoder loses frames). With no watcher, wanted() is false and the event
-// loop copies nothing: the frame cost is one atomic load per stage.
+// encoder loses frames). A stage is copied and encoded only while an HTTP
+// thread waits for its next JPEG: with no watcher, or only watchers that
+// stopped reading (a client whose socket is full is not asked for more),
+// wanted() is false and the event loop copies nothing: the frame cost is
+// one atomic load per stage, and a stalled client costs no CPU.
 #pragma once
 
 #include "algo/image.hpp"
@@ -43,19 +46,22 @@ public:
 	void stop();
 	bool running() const { return thread_.joinable(); }
 
-	// Event loop side. wanted(): somebody watches the stage and its last
-	// copy is at least 1 / maxFps old (nowNs CLOCK_MONOTONIC).
+	// Event loop side. wanted(): somebody waits in waitNewer() for the
+	// stage and its last copy is at least 1 / maxFps old (nowNs
+	// CLOCK_MONOTONIC).
 	bool wanted(PreviewStage stage, uint64_t nowNs) const;
 	// Copies the image into the stage's slot; false (frame skipped) when
 	// the worker holds the slot. Never waits.
 	bool offer(PreviewStage stage, const StageImage &image, uint64_t captureNs, uint64_t nowNs);
 
-	// HTTP side. A watcher makes the stage encoded until it unwatches.
+	// HTTP side. watch()/unwatch() count the clients of a stage (status
+	// page); a client asks for frames by waiting in waitNewer().
 	void watch(PreviewStage stage);
 	void unwatch(PreviewStage stage);
 	int watchers(PreviewStage stage) const;
 	// The newest JPEG of the stage with a sequence above `after`, waiting
-	// up to timeout; null on timeout or once stopped.
+	// up to timeout; null on timeout or once stopped. While it waits
+	// (timeout > 0) the stage is wanted.
 	std::shared_ptr<const EncodedFrame> waitNewer(PreviewStage stage, uint64_t after,
 						      std::chrono::milliseconds timeout);
 	PreviewEncoderStats stats() const;
@@ -70,6 +76,7 @@ private:
 		Gray8Image gray;
 		uint64_t captureNs = 0;
 		std::atomic<int> watchers{ 0 };
+		std::atomic<int> waiting{ 0 }; // threads inside waitNewer()
 		std::atomic<uint64_t> lastOfferNs{ 0 };
 		// The published JPEG, guarded by outMutex.
 		std::mutex outMutex;

@@ -9,6 +9,9 @@
 
 #include <benchmark/benchmark.h>
 
+#include <atomic>
+#include <thread>
+
 using namespace depthkey;
 
 namespace {
@@ -49,14 +52,23 @@ void BM_PreviewJpeg640x480(benchmark::State &state)
 }
 BENCHMARK(BM_PreviewJpeg640x480)->Arg(0)->Arg(1)->ArgName("grey")->Unit(benchmark::kMillisecond);
 
-// The event loop's side per frame: range(0) = 0 nobody watches (five atomic
-// loads), 1 the composite is watched (one 640x480 copy into its slot).
+// The event loop's side per frame: range(0) = 0 nobody waits for a JPEG
+// (five atomic loads), 1 a client waits for the composite (one 640x480 copy
+// into its slot).
 void BM_PreviewOffer(benchmark::State &state)
 {
 	PreviewEncoder encoder;
 	encoder.start(80, 1000000); // no frame cap: every offer copies
+	std::atomic<bool> done{ false };
+	std::thread client;
 	if (state.range(0))
-		encoder.watch(PreviewStage::Composite);
+		client = std::thread([&] {
+			uint64_t seen = 0;
+			while (!done)
+				if (auto frame = encoder.waitNewer(PreviewStage::Composite, seen,
+								   std::chrono::milliseconds(100)))
+					seen = frame->sequence;
+		});
 	const ColourFrame frame = simulatedColour();
 	StageImage stage{ "", StageKind::Colour, &frame.rgb };
 	uint64_t now = 1'000'000'000u;
@@ -66,8 +78,9 @@ void BM_PreviewOffer(benchmark::State &state)
 			if (encoder.wanted(static_cast<PreviewStage>(s), now))
 				encoder.offer(static_cast<PreviewStage>(s), stage, now, now);
 	}
-	if (state.range(0))
-		encoder.unwatch(PreviewStage::Composite);
+	done = true;
+	if (client.joinable())
+		client.join();
 	encoder.stop();
 }
 BENCHMARK(BM_PreviewOffer)->Arg(0)->Arg(1)->ArgName("watched")->Unit(benchmark::kMicrosecond);

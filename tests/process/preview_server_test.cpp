@@ -219,24 +219,39 @@ TEST_F(PreviewServerTest, OffLoopbackWithoutPasswordIsRefused)
 	EXPECT_FALSE(server_.running());
 }
 
-TEST(PreviewEncoder, CopiesNothingWithoutAWatcher)
+TEST(PreviewEncoder, CopiesOnlyWhileSomebodyWaits)
 {
 	PreviewEncoder encoder;
 	encoder.start(80, 25);
 	EXPECT_FALSE(encoder.wanted(PreviewStage::Colour, 1'000'000'000u));
+	// A client that watches but does not ask (its socket is full) costs
+	// nothing.
 	encoder.watch(PreviewStage::Colour);
-	EXPECT_TRUE(encoder.wanted(PreviewStage::Colour, 1'000'000'000u));
+	EXPECT_FALSE(encoder.wanted(PreviewStage::Colour, 1'000'000'000u)) << "watched, nobody waits";
+	std::shared_ptr<const EncodedFrame> frame;
+	std::thread client([&] { frame = encoder.waitNewer(PreviewStage::Colour, 0, 5s); });
+	const auto deadline = std::chrono::steady_clock::now() + 5s;
+	while (!encoder.wanted(PreviewStage::Colour, 1'000'000'000u) && std::chrono::steady_clock::now() < deadline)
+		std::this_thread::sleep_for(1ms);
+	ASSERT_TRUE(encoder.wanted(PreviewStage::Colour, 1'000'000'000u)) << "a client waits";
 	RgbImage image(kW, kH, Rgb8{ 10, 20, 30 });
 	ASSERT_TRUE(encoder.offer(PreviewStage::Colour, { "", StageKind::Colour, &image }, 5, 1'000'000'000u));
-	EXPECT_FALSE(encoder.wanted(PreviewStage::Colour, 1'010'000'000u)) << "within 1/25 s of the last copy";
-	EXPECT_TRUE(encoder.wanted(PreviewStage::Colour, 1'040'000'000u));
-	auto frame = encoder.waitNewer(PreviewStage::Colour, 0, 2s);
+	client.join();
 	ASSERT_TRUE(frame);
 	EXPECT_EQ(frame->captureNs, 5u);
 	EXPECT_EQ(frame->width, kW);
 	EXPECT_EQ(frame->height, kH);
 	EXPECT_EQ(frame->sequence, 1u);
-	EXPECT_FALSE(encoder.waitNewer(PreviewStage::Colour, 1, 100ms)) << "no newer frame";
+	EXPECT_FALSE(encoder.wanted(PreviewStage::Colour, 1'040'000'000u)) << "served: nobody waits now";
+	EXPECT_TRUE(encoder.waitNewer(PreviewStage::Colour, 0, 0ms)) << "the newest JPEG without waiting";
+	// Waiting again asks for a copy, but at most max_fps of them.
+	std::thread again([&] { frame = encoder.waitNewer(PreviewStage::Colour, 1, 300ms); });
+	while (!encoder.wanted(PreviewStage::Colour, 1'040'000'000u) && std::chrono::steady_clock::now() < deadline)
+		std::this_thread::sleep_for(1ms);
+	EXPECT_FALSE(encoder.wanted(PreviewStage::Colour, 1'010'000'000u)) << "within 1/25 s of the last copy";
+	EXPECT_TRUE(encoder.wanted(PreviewStage::Colour, 1'040'000'000u));
+	again.join();
+	EXPECT_FALSE(frame) << "no newer frame was offered";
 	encoder.unwatch(PreviewStage::Colour);
 	EXPECT_FALSE(encoder.wanted(PreviewStage::Colour, 2'000'000'000u));
 	encoder.stop();
