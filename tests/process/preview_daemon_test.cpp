@@ -20,6 +20,7 @@
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <thread>
+#include <vector>
 
 using namespace std::chrono_literals;
 using depthkey::test::curlGet;
@@ -122,6 +123,20 @@ TEST_F(PreviewDaemon, PageStreamStatusAndMetrics)
 	ASSERT_EQ(status.code, 200);
 	EXPECT_EQ(status.contentType, "application/json");
 	nlohmann::json j = nlohmann::json::parse(status.body);
+	// The depth latency is measured from motion once 30 depth frames are
+	// in (pairing.offset_ms = "auto"); in a sanitizer build's first seconds
+	// (one in several runs) the first estimate landed at -39 ms before it
+	// settled at the simulator's +40. The status is polled until the estimate
+	// has had 8 s more.
+	const auto settled = std::chrono::steady_clock::now() + 8s;
+	std::vector<double> latencies{ j["depth_latency_ms"].get<double>() };
+	while (latencies.back() <= 0.0 && std::chrono::steady_clock::now() < settled) {
+		std::this_thread::sleep_for(1s);
+		status = curlGet(url + "/status.json");
+		ASSERT_EQ(status.code, 200);
+		j = nlohmann::json::parse(status.body);
+		latencies.push_back(j["depth_latency_ms"].get<double>());
+	}
 	ASSERT_EQ(j["devices"].size(), 2u);
 	EXPECT_EQ(j["devices"][0]["role"], "colour");
 	EXPECT_EQ(j["devices"][0]["name"], "sim-colour");
@@ -132,7 +147,7 @@ TEST_F(PreviewDaemon, PageStreamStatusAndMetrics)
 	EXPECT_GT(j["output"]["frames"].get<int>(), 25);
 	EXPECT_GT(j["pairing"]["paired"].get<int>(), 0);
 	EXPECT_EQ(j["calibration"]["calibrated"], false);
-	EXPECT_GT(j["depth_latency_ms"].get<double>(), 0.0);
+	EXPECT_GT(latencies.back(), 0.0) << "depth latency " << testing::PrintToString(latencies) << " ms";
 	EXPECT_EQ(j["readers"]["composite"], 0);
 	EXPECT_GT(j["preview"]["encoded"].get<int>(), 3);
 
