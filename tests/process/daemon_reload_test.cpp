@@ -8,6 +8,7 @@
 #include "hal/shm_ring_writer.hpp"
 #include "tests/process/daemon_process.hpp"
 #include "tests/sample_calibration.hpp"
+#include "tests/wait_until.hpp"
 
 #include <gtest/gtest.h>
 
@@ -85,10 +86,8 @@ protected:
 		ASSERT_TRUE(daemon_.waitForNotify("READY=1", 10s)) << why << "\n" << daemon_.log();
 		// 25 fps: four frames take 160 ms; 5 s leaves room for a sanitizer
 		// build on a busy machine, while a stalled loop never gets there.
-		const auto deadline = std::chrono::steady_clock::now() + 5s;
-		while (latestFrame(prefix_ + ".composite") <= before + 3 && daemon_.running() &&
-		       std::chrono::steady_clock::now() < deadline)
-			std::this_thread::sleep_for(20ms);
+		depthkey::test::waitUntil(
+			[&] { return latestFrame(prefix_ + ".composite") > before + 3 || !daemon_.running(); }, 5s, 20ms);
 		EXPECT_TRUE(daemon_.running()) << why;
 		EXPECT_GT(latestFrame(prefix_ + ".composite"), before + 3) << why << "\n" << daemon_.log();
 	}
@@ -226,13 +225,12 @@ TEST_F(DaemonReload, ParsingALargeConfigDoesNotStallFrames)
 	}
 	// The gaps are watched until a reload has been refused (READY=1 again;
 	// SIGHUPs during a parse are folded into one more).
-	const auto deadline = std::chrono::steady_clock::now() + 10s;
-	for (;;) {
-		daemon_.pollNotify();
-		if (daemon_.countNotify("READY=1") > readyBefore || std::chrono::steady_clock::now() >= deadline)
-			break;
-		std::this_thread::sleep_for(20ms);
-	}
+	depthkey::test::waitUntil(
+		[&] {
+			daemon_.pollNotify();
+			return daemon_.countNotify("READY=1") > readyBefore;
+		},
+		10s, 20ms);
 	stop = true;
 	watcher.join();
 	EXPECT_TRUE(daemon_.running());

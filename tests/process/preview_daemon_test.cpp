@@ -128,15 +128,20 @@ TEST_F(PreviewDaemon, PageStreamStatusAndMetrics)
 	// (one in several runs) the first estimate landed at -39 ms before it
 	// settled at the simulator's +40. The status is polled until the estimate
 	// has had 8 s more.
-	const auto settled = std::chrono::steady_clock::now() + 8s;
 	std::vector<double> latencies{ j["depth_latency_ms"].get<double>() };
-	while (latencies.back() <= 0.0 && std::chrono::steady_clock::now() < settled) {
-		std::this_thread::sleep_for(1s);
-		status = curlGet(url + "/status.json");
-		ASSERT_EQ(status.code, 200);
-		j = nlohmann::json::parse(status.body);
-		latencies.push_back(j["depth_latency_ms"].get<double>());
-	}
+	depthkey::test::waitUntil(
+		[&] {
+			if (latencies.back() > 0.0)
+				return true;
+			status = curlGet(url + "/status.json");
+			if (status.code != 200)
+				return true; // asserted below
+			j = nlohmann::json::parse(status.body);
+			latencies.push_back(j["depth_latency_ms"].get<double>());
+			return latencies.back() > 0.0;
+		},
+		8s, 1s);
+	ASSERT_EQ(status.code, 200);
 	ASSERT_EQ(j["devices"].size(), 2u);
 	EXPECT_EQ(j["devices"][0]["role"], "colour");
 	EXPECT_EQ(j["devices"][0]["name"], "sim-colour");
