@@ -16,7 +16,8 @@ namespace {
 // kColourStaleMinNs, publish NO SIGNAL. One lost or error-flagged buffer is
 // two periods without a frame (80 ms at 25 fps), and a loaded box adds the
 // time a keying holds the loop: the HIL suite saw a NO SIGNAL frame for one
-// error buffer (webcam-error-buffer-dropped) with three periods alone.
+// error buffer (webcam-error-buffer-dropped) with three periods alone; and
+// a held loop restarts the grace (onFrameTick).
 constexpr uint64_t kColourStalePeriods = 3;
 constexpr uint64_t kColourStaleMinNs = 250'000'000;
 // Reader heartbeats are sampled this often: a dead reader is gone within
@@ -258,9 +259,17 @@ void Daemon::onFrameTick()
 {
 	uint64_t nowNs = loop_.nowUs() * 1000u;
 	uint64_t staleNs = std::max<uint64_t>(kColourStalePeriods * 1'000'000'000u / settings_.colour.fps, kColourStaleMinNs);
+	// A tick this late means the loop itself was held (a starved box, a
+	// paused VM, a long keying): frames may wait unread in the cameras'
+	// queues. The camera is stale only after the loop could watch it for
+	// staleNs, so the grace starts again when the loop resumes.
+	if (lastFrameTickNs_ != 0 && nowNs - lastFrameTickNs_ > staleNs / 2)
+		loopResumedNs_ = nowNs;
+	lastFrameTickNs_ = nowNs;
 	// Frames still held for pairing (pairing.delay_ms) are on their way out:
 	// a NO SIGNAL frame now would come between them, out of order.
-	if (haveColour_ && (pairing_.queue().held() > 0 || lastColourNs_ + staleNs > nowNs))
+	if (haveColour_ &&
+	    (pairing_.queue().held() > 0 || std::max(lastColourNs_, loopResumedNs_) + staleNs > nowNs))
 		return;
 	publishNoSignal(nowNs);
 }

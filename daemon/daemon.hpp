@@ -113,6 +113,8 @@ private:
 	FramePairing pairing_;     // colour frames waiting for depth, the depth camera's offset
 	bool haveColour_ = false;
 	uint64_t lastColourNs_ = 0;   // arrival (loop clock) of the last colour frame
+	uint64_t lastFrameTickNs_ = 0; // loop clock of the last onFrameTick
+	uint64_t loopResumedNs_ = 0;   // when the loop last resumed after being held
 	NoSignalPicture noSignal_;
 
 	TestFault testFault_ = TestFault::None;

@@ -2,6 +2,7 @@
 // counts them, and can be told to fail.
 #pragma once
 
+#include "hal/depthkey_shm.h"
 #include "hal/frame_sink.hpp"
 
 #include <cerrno>
@@ -34,6 +35,7 @@ public:
 			return ret;
 		composite_ = image;
 		compositeCount_++;
+		noColourCount_ += (flags & DK_SHM_FLAG_COLOUR_OK) == 0;
 		captureNs_ = captureNs;
 		flags_ = flags;
 		return 0;
@@ -88,6 +90,8 @@ public:
 	const RgbImage &composite() const { return composite_; }
 	const RgbaImage &lecturer() const { return lecturer_; }
 	uint64_t compositeCount() const { return compositeCount_; }
+	// Composites published without the colour camera (NO SIGNAL frames).
+	uint64_t noColourCount() const { return noColourCount_; }
 	uint64_t lecturerCount() const { return lecturerCount_; }
 	uint64_t lastCaptureNs() const { return captureNs_; }
 	uint32_t lastFlags() const { return flags_; }
@@ -113,6 +117,7 @@ private:
 	uint64_t boardLecturerCount_ = 0;
 	RgbaImage lecturer_;
 	uint64_t compositeCount_ = 0;
+	uint64_t noColourCount_ = 0;
 	uint64_t lecturerCount_ = 0;
 	uint64_t captureNs_ = 0;
 	uint32_t flags_ = 0;

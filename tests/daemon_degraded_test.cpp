@@ -10,6 +10,7 @@
 
 #include <csignal>
 #include <ctime>
+#include <unistd.h>
 #include <functional>
 #include <vector>
 
@@ -220,4 +221,47 @@ TEST(DaemonDegraded, WithoutDepthAHeldColourFrameLeavesAfterTheDelayWithItsTimes
 	EXPECT_EQ(publishedLater, 1u) << "published after the 60 ms delay, by the timer alone";
 	EXPECT_EQ(publishedNs, capturedNs) << "the colour camera's capture time, not the time it left";
 	EXPECT_FALSE(flags & DK_SHM_FLAG_ONLINE);
+}
+
+// A loop held for longer than the colour grace (a starved box, a paused VM, a
+// slow keying) has frames waiting unread in the cameras' queues: the frame
+// tick that runs first when the loop resumes must not call that NO SIGNAL.
+// The HIL suite saw it in CI (webcam-error-buffer-dropped, flags 0x0).
+TEST(DaemonDegraded, AHeldLoopIsNotNoSignal)
+{
+	Harness h;
+	Settings settings;
+	settings.colour.width = 32;
+	settings.colour.height = 24;
+	settings.colour.fps = 50;
+	settings.pairing.delayMs = 0;
+	settings.preview.listen = "127.0.0.1:0";
+	Daemon daemon("unused.toml", {}, h.factory());
+	ASSERT_EQ(daemon.start(settings), 0);
+	ColourFrame colour;
+	colour.rgb = RgbImage(32, 24, Rgb8{ 1, 2, 3 });
+	DepthFrame depth;
+	depth.depthMm = Gray16Image(8, 6, 1000);
+	depth.amplitude = Gray16Image(8, 6, 5000);
+	depth.intensity = Gray16Image(8, 6, 5000);
+	auto deliverBoth = [&] {
+		depth.timestampNs = colour.timestampNs = monotonicNs();
+		h.depth->deliver(depth);
+		h.colour->deliver(colour);
+	};
+	uint64_t noColourBefore = 0, framesBefore = 0;
+	Script script(daemon, 20000);
+	for (int i = 0; i < 5; ++i)
+		script.then(deliverBoth);
+	script.then([&] {
+		noColourBefore = h.sink->noColourCount();
+		framesBefore = h.sink->compositeCount();
+		usleep(700000); // the loop is held; the cameras' frames would queue
+	});
+	for (int i = 0; i < 5; ++i)
+		script.then(deliverBoth);
+	script.run();
+	unblockSignals();
+	EXPECT_EQ(h.sink->noColourCount(), noColourBefore) << "a NO SIGNAL frame after the loop was held";
+	EXPECT_GE(h.sink->compositeCount() - framesBefore, 5u);
 }
