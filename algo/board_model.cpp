@@ -51,6 +51,37 @@ void BoardModel::learn(const RgbImage &colour, const Gray8Image &trimap)
 	phase_ = (phase_ + 1) % kRowStride;
 }
 
+void BoardModel::teach(const RgbImage &predicted, const Gray8Image &mask)
+{
+	const int w = predicted.width(), h = predicted.height();
+	if (model_.width() != w || model_.height() != h || mask.width() != w || mask.height() != h)
+		return;
+	uint64_t predictedSum[3] = {}, modelSum[3] = {};
+	for (int y = 0; y < h; ++y) {
+		const Rgb8 *p = predicted.row(y);
+		const uint8_t *t = mask.row(y);
+		Rgba8 *m = model_.row(y);
+		for (int x = 0; x < w; ++x) {
+			if (t[x] != kTrimapBoard)
+				continue;
+			if (m[x].a) {
+				predictedSum[0] += p[x].r;
+				predictedSum[1] += p[x].g;
+				predictedSum[2] += p[x].b;
+				modelSum[0] += m[x].r;
+				modelSum[1] += m[x].g;
+				modelSum[2] += m[x].b;
+			}
+			update(m[x], p[x]);
+		}
+	}
+	// The light as the picture predicts it now, against the model before
+	// this step: the model follows at a quarter a frame, the gain at once.
+	for (int k = 0; k < 3; ++k)
+		if (modelSum[k])
+			gainQ8_[k] = int(std::clamp<uint64_t>((predictedSum[k] * 256 + modelSum[k] / 2) / modelSum[k], 128, 512));
+}
+
 // m += (c - m) / 4, rounded to nearest (an arithmetic shift of d + 2 floors;
 // the mean settles within 2 levels of a steady colour, below the sensor
 // noise); a pixel never seen takes the colour as it is.

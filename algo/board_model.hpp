@@ -50,6 +50,11 @@ public:
 	void learnDecided(const RgbImage &colour, const Gray8Image &trimap, const Gray8Image &alpha, const Roi &roi,
 			  int marginPx);
 
+	// Taught a predicted board (algo/board_picture_prior.hpp): every pixel
+	// whose mask is kTrimapBoard moves towards the prediction as a visit
+	// would, on every row; the light's gain is left as learn() measured it.
+	void teach(const RgbImage &predicted, const Gray8Image &mask);
+
 	// The model of row y: RGB, and in .a the number of visits (saturating at
 	// 255; 0 = never seen as board). Empty before the first learn().
 	const Rgba8 *row(int y) const { return model_.row(y); }

@@ -42,6 +42,34 @@ void Pipeline::setBoardImage(const RgbImage &board)
 	boardDirty_ = true;
 }
 
+void Pipeline::setBoardGeometry(const Homography &colourToBoard, const RadialLens &lens, int boardWidth,
+				int boardHeight)
+{
+	colourToBoard_ = colourToBoard;
+	boardLens_ = lens;
+	boardWidth_ = boardWidth;
+	boardHeight_ = boardHeight;
+	picturePrior_.clear(); // configured at the next frame's colour size
+}
+
+void Pipeline::clearBoardGeometry()
+{
+	boardWidth_ = boardHeight_ = 0;
+	picturePrior_.clear();
+}
+
+void Pipeline::teachBoardFromPicture(const RgbImage &colour)
+{
+	if (!boardPicture_ || boardWidth_ <= 0)
+		return;
+	const int w = colour.width(), h = colour.height();
+	if (!picturePrior_.configuredFor(w, h) &&
+	    picturePrior_.configure(w, h, colourToBoard_, boardLens_, boardWidth_, boardHeight_) < 0)
+		return;
+	if (picturePrior_.predict(*boardPicture_, colour, boardModel_))
+		boardModel_.teach(picturePrior_.predicted(), picturePrior_.onDisplay());
+}
+
 void Pipeline::restartLearning()
 {
 	learner_.reset();
@@ -152,6 +180,7 @@ void Pipeline::process(const ColourFrame &colour, const FramePairer::Bracket &de
 	const int marginPx = settings_.learning.marginPx * seedMapper_.colourPixelsPerTofPixel();
 	learner_.learn(colour.rgb, trimap, marginPx, classifier_);
 	boardModel_.learn(colour.rgb, trimap);
+	teachBoardFromPicture(colour.rgb);
 	// Until the first signatures exist (no lecturer or no board seen yet)
 	// the classifier calls every colour lecturer: the output is the depth
 	// superset, which never cuts the lecturer off.

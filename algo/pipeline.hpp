@@ -12,6 +12,7 @@
 #pragma once
 
 #include "algo/board_model.hpp"
+#include "algo/board_picture_prior.hpp"
 #include "algo/colour_learner.hpp"
 #include "algo/depth_mapper.hpp"
 #include "algo/depth_seeder.hpp"
@@ -58,6 +59,15 @@ public:
 	// The board's picture for the camera-geometry composite (scaled to the
 	// colour size, nearest neighbour); an empty image = board.colour.
 	void setBoardImage(const RgbImage &board);
+	// The board's own picture as the electronic board delivers it, and the
+	// homography colour px -> its px (the board calibration): the board
+	// model is then taught the board the picture predicts
+	// (algo/board_picture_prior.hpp). setBoardGeometry once per H (an
+	// allocation), setBoardPicture before each frame (kept by pointer, not
+	// copied; null = no picture this frame).
+	void setBoardGeometry(const Homography &colourToBoard, const RadialLens &lens, int boardWidth, int boardHeight);
+	void clearBoardGeometry();
+	void setBoardPicture(const RgbImage *picture) { boardPicture_ = picture; }
 	// The row kernels to use (algo/kernel_path.hpp); the best by default.
 	void setKernelPath(KernelPath path)
 	{
@@ -93,6 +103,7 @@ public:
 	void confidence(const RgbImage &colour, Gray8Image &out) const;
 
 private:
+	void teachBoardFromPicture(const RgbImage &colour);
 	void ensureSizes(int colourWidth, int colourHeight, int depthWidth, int depthHeight);
 	void renderBoard(int width, int height);
 	void restartLearning();
@@ -130,6 +141,11 @@ private:
 	SeedMapper seedMapper_;
 	SioxRefiner refiner_;
 	BoardModel boardModel_;
+	BoardPicturePrior picturePrior_;
+	const RgbImage *boardPicture_ = nullptr;
+	Homography colourToBoard_;
+	RadialLens boardLens_;
+	int boardWidth_ = 0, boardHeight_ = 0;
 	FusedEvidence evidence_;
 	GuidedFilter guided_;
 	BoundaryUnmixing unmixing_;

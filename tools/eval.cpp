@@ -16,8 +16,10 @@
 #include "config/config_loader.hpp"
 #include "wiring/pipeline_setup.hpp"
 #include "hal/preview/snapshot_writer.hpp"
+#include "config/board_calibration_file.hpp"
 #include "hal/recording/sequence_reader.hpp"
 #include "hal/recording/sequence_writer.hpp"
+#include "hal/sim/board_display.hpp"
 #include "hal/sim/sim_sequence.hpp"
 
 #include <chrono>
@@ -230,11 +232,49 @@ public:
 		configurePipeline(pipeline_, settings, mapping_, files.board);
 	}
 
+	// The simulated lecture's board picture (board.backend "sim"), as the
+	// daemon's board source delivers it, with the board calibration of
+	// board.homography_file: the board model is taught what the picture
+	// predicts (algo/board_picture_prior.hpp). Without a usable file,
+	// nothing (said once).
+	void useSimBoard()
+	{
+		if (settings_.board.backend != "sim")
+			return;
+		if (settings_.board.homographyFile.empty()) {
+			std::fprintf(stderr, "depthkey-eval: board.homography_file is empty: the board model "
+					     "learns without the board's picture\n");
+			return;
+		}
+		BoardCalibrationResult board = loadBoardCalibration(settings_.board.homographyFile);
+		if (!board.ok()) {
+			std::fprintf(stderr, "depthkey-eval: board calibration refused: %s\n",
+				     board.errors.front().toString().c_str());
+			return;
+		}
+		display_.configure(settings_.sim, settings_.board.width);
+		const BoardCalibration &c = board.calibration;
+		if (c.colourWidth != settings_.colour.width || c.colourHeight != settings_.colour.height ||
+		    c.boardWidth != display_.width() || c.boardHeight != display_.height()) {
+			std::fprintf(stderr, "depthkey-eval: board calibration for colour %dx%d and board %dx%d, "
+					     "but the simulator gives %dx%d and %dx%d\n", c.colourWidth, c.colourHeight,
+				     c.boardWidth, c.boardHeight, settings_.colour.width, settings_.colour.height,
+				     display_.width(), display_.height());
+			return;
+		}
+		pipeline_.setBoardGeometry(c.colourToBoard, c.lens(), c.boardWidth, c.boardHeight);
+		simBoard_ = true;
+	}
+
 	// depth == nullptr: nothing paired, the daemon publishes the colour
 	// picture unkeyed (everything lecturer) and so is it scored.
 	const Gray8Image &run(const ColourFrame &colour, const FramePairer::Bracket &bracket)
 	{
 		const DepthFrame *depth = bracket.before ? bracket.before : bracket.after;
+		if (simBoard_) { // the board source's work in the daemon: not timed
+			display_.render(double(colour.timestampNs) / 1e9, picture_);
+			pipeline_.setBoardPicture(&picture_);
+		}
 		auto start = std::chrono::steady_clock::now();
 		const Gray8Image *alpha;
 		if (!depth) {
@@ -333,6 +373,9 @@ private:
 	MappingModel mapping_;
 	bool calibrated_ = false;
 	Pipeline pipeline_;
+	SimBoardDisplay display_;
+	RgbImage picture_;
+	bool simBoard_ = false;
 	PipelineOutput output_;
 	Gray16Image mapped_;
 	Gray8Image alpha_;
@@ -399,6 +442,8 @@ int main(int argc, char **argv)
 	}
 
 	Method method(settings, o.method == "depth-only");
+	if (o.simSeed >= 0)
+		method.useSimBoard();
 	SegmentationScorer scorer(2);
 	ScoreAverage average;
 	// Paired as the daemon pairs: colour frames wait for depth from both

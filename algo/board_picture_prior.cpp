@@ -1,0 +1,91 @@
+#include "algo/board_picture_prior.hpp"
+
+#include "algo/trimap.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+
+namespace depthkey {
+
+int BoardPicturePrior::configure(int colourWidth, int colourHeight, const Homography &colourToBoard,
+				 const RadialLens &lens, int boardWidth, int boardHeight)
+{
+	boardOf_.clear();
+	if (colourWidth < 1 || colourHeight < 1 || boardWidth < 1 || boardHeight < 1)
+		return -EINVAL;
+	colourWidth_ = colourWidth;
+	colourHeight_ = colourHeight;
+	boardWidth_ = boardWidth;
+	boardHeight_ = boardHeight;
+	boardOf_.assign(size_t(colourWidth) * colourHeight, -1);
+	predicted_ = RgbImage(colourWidth, colourHeight, Rgb8{ 0, 0, 0 });
+	onDisplay_ = Gray8Image(colourWidth, colourHeight, kTrimapLecturer);
+	for (int y = 0; y < colourHeight; ++y)
+		for (int x = 0; x < colourWidth; ++x) {
+			double ix, iy, u, v;
+			if (!lens.undistort(x, y, ix, iy) || !colourToBoard.apply(ix, iy, u, v))
+				continue;
+			// Nearest board pixel; off the picture = off the display.
+			const double ur = std::floor(u + 0.5), vr = std::floor(v + 0.5);
+			if (!(ur >= 0 && vr >= 0 && ur < boardWidth && vr < boardHeight))
+				continue;
+			const size_t k = size_t(y) * colourWidth + x;
+			boardOf_[k] = int32_t(vr) * boardWidth + int32_t(ur);
+			onDisplay_.data()[k] = kTrimapBoard;
+		}
+	for (int &g : gainQ8_)
+		g = 256;
+	return 0;
+}
+
+bool BoardPicturePrior::predict(const RgbImage &picture, const RgbImage &colour, const BoardModel &model)
+{
+	if (boardOf_.empty() || picture.width() != boardWidth_ || picture.height() != boardHeight_ ||
+	    colour.width() != colourWidth_ || colour.height() != colourHeight_ || model.empty())
+		return false;
+	const Rgb8 *board = picture.data();
+	uint64_t colourSum[3] = {}, pictureSum[3] = {};
+	size_t fitted = 0;
+	for (int y = 0; y < colourHeight_; ++y) {
+		const Rgb8 *c = colour.row(y);
+		const int32_t *b = boardOf_.data() + size_t(y) * colourWidth_;
+		for (int x = 0; x < colourWidth_; ++x) {
+			if (b[x] < 0)
+				continue;
+			const int d = model.distance(x, y, c[x]);
+			if (d < 0 || d > kFitDistance)
+				continue;
+			const Rgb8 p = board[b[x]];
+			colourSum[0] += c[x].r;
+			colourSum[1] += c[x].g;
+			colourSum[2] += c[x].b;
+			pictureSum[0] += p.r;
+			pictureSum[1] += p.g;
+			pictureSum[2] += p.b;
+			fitted++;
+		}
+	}
+	if (fitted < kMinFitPixels)
+		return false;
+	// A channel the picture never lights (a pure green board's red) keeps
+	// its previous gain: there is nothing to scale there.
+	for (int k = 0; k < 3; ++k)
+		if (pictureSum[k] >= fitted)
+			gainQ8_[k] = int(std::clamp<uint64_t>((colourSum[k] * 256 + pictureSum[k] / 2) / pictureSum[k], 16, 2048));
+	for (int y = 0; y < colourHeight_; ++y) {
+		const int32_t *b = boardOf_.data() + size_t(y) * colourWidth_;
+		Rgb8 *out = predicted_.row(y);
+		for (int x = 0; x < colourWidth_; ++x) {
+			if (b[x] < 0)
+				continue;
+			const Rgb8 p = board[b[x]];
+			out[x] = { uint8_t(std::min(255, (p.r * gainQ8_[0] + 128) >> 8)),
+				   uint8_t(std::min(255, (p.g * gainQ8_[1] + 128) >> 8)),
+				   uint8_t(std::min(255, (p.b * gainQ8_[2] + 128) >> 8)) };
+		}
+	}
+	return true;
+}
+
+} // namespace depthkey

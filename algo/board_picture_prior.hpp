@@ -1,0 +1,74 @@
+// The board as its own picture says it looks (issue 11): the electronic board
+// delivers its content ([board]), and the board homography H says which board
+// pixel each colour pixel sees. Where the display is seen, the camera's colour
+// of the empty board is predicted from that picture: the board pixel under
+// the colour pixel, times a gain per channel that carries the room light and
+// the camera's response. The board model (algo/board_model.hpp) is taught the
+// prediction every frame, so that it knows the board behind the lecturer, the
+// strokes written beside his hand before they were ever seen, and the board
+// that a wrong decision kept from being learned.
+//
+// Why (docs/accuracy.md, session 10): a board model that knew the empty board
+// everywhere would meet the mean targets (0.971 / 0.910 against 0.966 /
+// 0.887); taught this prediction (the simulator's true H) it scores 0.969 /
+// 0.900, and 0.967 / 0.897 with H 1.5 colour px off.
+//
+// The gain is measured each frame where the colour already matches the board
+// model within kFitDistance (board that is seen and learned): the sum of the
+// colour over the sum of the picture, per channel, Q8. Without kMinFitPixels
+// such pixels (no learned board on the display yet) nothing is predicted.
+//
+// The map from colour pixel to board pixel is computed once per H (nearest
+// board pixel: the camera sees the display at about three board pixels a
+// colour pixel); per frame everything is integer and allocation-free.
+#pragma once
+
+#include "algo/board_model.hpp"
+#include "algo/homography.hpp"
+#include "algo/image.hpp"
+#include "algo/radial_lens.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace depthkey {
+
+class BoardPicturePrior
+{
+public:
+	static constexpr int kFitDistance = 30;     // L1, levels: "this pixel is board as learned"
+	static constexpr size_t kMinFitPixels = 1000;
+
+	// A seen colour pixel is undistorted by the lens, then colourToBoard
+	// maps it to a board picture pixel (u, v) of a boardWidth x boardHeight
+	// picture (config/board_calibration_file.hpp). Returns -EINVAL for
+	// empty sizes.
+	int configure(int colourWidth, int colourHeight, const Homography &colourToBoard, const RadialLens &lens,
+		      int boardWidth, int boardHeight);
+	void clear() { boardOf_.clear(); }
+	bool configured() const { return !boardOf_.empty(); }
+	bool configuredFor(int colourWidth, int colourHeight) const
+	{
+		return configured() && colourWidth == colourWidth_ && colourHeight == colourHeight_;
+	}
+
+	// Predicts the empty board's colour on the display from this frame's
+	// picture; false (nothing predicted) when the sizes differ from the
+	// configured ones or too few pixels were there to measure the gain.
+	bool predict(const RgbImage &picture, const RgbImage &colour, const BoardModel &model);
+
+	// The prediction (valid where onDisplay() is kTrimapBoard, 0) and the
+	// mask in the trimap's vocabulary, so BoardModel::teach() can take it.
+	const RgbImage &predicted() const { return predicted_; }
+	const Gray8Image &onDisplay() const { return onDisplay_; }
+	const int *gainQ8() const { return gainQ8_; }
+
+private:
+	int colourWidth_ = 0, colourHeight_ = 0, boardWidth_ = 0, boardHeight_ = 0;
+	std::vector<int32_t> boardOf_; // per colour pixel: board pixel index, -1 off the display
+	RgbImage predicted_;
+	Gray8Image onDisplay_;
+	int gainQ8_[3] = { 256, 256, 256 };
+};
+
+} // namespace depthkey

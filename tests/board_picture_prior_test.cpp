@@ -1,0 +1,147 @@
+// The board predicted from its own picture (algo/board_picture_prior.hpp):
+// the fixed-point prediction against a double reference (the gain as the
+// ratio of sums, the colour as picture x gain; tolerance 1 level), the map
+// through H, and the board model taught it: a stroke written behind the
+// lecturer, never seen by the camera, matches the model at once.
+#include "algo/board_model.hpp"
+#include "algo/board_picture_prior.hpp"
+#include "algo/trimap.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+
+using namespace depthkey;
+
+namespace {
+
+constexpr int kW = 64, kH = 48;
+
+// A board picture twice the colour size: colour (x, y) sees board (2x, 2y).
+Homography doubling()
+{
+	Homography h;
+	h.h = { 2, 0, 0, 0, 2, 0, 0, 0, 1 };
+	return h;
+}
+
+RgbImage boardPicture(uint64_t seed)
+{
+	RgbImage picture(2 * kW, 2 * kH);
+	uint64_t s = seed;
+	for (int y = 0; y < picture.height(); ++y)
+		for (int x = 0; x < picture.width(); ++x) {
+			s = s * 6364136223846793005ull + 1442695040888963407ull;
+			// A dark green board with some chalk.
+			const bool chalk = (s >> 60) == 0;
+			picture.row(y)[x] = chalk ? Rgb8{ 230, 230, 220 }
+						  : Rgb8{ uint8_t(20 + (s >> 58) % 8), uint8_t(60 + (s >> 50) % 8), uint8_t(40 + (s >> 40) % 8) };
+		}
+	return picture;
+}
+
+// What the camera sees of the empty board: the picture under each pixel
+// times a light of (0.8, 0.9, 1.1).
+RgbImage cameraView(const RgbImage &picture)
+{
+	RgbImage colour(kW, kH);
+	for (int y = 0; y < kH; ++y)
+		for (int x = 0; x < kW; ++x) {
+			const Rgb8 p = picture.row(2 * y)[2 * x];
+			colour.row(y)[x] = { uint8_t(std::lround(p.r * 0.8)), uint8_t(std::lround(p.g * 0.9)),
+					     uint8_t(std::min(255L, std::lround(p.b * 1.1))) };
+		}
+	return colour;
+}
+
+} // namespace
+
+TEST(BoardPicturePrior, PredictsTheCameraColourWithinOneLevelOfTheDoubleReference)
+{
+	const RgbImage picture = boardPicture(1);
+	const RgbImage colour = cameraView(picture);
+	BoardModel model;
+	model.learn(colour, Gray8Image(kW, kH, kTrimapBoard));
+	for (int i = 0; i < BoardModel::kRowStride * BoardModel::kLearnedVisits; ++i)
+		model.learn(colour, Gray8Image(kW, kH, kTrimapBoard));
+
+	BoardPicturePrior prior;
+	ASSERT_EQ(prior.configure(kW, kH, doubling(), RadialLens{}, 2 * kW, 2 * kH), 0);
+	ASSERT_TRUE(prior.predict(picture, colour, model));
+
+	// The double reference: the gain is the ratio of the sums over the
+	// pixels that match the model (all of them here).
+	double sumC[3] = {}, sumP[3] = {};
+	for (int y = 0; y < kH; ++y)
+		for (int x = 0; x < kW; ++x) {
+			const Rgb8 c = colour.row(y)[x], p = picture.row(2 * y)[2 * x];
+			sumC[0] += c.r, sumC[1] += c.g, sumC[2] += c.b;
+			sumP[0] += p.r, sumP[1] += p.g, sumP[2] += p.b;
+		}
+	int worst = 0;
+	for (int y = 0; y < kH; ++y)
+		for (int x = 0; x < kW; ++x) {
+			ASSERT_EQ(prior.onDisplay().row(y)[x], kTrimapBoard);
+			const Rgb8 p = picture.row(2 * y)[2 * x], got = prior.predicted().row(y)[x];
+			const double want[3] = { std::min(255.0, p.r * sumC[0] / sumP[0]),
+						 std::min(255.0, p.g * sumC[1] / sumP[1]),
+						 std::min(255.0, p.b * sumC[2] / sumP[2]) };
+			const int g[3] = { got.r, got.g, got.b };
+			for (int k = 0; k < 3; ++k)
+				worst = std::max(worst, int(std::lround(std::fabs(g[k] - want[k]) + 0.49)));
+		}
+	std::printf("    prediction, fixed vs double: worst %d level(s)\n", worst);
+	EXPECT_LE(worst, 1);
+	EXPECT_NEAR(prior.gainQ8()[0], 0.8 * 256, 3);
+	EXPECT_NEAR(prior.gainQ8()[2], 1.1 * 256, 3);
+}
+
+TEST(BoardPicturePrior, OffThePictureIsOffTheDisplayAndNothingWithoutALearnedBoard)
+{
+	Homography shifted = doubling();
+	shifted.h[2] = -40; // colour x < 20 maps left of the picture
+	BoardPicturePrior prior;
+	ASSERT_EQ(prior.configure(kW, kH, shifted, RadialLens{}, 2 * kW, 2 * kH), 0);
+	EXPECT_EQ(prior.onDisplay().row(10)[5], kTrimapLecturer) << "left of the picture";
+	EXPECT_EQ(prior.onDisplay().row(10)[30], kTrimapBoard);
+	const RgbImage picture = boardPicture(2);
+	BoardModel unlearned;
+	unlearned.learn(cameraView(picture), Gray8Image(kW, kH, kTrimapLecturer)); // nothing is board
+	EXPECT_FALSE(prior.predict(picture, cameraView(picture), unlearned)) << "no gain can be measured";
+	EXPECT_FALSE(prior.predict(RgbImage(10, 10), cameraView(picture), unlearned)) << "another picture size";
+	EXPECT_EQ(prior.configure(0, kH, shifted, RadialLens{}, 2 * kW, 2 * kH), -EINVAL);
+	EXPECT_FALSE(prior.configured());
+}
+
+// The reason for it all: the lecturer stood in front of this part of the
+// board while a stroke appeared there. The camera never saw the stroke, so
+// the learned model still holds the empty board; taught the prediction, the
+// model knows the stroke before he steps away.
+TEST(BoardPicturePrior, AStrokeWrittenBehindTheLecturerIsKnownBeforeItIsSeen)
+{
+	RgbImage picture = boardPicture(3);
+	const RgbImage colour = cameraView(picture);
+	BoardModel model;
+	for (int i = 0; i < BoardModel::kRowStride * 3; ++i)
+		model.learn(colour, Gray8Image(kW, kH, kTrimapBoard));
+	// He covers x 20..29; a chalk stroke appears at row 24 under him.
+	Gray8Image covered(kW, kH, kTrimapBoard);
+	for (int y = 0; y < kH; ++y)
+		for (int x = 20; x < 30; ++x)
+			covered.row(y)[x] = kTrimapLecturer;
+	for (int x = 40; x < 60; ++x)
+		picture.row(48)[x] = Rgb8{ 230, 230, 220 };
+	const Rgb8 strokeSeen = cameraView(picture).row(24)[25];
+	EXPECT_GT(model.distance(25, 24, strokeSeen), 100) << "the learned model alone: empty board there";
+
+	BoardPicturePrior prior;
+	ASSERT_EQ(prior.configure(kW, kH, doubling(), RadialLens{}, 2 * kW, 2 * kH), 0);
+	for (int frame = 0; frame < 20; ++frame) {
+		model.learn(colour, covered); // the camera still sees him there
+		ASSERT_TRUE(prior.predict(picture, colour, model));
+		model.teach(prior.predicted(), prior.onDisplay());
+	}
+	EXPECT_LE(model.distance(25, 24, strokeSeen), 12) << "taught: the stroke is board";
+	EXPECT_LE(model.distance(5, 5, colour.row(5)[5]), 6) << "the board elsewhere still matches";
+}
