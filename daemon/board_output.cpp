@@ -153,16 +153,24 @@ void BoardOutput::updateGeometry()
 			scaled_.resize(ow, oh);
 		scalePicture();
 		showBoardOnly();
-		if (pipeline_)
+		if (pipeline_) {
 			pipeline_->setBoardImage(RgbImage()); // the camera-geometry composite is not published
+			// The board model is taught what the picture predicts
+			// (algo/board_picture_prior.hpp); picture_ is kept in place.
+			pipeline_->setBoardGeometry(c.colourToBoard, c.lens(), pw, ph);
+			pipeline_->setBoardPicture(picture_.width() == pw && picture_.height() == ph ? &picture_ : nullptr);
+		}
 	} else {
 		if (notCalibrated_.empty())
 			notCalibrated_ = "the board calibration's homography is singular";
 		compositor_.clear();
 		if (solidColour())
 			picture_ = RgbImage(); // the pipeline fills its board with the colour itself
-		if (pipeline_)
+		if (pipeline_) {
 			pipeline_->setBoardImage(pipelineBoard());
+			pipeline_->clearBoardGeometry();
+			pipeline_->setBoardPicture(nullptr);
+		}
 	}
 	if (outputWidth() * 100000 + outputHeight() != before && onGeometry_)
 		onGeometry_();
