@@ -19,7 +19,9 @@ constexpr double kMaxResidualPx = 1e4;
 // hundredths; beyond 1 it is a fisheye or a corrupt file.
 constexpr double kMaxLensTerm = 1.0;
 
-void bindBoard(TomlSection &sec, BoardCalibration &c)
+} // namespace
+
+void bindBoardCalibrationSection(TomlSection &sec, BoardCalibration &c)
 {
 	for (std::string_view key : { "date", "colour_width", "colour_height", "board_width", "board_height",
 				      "homography", "points", "rms_px", "max_px" })
@@ -56,8 +58,6 @@ void bindBoard(TomlSection &sec, BoardCalibration &c)
 	sec.require(usable, "homography", "is singular or maps the colour image's middle to infinity");
 }
 
-} // namespace
-
 BoardCalibrationResult parseBoardCalibration(std::string_view text, const std::string &sourceName)
 {
 	BoardCalibrationResult result;
@@ -73,7 +73,7 @@ BoardCalibrationResult parseBoardCalibration(std::string_view text, const std::s
 		if (!root.has("board"))
 			missing.emplace_back("board", "missing section [board]");
 		else
-			root.table("board", [&](TomlSection &sec) { bindBoard(sec, result.calibration); });
+			root.table("board", [&](TomlSection &sec) { bindBoardCalibrationSection(sec, result.calibration); });
 		// [end] is written last: a file cut anywhere before it lacks it.
 		if (!root.has("end"))
 			missing.emplace_back("end", "missing section [end]: the file is cut short");
@@ -104,7 +104,7 @@ BoardCalibrationResult loadBoardCalibration(const std::string &path)
 	return parseBoardCalibration(text, path);
 }
 
-std::string formatBoardCalibration(const BoardCalibration &c)
+std::string formatBoardCalibrationSection(const BoardCalibration &c)
 {
 	std::string h = "[";
 	for (int i = 0; i < 9; ++i)
@@ -115,17 +115,22 @@ std::string formatBoardCalibration(const BoardCalibration &c)
 	const std::string lens = "# The colour lens's radial terms, about the image centre at a focal length\n"
 				 "# of one image width; the homography maps the undistorted pixels.\n"
 				 "lens_k1 = " + formatExact(c.lensK1) + "\nlens_k2 = " + formatExact(c.lensK2) + "\n";
-	return "# depthkey board calibration, written by depthkey-calibrate --board: the\n"
-	       "# homography from colour-camera pixels to board pixels (row-major 3x3).\n"
-	       "# Do not edit; calibrate again instead. Residuals are in board pixels.\n"
-	       "format = " + std::to_string(kBoardCalibrationFormat) + "\n\n"
-	       "[board]\n"
+	return "[board]\n"
 	       "date = \"" + c.date + "\"\n"
 	       "colour_width = " + std::to_string(c.colourWidth) + "\n"
 	       "colour_height = " + std::to_string(c.colourHeight) + "\n"
 	       "board_width = " + std::to_string(c.boardWidth) + "\n"
 	       "board_height = " + std::to_string(c.boardHeight) + "\n"
-	       "homography = " + h + "\n" + lens + stats +
+	       "homography = " + h + "\n" + lens + stats;
+}
+
+std::string formatBoardCalibration(const BoardCalibration &c)
+{
+	return "# depthkey board calibration, written by depthkey-calibrate --board: the\n"
+	       "# homography from colour-camera pixels to board pixels (row-major 3x3).\n"
+	       "# Do not edit; calibrate again instead. Residuals are in board pixels.\n"
+	       "format = " + std::to_string(kBoardCalibrationFormat) + "\n\n" +
+	       formatBoardCalibrationSection(c) +
 	       "\n# Written last, so that a file cut short is refused.\n[end]\ncomplete = true\n";
 }
 

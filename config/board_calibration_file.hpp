@@ -47,6 +47,11 @@ struct BoardCalibrationResult {
 };
 
 BoardCalibrationResult loadBoardCalibration(const std::string &path);
+// The [board] table alone, shared with the depth calibration file, which may
+// carry one (config/calibration_file.hpp: depthkey-calibrate --sim writes it).
+class TomlSection;
+void bindBoardCalibrationSection(TomlSection &section, BoardCalibration &calibration);
+std::string formatBoardCalibrationSection(const BoardCalibration &calibration);
 BoardCalibrationResult parseBoardCalibration(std::string_view text, const std::string &sourceName);
 std::string formatBoardCalibration(const BoardCalibration &calibration);
 // -EINVAL (never written) when the reader would refuse it; else atomic.

@@ -243,6 +243,19 @@ CalibrationResult parseCalibration(std::string_view text, const std::string &sou
 			c.residuals.emplace_back();
 			bindResidual(sec, c.residuals.back());
 		}) && ok;
+		if (root.has("board"))
+			ok = root.table("board", [&](TomlSection &sec) {
+				c.board.emplace();
+				bindBoardCalibrationSection(sec, *c.board);
+				const MappingModel &m = c.mapping;
+				sec.require(m.colourWidth == 0 || (c.board->colourWidth == m.colourWidth &&
+								   c.board->colourHeight == m.colourHeight),
+					    "colour_width",
+					    "the board was fitted in another colour size than the mapping (" +
+						    std::to_string(c.board->colourWidth) + "x" +
+						    std::to_string(c.board->colourHeight) + " vs " +
+						    std::to_string(m.colourWidth) + "x" + std::to_string(m.colourHeight) + ")");
+			}) && ok;
 		// [end] is written last: a file cut anywhere before it lacks it.
 		missing.require(root.has("end"), "end", "missing section [end]: the file is cut short");
 		if (root.has("end"))
@@ -303,6 +316,10 @@ std::string formatCalibration(const Calibration &c)
 		out += std::string("set = \"") + (r.heldOut ? "heldout" : "fit") + "\"\n";
 		out += "depth_m = " + formatExact(r.depthM) + "\n" + formatStats(r.stats, "");
 	}
+	if (c.board)
+		out += "\n# The board: the homography colour px -> board px, fitted in the same\n"
+		       "# session (docs/calibration-file.md). board.homography_file overrides it.\n" +
+		       formatBoardCalibrationSection(*c.board);
 	return out + "\n# Written last, so that a file cut short is refused.\n[end]\ncomplete = true\n";
 }
 

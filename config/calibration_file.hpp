@@ -8,11 +8,13 @@
 // reader accepts, and replaces the file atomically.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "algo/calibration_fit.hpp"
+#include "config/board_calibration_file.hpp"
 #include "config/config_error.hpp"
 
 namespace depthkey {
@@ -29,6 +31,11 @@ struct Calibration {
 	std::vector<double> depthsM;    // the pattern's depths fitted on, ascending
 	std::vector<CalibrationSummary> summaries;      // one per model fitted
 	std::vector<CalibrationResidual> residuals;     // per model, set and depth
+	// The board's homography, when the same session calibrated the board
+	// (depthkey-calibrate --sim does: the simulated room in one go). The
+	// daemon uses it when board.homography_file is empty; a board file of
+	// its own (depthkey-calibrate --board) takes precedence.
+	std::optional<BoardCalibration> board;
 };
 
 struct CalibrationResult {

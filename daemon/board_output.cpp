@@ -102,8 +102,21 @@ void BoardOutput::loadHomography()
 {
 	const std::string &path = settings_.board.homographyFile;
 	if (path.empty()) {
-		haveCalibration_ = false;
-		logger().clearError("board_calibration", "board calibration no longer used", { { "DEVICE", "board_calibration" } });
+		// The depth calibration file may carry the board's H (the same
+		// session fitted both: depthkey-calibrate --sim).
+		haveCalibration_ = calibrationFileBoard_.has_value();
+		if (haveCalibration_) {
+			calibration_ = *calibrationFileBoard_;
+			logger().clearError("board_calibration",
+					    "board calibration from mapping.calibration_file's [board]: " +
+						    sizeText(calibration_.boardWidth, calibration_.boardHeight) +
+						    " board px, fitted rms " + std::to_string(calibration_.rmsPx) + " px",
+					    { { "DEVICE", "board_calibration" },
+					      { "CALIBRATION_FILE", settings_.mapping.calibrationFile } });
+		} else {
+			logger().clearError("board_calibration", "board calibration no longer used",
+					    { { "DEVICE", "board_calibration" } });
+		}
 		return;
 	}
 	BoardCalibrationResult result = loadBoardCalibration(path);
@@ -129,10 +142,10 @@ void BoardOutput::updateGeometry()
 	const int ow = settings_.board.outputWidth ? settings_.board.outputWidth : pw;
 	const int oh = settings_.board.outputHeight ? settings_.board.outputHeight : ph;
 	const BoardCalibration &c = calibration_;
-	if (settings_.board.homographyFile.empty())
-		notCalibrated_ = "board.homography_file is empty";
-	else if (!haveCalibration_)
-		notCalibrated_ = "no usable board calibration";
+	if (!haveCalibration_)
+		notCalibrated_ = settings_.board.homographyFile.empty()
+					 ? "board.homography_file is empty and the calibration file has no [board]"
+					 : "no usable board calibration";
 	else if (c.colourWidth != cw || c.colourHeight != ch)
 		notCalibrated_ = "calibrated for colour " + sizeText(c.colourWidth, c.colourHeight) + ", the camera gives " +
 				 sizeText(cw, ch);

@@ -17,6 +17,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace depthkey {
@@ -34,6 +35,11 @@ public:
 	// On reload: the source restarts only when its settings changed; H is
 	// read again (a refused file keeps the last good H).
 	void apply(const Settings &settings);
+
+	// The depth calibration file's [board] section (config/calibration_file.hpp),
+	// or none: the H used while board.homography_file is empty. Takes
+	// effect at the next start() or apply().
+	void setCalibrationFileBoard(const std::optional<BoardCalibration> &board) { calibrationFileBoard_ = board; }
 
 	// After the pipeline ran: warps its camera-geometry lecturer layer into
 	// the board picture. Does nothing in camera geometry.
@@ -80,6 +86,7 @@ private:
 	RgbImage scaled_;             // the picture at the output size; empty at the source's size
 	BoardCalibration calibration_;
 	bool haveCalibration_ = false; // last good H
+	std::optional<BoardCalibration> calibrationFileBoard_;
 	std::string notCalibrated_;    // why the composite is in camera geometry
 	BoardCompositor compositor_;
 	RgbImage composite_;

@@ -37,6 +37,11 @@ void Daemon::applyPipelineFiles(const PipelineFiles &files)
 				    { { "DEVICE", "calibration" }, { "CALIBRATION_FILE", path } });
 	}
 
+	// The calibration file's board H goes with its mapping: a refused file
+	// keeps the last good one of both (board_.apply/start reads it).
+	if (path.empty() || files.calibrated)
+		board_.setCalibrationFileBoard(files.boardCalibration);
+
 	// The board picture is the board source's (its errors are its own).
 	configurePipeline(pipeline_, settings_, mapping_, board_.pipelineBoard());
 }

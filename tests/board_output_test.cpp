@@ -124,7 +124,7 @@ TEST(BoardOutput, SaysWhyItIsNotCalibratedAndFallsBackToCameraGeometry)
 	BoardOutput board;
 	f.start(board);
 	EXPECT_FALSE(board.boardGeometry());
-	EXPECT_NE(board.statusText().find("board not calibrated (board.homography_file is empty)"), std::string::npos)
+	EXPECT_NE(board.statusText().find("board not calibrated (board.homography_file is empty"), std::string::npos)
 		<< board.statusText();
 
 	// Calibrated, then the stick delivers another resolution: camera geometry, and why.
@@ -238,4 +238,38 @@ TEST(BoardOutput, TheDaemonPublishesTheBoardGeometryStreams)
 	Rgb8 mid = sink->composite().at(kBw / 2, kBh / 2);
 	EXPECT_NEAR(mid.g, (200 + 30) / 2, 2);
 	EXPECT_NEAR(mid.b, (10 + 90) / 2, 2);
+}
+
+// The calibration file's [board] (depthkey-calibrate --sim writes one) is the
+// H while board.homography_file is empty; a board file of its own wins.
+TEST(BoardOutput, TheCalibrationFilesBoardIsUsedWhileNoBoardFileIsSet)
+{
+	Fixture f;
+	f.settings.board.homographyFile = "";
+	BoardCalibration fromCalibration = doubling();
+	fromCalibration.boardWidth = 2 * kBw; // told apart from the board file's by its picture size
+	fromCalibration.boardHeight = 2 * kBh;
+	fromCalibration.colourToBoard = boardScaling(kCw, kCh, 2 * kBw, 2 * kBh);
+	BoardOutput board;
+	board.setCalibrationFileBoard(fromCalibration);
+	f.settings.board.width = 2 * kBw;
+	f.settings.board.height = 2 * kBh;
+	f.start(board);
+	ASSERT_TRUE(board.boardGeometry()) << board.statusText();
+	EXPECT_EQ(board.outputWidth(), 2 * kBw);
+
+	// A board file of its own takes precedence: it is fitted for kBw x kBh.
+	f.settings.board.homographyFile = f.homography;
+	board.apply(f.settings);
+	EXPECT_FALSE(board.boardGeometry());
+	EXPECT_NE(board.statusText().find("calibrated for a board picture of 128x96"), std::string::npos)
+		<< board.statusText();
+
+	// Without either: not calibrated, and the status says where it looked.
+	f.settings.board.homographyFile = "";
+	board.setCalibrationFileBoard(std::nullopt);
+	board.apply(f.settings);
+	EXPECT_FALSE(board.boardGeometry());
+	EXPECT_NE(board.statusText().find("the calibration file has no [board]"), std::string::npos)
+		<< board.statusText();
 }

@@ -323,5 +323,54 @@ TEST(CalibrationFile, UnwritableDirectoryIsAnErrorNamingIt)
 	EXPECT_NE(error.find("/nonexistent"), std::string::npos) << error;
 }
 
+
+// A calibration that fitted the board too carries it in [board]: read back
+// exactly, and held to the same checks as a board file, named in this file.
+TEST(CalibrationFile, BoardSectionRoundTripsAndIsChecked)
+{
+	Calibration c = sampleCalibration();
+	EXPECT_EQ(formatCalibration(c).find("[board]"), std::string::npos) << "no board, no section";
+	BoardCalibration b;
+	b.colourToBoard.h = { 2.5, 0.01, 320.25, -0.003, 2.5, -11.5, 1e-6, -2e-6, 1 };
+	b.lensK1 = -0.034;
+	b.lensK2 = 0.008;
+	b.colourWidth = c.mapping.colourWidth;
+	b.colourHeight = c.mapping.colourHeight;
+	b.boardWidth = 1920;
+	b.boardHeight = 780;
+	b.date = "2026-12-01T00:00:00Z";
+	b.points = 45;
+	b.rmsPx = 0.0086;
+	b.maxPx = 0.0165;
+	c.board = b;
+	const std::string text = formatCalibration(c);
+	CalibrationResult result = parseCalibration(text, kFile);
+	for (const ConfigError &e : result.errors)
+		ADD_FAILURE() << e.toString();
+	ASSERT_TRUE(result.calibration.board.has_value());
+	EXPECT_EQ(result.calibration.board->colourToBoard.h, b.colourToBoard.h); // bit for bit
+	EXPECT_EQ(result.calibration.board->lensK1, b.lensK1);
+	EXPECT_EQ(result.calibration.board->boardHeight, 780);
+
+	// Fitted in another colour size than the mapping: refused, at the key.
+	std::string other = text;
+	const size_t board = other.find("[board]");
+	ASSERT_NE(board, std::string::npos);
+	other.replace(other.find("colour_width = 640", board), 18, "colour_width = 320");
+	other.replace(other.find("colour_height = 480", board), 19, "colour_height = 240");
+	std::string error = onlyError(other);
+	EXPECT_NE(error.find("another colour size than the mapping"), std::string::npos) << error;
+	EXPECT_NE(error.find(std::string(kFile) + ":" + std::to_string(lineOf(other, "colour_width = 320"))),
+		  std::string::npos) << error;
+
+	// A singular H is refused as in a board file.
+	std::string singular = text;
+	size_t at = singular.find("homography = [");
+	singular.replace(at, singular.find('\n', at) - at, "homography = [0, 0, 0, 0, 0, 0, 0, 0, 1]");
+	error = onlyError(singular);
+	EXPECT_NE(error.find("homography"), std::string::npos) << error;
+	EXPECT_NE(error.find("singular"), std::string::npos) << error;
+}
+
 } // namespace
 } // namespace depthkey

@@ -42,6 +42,7 @@ struct Options {
 	bool sim = false;
 	uint64_t seed = 1;
 	bool depthNoise = true;
+	int simBoardWidth = 1920;     // --sim also fits the simulated board (its [board]); 0 = not
 	std::string sequence;
 	int step = 1;
 	std::string output;
@@ -62,7 +63,8 @@ struct Options {
 void usage(FILE *out)
 {
 	std::fprintf(out,
-		     "usage: depthkey-calibrate (--sim [--seed N] [--no-depth-noise] | --sequence DIR [--step N] |\n"
+		     "usage: depthkey-calibrate (--sim [--seed N] [--no-depth-noise] [--sim-board-width N] |\n"
+		     "                           --sequence DIR [--step N] |\n"
 		     "                           --live [--config FILE] [--view-timeout S])\n"
 		     "                          --output FILE [--model paper|parallax]\n"
 		     "                          [--hold-out-every K | --hold-out-depth METRES]\n"
@@ -113,6 +115,8 @@ int parseOptions(int argc, char **argv, Options &o)
 			ok = false;
 		else if (a == "--seed")
 			o.seed = std::strtoull(v, nullptr, 10);
+		else if (a == "--sim-board-width")
+			ok = (o.simBoardWidth = std::atoi(v)) == 0 || (o.simBoardWidth >= 16 && o.simBoardWidth <= 3840);
 		else if (a == "--sequence")
 			o.sequence = v;
 		else if (a == "--config")
@@ -437,6 +441,21 @@ int main(int argc, char **argv)
 	c.depthsM = fit.depthsM;
 	c.summaries = fit.summaries;
 	c.residuals = fit.residuals;
+	// The simulated room is calibrated in one go: its board's display
+	// shows the board pattern too, and its H goes in [board], which the
+	// daemon uses while board.homography_file is empty (make run's
+	// calibration, and the accuracy gate's, include the board).
+	if (o.sim && o.simBoardWidth > 0) {
+		BoardCalibration board;
+		if (fitSimBoardCalibration(o.seed, sizes.colourWidth, sizes.colourHeight, o.simBoardWidth, board, error) < 0) {
+			std::fprintf(stderr, "depthkey-calibrate: the simulated board: %s; %s left unchanged\n", error.c_str(),
+				     o.output.c_str());
+			return 1;
+		}
+		std::printf("board (the simulated display, %dx%d px): rms %.3f board px, max %.3f; kept in [board]\n",
+			    board.boardWidth, board.boardHeight, board.rmsPx, board.maxPx);
+		c.board = board;
+	}
 	if (writeCalibration(o.output, c, error) < 0) {
 		std::fprintf(stderr, "depthkey-calibrate: %s; %s left unchanged\n", error.c_str(), o.output.c_str());
 		return 1;

@@ -23,6 +23,7 @@
 #include "hal/sim/sim_sequence.hpp"
 
 #include <chrono>
+#include <optional>
 #include <cstdio>
 #include <cstdlib>
 #include <cmath>
@@ -229,24 +230,29 @@ public:
 			std::fprintf(stderr, "depthkey-eval: board image unusable: %s\n", files.boardError.c_str());
 		mapping_ = files.mapping;
 		calibrated_ = files.calibrated;
+		calibrationFileBoard_ = files.boardCalibration;
 		configurePipeline(pipeline_, settings, mapping_, files.board);
 	}
 
 	// The simulated lecture's board picture (board.backend "sim"), as the
-	// daemon's board source delivers it, with the board calibration of
-	// board.homography_file: the board model is taught what the picture
-	// predicts (algo/board_picture_prior.hpp). Without a usable file,
-	// nothing (said once).
+	// daemon's board source delivers it, with the board calibration the
+	// daemon would use (board.homography_file, else the calibration file's
+	// [board]): the board model is taught what the picture predicts
+	// (algo/board_picture_prior.hpp). Without one, nothing (said once).
 	void useSimBoard()
 	{
 		if (settings_.board.backend != "sim")
 			return;
-		if (settings_.board.homographyFile.empty()) {
-			std::fprintf(stderr, "depthkey-eval: board.homography_file is empty: the board model "
-					     "learns without the board's picture\n");
+		BoardCalibrationResult board;
+		if (!settings_.board.homographyFile.empty()) {
+			board = loadBoardCalibration(settings_.board.homographyFile);
+		} else if (calibrationFileBoard_) {
+			board.calibration = *calibrationFileBoard_;
+		} else {
+			std::fprintf(stderr, "depthkey-eval: no board calibration (board.homography_file is empty and the "
+					     "calibration file has no [board]): the board model learns without the board's picture\n");
 			return;
 		}
-		BoardCalibrationResult board = loadBoardCalibration(settings_.board.homographyFile);
 		if (!board.ok()) {
 			std::fprintf(stderr, "depthkey-eval: board calibration refused: %s\n",
 				     board.errors.front().toString().c_str());
@@ -272,7 +278,14 @@ public:
 	{
 		const DepthFrame *depth = bracket.before ? bracket.before : bracket.after;
 		if (simBoard_) { // the board source's work in the daemon: not timed
-			display_.render(double(colour.timestampNs) / 1e9, picture_);
+			// Its latest picture, delivered board.fps times a second:
+			// up to one board period older than the colour frame.
+			const double fps = settings_.board.fps;
+			const int64_t tick = int64_t(std::floor(double(colour.timestampNs) / 1e9 * fps));
+			if (tick != boardTick_) {
+				display_.render(double(tick) / fps, picture_);
+				boardTick_ = tick;
+			}
 			pipeline_.setBoardPicture(&picture_);
 		}
 		auto start = std::chrono::steady_clock::now();
@@ -373,9 +386,11 @@ private:
 	MappingModel mapping_;
 	bool calibrated_ = false;
 	Pipeline pipeline_;
+	std::optional<BoardCalibration> calibrationFileBoard_;
 	SimBoardDisplay display_;
 	RgbImage picture_;
 	bool simBoard_ = false;
+	int64_t boardTick_ = -1;
 	PipelineOutput output_;
 	Gray16Image mapped_;
 	Gray8Image alpha_;

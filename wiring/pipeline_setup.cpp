@@ -60,6 +60,7 @@ PipelineFiles loadPipelineFiles(const Settings &settings)
 		if (result.ok()) {
 			files.mapping = result.calibration.mapping;
 			files.calibrated = true;
+			files.boardCalibration = result.calibration.board;
 		} else {
 			files.calibrationError = result.errors.front().toString() + moreErrors(countErrors(result.errors));
 		}

@@ -7,8 +7,10 @@
 #include "algo/pairing_queue.hpp"
 #include "algo/mapping_model.hpp"
 #include "algo/pipeline.hpp"
+#include "config/board_calibration_file.hpp"
 #include "settings/settings.hpp"
 
+#include <optional>
 #include <string>
 
 namespace depthkey {
@@ -29,6 +31,9 @@ struct PipelineFiles {
 	MappingModel mapping;
 	bool calibrated = false;
 	RgbImage board;
+	// The calibration file's [board] section, if it has one (used when
+	// board.homography_file is empty).
+	std::optional<BoardCalibration> boardCalibration;
 	std::string calibrationError, boardError; // "" when fine
 };
 PipelineFiles loadPipelineFiles(const Settings &settings);

@@ -19,6 +19,7 @@
 #include "hal/sim/lecture_simulator.hpp"
 #include "settings/settings.hpp"
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -193,7 +194,50 @@ void reportSimTruth(const BoardOptions &o, const LectureSimulator &simulator, co
 	}
 }
 
+BoardCalibration calibrationOf(const BoardFit &fit, int colourWidth, int colourHeight, int boardWidth, int boardHeight)
+{
+	BoardCalibration c;
+	c.colourToBoard = fit.colourToBoard;
+	c.lensK1 = fit.lens.k1;
+	c.lensK2 = fit.lens.k2;
+	c.colourWidth = colourWidth;
+	c.colourHeight = colourHeight;
+	c.boardWidth = boardWidth;
+	c.boardHeight = boardHeight;
+	c.date = utcNow();
+	c.points = fit.points;
+	c.rmsPx = fit.rmsPx;
+	c.maxPx = fit.maxPx;
+	return c;
+}
+
 } // namespace
+
+int fitSimBoardCalibration(uint64_t seed, int colourWidth, int colourHeight, int boardWidth, BoardCalibration &out,
+			   std::string &error)
+{
+	BoardOptions o;
+	o.sim = true;
+	o.seed = seed;
+	o.colourWidth = colourWidth;
+	o.colourHeight = colourHeight;
+	o.boardWidth = boardWidth;
+	o.boardHeight = simBoardHeight(boardWidth);
+	BoardPattern pattern{ o.boardWidth, o.boardHeight, o.grid, o.fill };
+	LectureSimulator simulator;
+	ColourFrame colour;
+	renderSimShot(o, pattern, simulator, colour);
+	BoardFit fit;
+	std::vector<ImagePoint> found;
+	if (calibrateBoard(colour.rgb, pattern, fit, found, error) < 0)
+		return -EINVAL;
+	if (fit.rmsPx > o.maxRmsPx) {
+		error = "the board fit's rms " + std::to_string(fit.rmsPx) + " board px is over " + std::to_string(o.maxRmsPx);
+		return -ERANGE;
+	}
+	out = calibrationOf(fit, colourWidth, colourHeight, o.boardWidth, o.boardHeight);
+	return 0;
+}
 
 bool wantsBoardCalibration(int argc, char **argv)
 {
@@ -252,18 +296,7 @@ int runBoardCalibration(int argc, char **argv)
 			    o.output.empty() ? "" : ("; " + o.output + " left as it was").c_str());
 		status = 1;
 	} else if (!o.output.empty()) {
-		BoardCalibration c;
-		c.colourToBoard = fit.colourToBoard;
-		c.lensK1 = fit.lens.k1;
-		c.lensK2 = fit.lens.k2;
-		c.colourWidth = colour.rgb.width();
-		c.colourHeight = colour.rgb.height();
-		c.boardWidth = o.boardWidth;
-		c.boardHeight = o.boardHeight;
-		c.date = utcNow();
-		c.points = fit.points;
-		c.rmsPx = fit.rmsPx;
-		c.maxPx = fit.maxPx;
+		BoardCalibration c = calibrationOf(fit, colour.rgb.width(), colour.rgb.height(), o.boardWidth, o.boardHeight);
 		if (writeBoardCalibration(o.output, c, error) < 0) {
 			std::fprintf(stderr, "depthkey-calibrate: %s\n", error.c_str());
 			status = 1;

@@ -2,11 +2,22 @@
 // board px), a mode of depthkey-calibrate of its own (tools/calibrate_board/).
 #pragma once
 
+#include "config/board_calibration_file.hpp"
+
+#include <cstdint>
+#include <string>
+
 namespace depthkey {
 
 // True when argv asks for --board.
 bool wantsBoardCalibration(int argc, char **argv);
 // The whole command; returns the exit status.
 int runBoardCalibration(int argc, char **argv);
+// What --board --sim fits (the simulated display showing the pattern, seen by
+// the seed's colour camera with its lens), for depthkey-calibrate --sim to
+// keep in the calibration file's [board]: the simulated room calibrated in
+// one go. 0, or a negative errno with error saying why.
+int fitSimBoardCalibration(uint64_t seed, int colourWidth, int colourHeight, int boardWidth, BoardCalibration &out,
+			   std::string &error);
 
 } // namespace depthkey
