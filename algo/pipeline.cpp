@@ -60,14 +60,17 @@ void Pipeline::clearBoardGeometry()
 
 void Pipeline::teachBoardFromPicture(const RgbImage &colour)
 {
+	status_.boardPictureTaught = false;
 	if (!boardPicture_ || boardWidth_ <= 0)
 		return;
 	const int w = colour.width(), h = colour.height();
 	if (!picturePrior_.configuredFor(w, h) &&
 	    picturePrior_.configure(w, h, colourToBoard_, boardLens_, boardWidth_, boardHeight_) < 0)
 		return;
-	if (picturePrior_.predict(*boardPicture_, colour, boardModel_))
+	if (picturePrior_.predict(*boardPicture_, colour, boardModel_)) {
 		boardModel_.teach(picturePrior_.predicted(), picturePrior_.onDisplay());
+		status_.boardPictureTaught = true;
+	}
 }
 
 void Pipeline::restartLearning()

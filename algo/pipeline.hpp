@@ -46,6 +46,7 @@ struct PipelineStatus {
 	int derivations = 0;         // signature derivations so far
 	size_t bandPixels = 0;       // undecided pixels SIOX decided in the last frame
 	size_t lecturerCentroids = 0, boardCentroids = 0;
+	bool boardPictureTaught = false; // the board's picture taught the board model this frame
 };
 
 class Pipeline
@@ -68,6 +69,8 @@ public:
 	void setBoardGeometry(const Homography &colourToBoard, const RadialLens &lens, int boardWidth, int boardHeight);
 	void clearBoardGeometry();
 	void setBoardPicture(const RgbImage *picture) { boardPicture_ = picture; }
+	// Whether the board's picture and its geometry are both set.
+	bool hasBoardPicture() const { return boardPicture_ && boardWidth_ > 0; }
 	// The row kernels to use (algo/kernel_path.hpp); the best by default.
 	void setKernelPath(KernelPath path)
 	{

@@ -2,7 +2,9 @@
 // depthkey-calibrate --board fits and the daemon's board-geometry composite
 // uses (board.homography_file).
 //
-// A file of its own, not a section of the depth calibration file: the two
+// A file of its own, and optionally also a [board] section of the depth
+// calibration file (depthkey-calibrate --sim writes one; the file of its
+// own, when set, takes precedence). Of its own, because the two
 // are made by different procedures (a pattern on the board's screen, a
 // printed pattern held at five depths) and go stale for different reasons
 // (the camera knocked against the board vs. the ToF bracket re-mounted), so

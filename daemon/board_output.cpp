@@ -104,15 +104,19 @@ void BoardOutput::loadHomography()
 	if (path.empty()) {
 		// The depth calibration file may carry the board's H (the same
 		// session fitted both: depthkey-calibrate --sim).
-		haveCalibration_ = calibrationFileBoard_.has_value();
+		const bool wasFromCalibrationFile = haveCalibration_ && fromCalibrationFile_;
+		haveCalibration_ = fromCalibrationFile_ = calibrationFileBoard_.has_value();
 		if (haveCalibration_) {
 			calibration_ = *calibrationFileBoard_;
-			logger().clearError("board_calibration",
-					    "board calibration from mapping.calibration_file's [board]: " +
-						    sizeText(calibration_.boardWidth, calibration_.boardHeight) +
-						    " board px, fitted rms " + std::to_string(calibration_.rmsPx) + " px",
-					    { { "DEVICE", "board_calibration" },
-					      { "CALIBRATION_FILE", settings_.mapping.calibrationFile } });
+			const std::string text = "board calibration from mapping.calibration_file's [board]: " +
+						 sizeText(calibration_.boardWidth, calibration_.boardHeight) +
+						 " board px, fitted rms " + std::to_string(calibration_.rmsPx) + " px";
+			const std::string &file = settings_.mapping.calibrationFile;
+			if (logger().errorActive("board_calibration"))
+				logger().clearError("board_calibration", text,
+						    { { "DEVICE", "board_calibration" }, { "CALIBRATION_FILE", file } });
+			else if (!wasFromCalibrationFile) // said once, not at every reload
+				logger().info(text, { { "DEVICE", "board_calibration" }, { "CALIBRATION_FILE", file } });
 		} else {
 			logger().clearError("board_calibration", "board calibration no longer used",
 					    { { "DEVICE", "board_calibration" } });
@@ -129,6 +133,7 @@ void BoardOutput::loadHomography()
 	}
 	calibration_ = result.calibration;
 	haveCalibration_ = true;
+	fromCalibrationFile_ = false;
 	logger().clearError("board_calibration",
 			    "board calibration loaded: " + sizeText(calibration_.boardWidth, calibration_.boardHeight) +
 				    " board px, fitted rms " + std::to_string(calibration_.rmsPx) + " px",

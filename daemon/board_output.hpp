@@ -87,6 +87,7 @@ private:
 	BoardCalibration calibration_;
 	bool haveCalibration_ = false; // last good H
 	std::optional<BoardCalibration> calibrationFileBoard_;
+	bool fromCalibrationFile_ = false; // calibration_ came from calibrationFileBoard_
 	std::string notCalibrated_;    // why the composite is in camera geometry
 	BoardCompositor compositor_;
 	RgbImage composite_;

@@ -258,12 +258,18 @@ TEST(BoardOutput, TheCalibrationFilesBoardIsUsedWhileNoBoardFileIsSet)
 	ASSERT_TRUE(board.boardGeometry()) << board.statusText();
 	EXPECT_EQ(board.outputWidth(), 2 * kBw);
 
+	// The pipeline is handed the picture and H: the board model learns
+	// what the picture predicts (algo/board_picture_prior.hpp).
+	f.source->deliver(f.picture({ 5, 6, 7 }, 2 * kBw, 2 * kBh));
+	EXPECT_TRUE(f.pipeline.hasBoardPicture());
+
 	// A board file of its own takes precedence: it is fitted for kBw x kBh.
 	f.settings.board.homographyFile = f.homography;
 	board.apply(f.settings);
 	EXPECT_FALSE(board.boardGeometry());
 	EXPECT_NE(board.statusText().find("calibrated for a board picture of 128x96"), std::string::npos)
 		<< board.statusText();
+	EXPECT_FALSE(f.pipeline.hasBoardPicture()) << "no picture prior without a usable H";
 
 	// Without either: not calibrated, and the status says where it looked.
 	f.settings.board.homographyFile = "";

@@ -12,12 +12,14 @@
 #include "algo/siox_refiner.hpp"
 #include "algo/still_siox.hpp"
 #include "hal/kernel_path_env.hpp"
+#include "hal/sim/board_display.hpp"
 #include "hal/sim/sim_sequence.hpp"
 #include "hal/sim/simple_scene.hpp"
 #include "tests/synthetic_still.hpp"
 
 #include <benchmark/benchmark.h>
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <vector>
@@ -90,7 +92,8 @@ MappingModel identity(int w, int h)
 	return m;
 }
 
-void pipelineFrame(benchmark::State &state, const Inputs &in, void (*adjust)(PipelineSettings &) = nullptr)
+void pipelineFrame(benchmark::State &state, const Inputs &in, void (*adjust)(PipelineSettings &) = nullptr,
+		   const std::function<void(Pipeline &)> &prepare = {})
 {
 	const int w = int(state.range(0)), h = int(state.range(1));
 	auto pipeline = std::make_unique<Pipeline>();
@@ -99,6 +102,8 @@ void pipelineFrame(benchmark::State &state, const Inputs &in, void (*adjust)(Pip
 		adjust(settings);
 	pipeline->configure(settings, identity(w, h));
 	pipeline->setKernelPath(kernelPathFromEnvironment());
+	if (prepare)
+		prepare(*pipeline);
 	PipelineOutput out;
 	for (int i = 0; i < 30; ++i) // past learning
 		pipeline->process(in.colour[i % kFrames], in.depth[i % kFrames], out);
@@ -121,6 +126,24 @@ void BM_PipelineFrame(benchmark::State &state)
 void BM_PipelineFrameLecture(benchmark::State &state)
 {
 	pipelineFrame(state, lectureInputs(int(state.range(0)), int(state.range(1))));
+}
+
+// The same with the board's own picture teaching the board model
+// (algo/board_picture_prior.hpp), the simulated board's 1920x780 picture
+// mapped over the whole colour image: every pixel on the display, the most
+// the prior can cost (in the simulated room it covers about 80%).
+void BM_PipelineFrameLectureBoardPicture(benchmark::State &state)
+{
+	const int w = int(state.range(0)), h = int(state.range(1));
+	static RgbImage picture;
+	SimBoardDisplay display;
+	display.configure(Settings().sim, 1920);
+	display.render(9.0, picture);
+	pipelineFrame(state, lectureInputs(w, h), nullptr, [&](Pipeline &p) {
+		p.setBoardGeometry(boardScaling(w, h, picture.width(), picture.height()), RadialLens(), picture.width(),
+				   picture.height());
+		p.setBoardPicture(&picture);
+	});
 }
 
 // The same without the band's minimum cut: what the cut costs.
@@ -243,6 +266,7 @@ void BM_DepthkeySioxStillCold(benchmark::State &state)
 #define SIZES ->Args({ 640, 480 })->Args({ 1920, 1080 })->Unit(benchmark::kMicrosecond)
 BENCHMARK(BM_PipelineFrame) SIZES;
 BENCHMARK(BM_PipelineFrameLecture) SIZES;
+BENCHMARK(BM_PipelineFrameLectureBoardPicture) SIZES;
 BENCHMARK(BM_PipelineFrameLectureNoCut) SIZES;
 BENCHMARK(BM_PipelineFrameLectureNoUnmixing) SIZES;
 BENCHMARK(BM_SeedAndMap) SIZES;

@@ -3,6 +3,7 @@
 // reload with a broken config, clean stop.
 #include "hal/depthkey_shm.h"
 #include "tests/process/daemon_process.hpp"
+#include "tests/test_paths.hpp"
 #include "tests/wait_until.hpp"
 
 #include <gtest/gtest.h>
@@ -10,6 +11,7 @@
 #include <algorithm>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <glob.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -282,4 +284,29 @@ TEST_F(DaemonIntegration, RecordThenReplayWithPreviews)
 	EXPECT_TRUE(frame.info.flags & DK_SHM_FLAG_ONLINE);
 	ASSERT_EQ(replay.signal(SIGTERM), 0);
 	EXPECT_NE(replay.waitExit(5s), -1);
+}
+
+// depthkey-calibrate --sim calibrates the simulated room in one go: its file's
+// [board] puts the daemon in board geometry with board.homography_file
+// empty, and the board's picture teaches the board model.
+TEST_F(DaemonIntegration, TakesTheBoardFromTheCalibrationFile)
+{
+	const std::string calibration = daemon_.writeFile("calibration.toml", "");
+	ASSERT_EQ(std::system((depthkey::test::binDir() + "/depthkey-calibrate --sim --output " + calibration +
+			       " >/dev/null 2>&1").c_str()),
+		  0);
+	const std::string config = daemon_.writeFile(
+		"board.toml", "[colour]\nwidth = 640\nheight = 480\nfps = 25\n[mapping]\ncalibration_file = \"" +
+				      calibration + "\"\n[output]\ncomposite_name = \"" + prefix_ +
+				      ".composite\"\nlecturer_name = \"" + prefix_ + ".lecturer\"\n");
+	ASSERT_TRUE(daemon_.start({ "--config", config }, 300000));
+	ASSERT_TRUE(daemon_.waitForNotify("READY=1", 10s)) << daemon_.log();
+	ShmFrame frame;
+	EXPECT_TRUE(waitUntil([&] { return readFrame(prefix_ + ".composite", frame, 1s) && frame.info.width == 1920; },
+			      5s, 50ms))
+		<< daemon_.log();
+	EXPECT_EQ(frame.info.width, 1920u);
+	EXPECT_EQ(frame.info.height, 780u) << "the simulated display's shape";
+	EXPECT_NE(daemon_.log().find("board calibration from mapping.calibration_file's [board]"), std::string::npos)
+		<< daemon_.log();
 }
