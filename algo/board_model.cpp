@@ -51,28 +51,29 @@ void BoardModel::learn(const RgbImage &colour, const Gray8Image &trimap)
 	phase_ = (phase_ + 1) % kRowStride;
 }
 
-void BoardModel::teach(const RgbImage &predicted, const Gray8Image &mask)
+void BoardModel::teach(const RgbImage &sampled, const int pictureGainQ8[3], const Gray8Image &mask)
 {
-	const int w = predicted.width(), h = predicted.height();
+	const int w = sampled.width(), h = sampled.height();
 	if (model_.width() != w || model_.height() != h || mask.width() != w || mask.height() != h)
 		return;
 	uint64_t predictedSum[3] = {}, modelSum[3] = {};
 	for (int y = 0; y < h; ++y) {
-		const Rgb8 *p = predicted.row(y);
+		const Rgb8 *sampledRow = sampled.row(y);
 		const uint8_t *t = mask.row(y);
 		Rgba8 *m = model_.row(y);
 		for (int x = 0; x < w; ++x) {
 			if (t[x] != kTrimapBoard)
 				continue;
+			const Rgb8 p = scaleQ8(sampledRow[x], pictureGainQ8);
 			if (m[x].a) {
-				predictedSum[0] += p[x].r;
-				predictedSum[1] += p[x].g;
-				predictedSum[2] += p[x].b;
+				predictedSum[0] += p.r;
+				predictedSum[1] += p.g;
+				predictedSum[2] += p.b;
 				modelSum[0] += m[x].r;
 				modelSum[1] += m[x].g;
 				modelSum[2] += m[x].b;
 			}
-			update(m[x], p[x]);
+			update(m[x], p);
 		}
 	}
 	// The light as the picture predicts it now, against the model before

@@ -23,6 +23,8 @@
 // after the first frame of a size.
 #pragma once
 
+#include <algorithm>
+
 #include "algo/image.hpp"
 #include "algo/trimap.hpp"
 
@@ -50,10 +52,17 @@ public:
 	void learnDecided(const RgbImage &colour, const Gray8Image &trimap, const Gray8Image &alpha, const Roi &roi,
 			  int marginPx);
 
-	// Taught a predicted board (algo/board_picture_prior.hpp): every pixel
-	// whose mask is kTrimapBoard moves towards the prediction as a visit
-	// would, on every row; the light's gain is left as learn() measured it.
-	void teach(const RgbImage &predicted, const Gray8Image &mask);
+	// Taught a predicted board (algo/board_picture_prior.hpp): the picture
+	// sampled under each pixel times gainQ8 per channel. Every pixel whose
+	// mask is kTrimapBoard moves towards the prediction as a visit would, on
+	// every row; the light's gain then follows the prediction.
+	void teach(const RgbImage &sampled, const int gainQ8[3], const Gray8Image &mask);
+	// c times a Q8 gain per channel, rounded, clamped at 255.
+	static Rgb8 scaleQ8(Rgb8 c, const int gainQ8[3])
+	{
+		auto one = [](int v, int g) { return uint8_t(std::min(255, (v * g + 128) >> 8)); };
+		return { one(c.r, gainQ8[0]), one(c.g, gainQ8[1]), one(c.b, gainQ8[2]) };
+	}
 
 	// The model of row y: RGB, and in .a the number of visits (saturating at
 	// 255; 0 = never seen as board). Empty before the first learn().

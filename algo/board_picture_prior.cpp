@@ -19,7 +19,8 @@ int BoardPicturePrior::configure(int colourWidth, int colourHeight, const Homogr
 	boardWidth_ = boardWidth;
 	boardHeight_ = boardHeight;
 	boardOf_.assign(size_t(colourWidth) * colourHeight, -1);
-	predicted_ = RgbImage(colourWidth, colourHeight, Rgb8{ 0, 0, 0 });
+	sampled_ = RgbImage(colourWidth, colourHeight, Rgb8{ 0, 0, 0 });
+	sampledFrom_ = nullptr;
 	onDisplay_ = Gray8Image(colourWidth, colourHeight, kTrimapLecturer);
 	for (int y = 0; y < colourHeight; ++y)
 		for (int x = 0; x < colourWidth; ++x) {
@@ -44,19 +45,30 @@ bool BoardPicturePrior::predict(const RgbImage &picture, const RgbImage &colour,
 	if (boardOf_.empty() || picture.width() != boardWidth_ || picture.height() != boardHeight_ ||
 	    colour.width() != colourWidth_ || colour.height() != colourHeight_ || model.empty())
 		return false;
-	const Rgb8 *board = picture.data();
+	if (sampledFrom_ != &picture) {
+		const Rgb8 *board = picture.data();
+		for (int y = 0; y < colourHeight_; ++y) {
+			const int32_t *b = boardOf_.data() + size_t(y) * colourWidth_;
+			Rgb8 *out = sampled_.row(y);
+			for (int x = 0; x < colourWidth_; ++x)
+				if (b[x] >= 0)
+					out[x] = board[b[x]];
+		}
+		sampledFrom_ = &picture;
+	}
 	uint64_t colourSum[3] = {}, pictureSum[3] = {};
 	size_t fitted = 0;
-	for (int y = 0; y < colourHeight_; ++y) {
+	for (int y = 0; y < colourHeight_; y += kFitRowStride) {
 		const Rgb8 *c = colour.row(y);
-		const int32_t *b = boardOf_.data() + size_t(y) * colourWidth_;
+		const Rgb8 *sampled = sampled_.row(y);
+		const uint8_t *on = onDisplay_.row(y);
 		for (int x = 0; x < colourWidth_; ++x) {
-			if (b[x] < 0)
+			if (on[x] != kTrimapBoard)
 				continue;
 			const int d = model.distance(x, y, c[x]);
 			if (d < 0 || d > kFitDistance)
 				continue;
-			const Rgb8 p = board[b[x]];
+			const Rgb8 p = sampled[x];
 			colourSum[0] += c[x].r;
 			colourSum[1] += c[x].g;
 			colourSum[2] += c[x].b;
@@ -73,18 +85,6 @@ bool BoardPicturePrior::predict(const RgbImage &picture, const RgbImage &colour,
 	for (int k = 0; k < 3; ++k)
 		if (pictureSum[k] >= fitted)
 			gainQ8_[k] = int(std::clamp<uint64_t>((colourSum[k] * 256 + pictureSum[k] / 2) / pictureSum[k], 16, 2048));
-	for (int y = 0; y < colourHeight_; ++y) {
-		const int32_t *b = boardOf_.data() + size_t(y) * colourWidth_;
-		Rgb8 *out = predicted_.row(y);
-		for (int x = 0; x < colourWidth_; ++x) {
-			if (b[x] < 0)
-				continue;
-			const Rgb8 p = board[b[x]];
-			out[x] = { uint8_t(std::min(255, (p.r * gainQ8_[0] + 128) >> 8)),
-				   uint8_t(std::min(255, (p.g * gainQ8_[1] + 128) >> 8)),
-				   uint8_t(std::min(255, (p.b * gainQ8_[2] + 128) >> 8)) };
-		}
-	}
 	return true;
 }
 

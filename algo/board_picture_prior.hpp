@@ -20,7 +20,10 @@
 //
 // The map from colour pixel to board pixel is computed once per H (nearest
 // board pixel: the camera sees the display at about three board pixels a
-// colour pixel); per frame everything is integer and allocation-free.
+// colour pixel). The picture is sampled through it once per picture (the
+// board delivers 10 a second, the camera 25; the sampling's scattered reads
+// of a 4.5 MB picture are most of the cost); per frame everything is
+// integer, sequential and allocation-free.
 #pragma once
 
 #include "algo/board_model.hpp"
@@ -37,7 +40,10 @@ class BoardPicturePrior
 {
 public:
 	static constexpr int kFitDistance = 30;     // L1, levels: "this pixel is board as learned"
-	static constexpr size_t kMinFitPixels = 1000;
+	// The gain is a sum over the display: every 4th row measures it as well
+	// (tens of thousands of pixels at 640x480) at a quarter of the cost.
+	static constexpr int kFitRowStride = 4;
+	static constexpr size_t kMinFitPixels = 250; // measured, on those rows
 
 	// A seen colour pixel is undistorted by the lens, then colourToBoard
 	// maps it to a board picture pixel (u, v) of a boardWidth x boardHeight
@@ -45,28 +51,38 @@ public:
 	// empty sizes.
 	int configure(int colourWidth, int colourHeight, const Homography &colourToBoard, const RadialLens &lens,
 		      int boardWidth, int boardHeight);
-	void clear() { boardOf_.clear(); }
+	void clear()
+	{
+		boardOf_.clear();
+		sampledFrom_ = nullptr;
+	}
+	// The picture's pixels changed in place: the next predict() samples it
+	// again. A picture at another address is sampled again anyway.
+	void pictureChanged() { sampledFrom_ = nullptr; }
 	bool configured() const { return !boardOf_.empty(); }
 	bool configuredFor(int colourWidth, int colourHeight) const
 	{
 		return configured() && colourWidth == colourWidth_ && colourHeight == colourHeight_;
 	}
 
-	// Predicts the empty board's colour on the display from this frame's
-	// picture; false (nothing predicted) when the sizes differ from the
-	// configured ones or too few pixels were there to measure the gain.
+	// Measures the gain for this frame's picture; false (nothing to teach)
+	// when the sizes differ from the configured ones or too few pixels were
+	// there to measure it. The predicted empty board is then sampled() times
+	// gainQ8() per channel (Q8, clamped at 255) where onDisplay() is
+	// kTrimapBoard (0): BoardModel::teach() takes the three.
 	bool predict(const RgbImage &picture, const RgbImage &colour, const BoardModel &model);
 
-	// The prediction (valid where onDisplay() is kTrimapBoard, 0) and the
-	// mask in the trimap's vocabulary, so BoardModel::teach() can take it.
-	const RgbImage &predicted() const { return predicted_; }
+	const RgbImage &sampled() const { return sampled_; }
 	const Gray8Image &onDisplay() const { return onDisplay_; }
 	const int *gainQ8() const { return gainQ8_; }
+	// The prediction at one pixel, as teach() computes it (for tests).
+	Rgb8 predictedAt(int x, int y) const { return BoardModel::scaleQ8(sampled_.row(y)[x], gainQ8_); }
 
 private:
 	int colourWidth_ = 0, colourHeight_ = 0, boardWidth_ = 0, boardHeight_ = 0;
 	std::vector<int32_t> boardOf_; // per colour pixel: board pixel index, -1 off the display
-	RgbImage predicted_;
+	RgbImage sampled_;             // the picture under each colour pixel (on the display)
+	const RgbImage *sampledFrom_ = nullptr; // the picture sampled_ holds; null = sample again
 	Gray8Image onDisplay_;
 	int gainQ8_[3] = { 256, 256, 256 };
 };

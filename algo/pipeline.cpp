@@ -68,7 +68,7 @@ void Pipeline::teachBoardFromPicture(const RgbImage &colour)
 	    picturePrior_.configure(w, h, colourToBoard_, boardLens_, boardWidth_, boardHeight_) < 0)
 		return;
 	if (picturePrior_.predict(*boardPicture_, colour, boardModel_)) {
-		boardModel_.teach(picturePrior_.predicted(), picturePrior_.onDisplay());
+		boardModel_.teach(picturePrior_.sampled(), picturePrior_.gainQ8(), picturePrior_.onDisplay());
 		status_.boardPictureTaught = true;
 	}
 }

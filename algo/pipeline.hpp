@@ -64,11 +64,17 @@ public:
 	// homography colour px -> its px (the board calibration): the board
 	// model is then taught the board the picture predicts
 	// (algo/board_picture_prior.hpp). setBoardGeometry once per H (an
-	// allocation), setBoardPicture before each frame (kept by pointer, not
-	// copied; null = no picture this frame).
+	// allocation), setBoardPicture with each new picture (kept by pointer,
+	// not copied; null = no picture).
 	void setBoardGeometry(const Homography &colourToBoard, const RadialLens &lens, int boardWidth, int boardHeight);
 	void clearBoardGeometry();
-	void setBoardPicture(const RgbImage *picture) { boardPicture_ = picture; }
+	// Call it again whenever the picture's pixels change in place: the
+	// prior samples a picture once, not every frame.
+	void setBoardPicture(const RgbImage *picture)
+	{
+		boardPicture_ = picture;
+		picturePrior_.pictureChanged();
+	}
 	// Whether the board's picture and its geometry are both set.
 	bool hasBoardPicture() const { return boardPicture_ && boardWidth_ > 0; }
 	// The row kernels to use (algo/kernel_path.hpp); the best by default.

@@ -92,9 +92,11 @@ void BoardOutput::onPicture(const ColourFrame &frame)
 		fillSolid(picture_);
 	if (resized)
 		updateGeometry();
-	if (boardGeometry())
+	if (boardGeometry()) {
 		scalePicture();
-	else if (pipeline_)
+		if (pipeline_ && !resized) // a new picture in place: the prior samples it again
+			pipeline_->setBoardPicture(&picture_);
+	} else if (pipeline_)
 		pipeline_->setBoardImage(pipelineBoard());
 }
 

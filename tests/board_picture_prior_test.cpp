@@ -71,9 +71,9 @@ TEST(BoardPicturePrior, PredictsTheCameraColourWithinOneLevelOfTheDoubleReferenc
 	ASSERT_TRUE(prior.predict(picture, colour, model));
 
 	// The double reference: the gain is the ratio of the sums over the
-	// pixels that match the model (all of them here).
+	// pixels that match the model (all of them here) on every 4th row.
 	double sumC[3] = {}, sumP[3] = {};
-	for (int y = 0; y < kH; ++y)
+	for (int y = 0; y < kH; y += BoardPicturePrior::kFitRowStride) // the rows it measures on
 		for (int x = 0; x < kW; ++x) {
 			const Rgb8 c = colour.row(y)[x], p = picture.row(2 * y)[2 * x];
 			sumC[0] += c.r, sumC[1] += c.g, sumC[2] += c.b;
@@ -83,7 +83,7 @@ TEST(BoardPicturePrior, PredictsTheCameraColourWithinOneLevelOfTheDoubleReferenc
 	for (int y = 0; y < kH; ++y)
 		for (int x = 0; x < kW; ++x) {
 			ASSERT_EQ(prior.onDisplay().row(y)[x], kTrimapBoard);
-			const Rgb8 p = picture.row(2 * y)[2 * x], got = prior.predicted().row(y)[x];
+			const Rgb8 p = picture.row(2 * y)[2 * x], got = prior.predictedAt(x, y);
 			const double want[3] = { std::min(255.0, p.r * sumC[0] / sumP[0]),
 						 std::min(255.0, p.g * sumC[1] / sumP[1]),
 						 std::min(255.0, p.b * sumC[2] / sumP[2]) };
@@ -140,7 +140,7 @@ TEST(BoardPicturePrior, AStrokeWrittenBehindTheLecturerIsKnownBeforeItIsSeen)
 	for (int frame = 0; frame < 20; ++frame) {
 		model.learn(colour, covered); // the camera still sees him there
 		ASSERT_TRUE(prior.predict(picture, colour, model));
-		model.teach(prior.predicted(), prior.onDisplay());
+		model.teach(prior.sampled(), prior.gainQ8(), prior.onDisplay());
 	}
 	EXPECT_LE(model.distance(25, 24, strokeSeen), 12) << "taught: the stroke is board";
 	EXPECT_LE(model.distance(5, 5, colour.row(5)[5]), 6) << "the board elsewhere still matches";

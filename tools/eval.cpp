@@ -284,9 +284,9 @@ public:
 			const int64_t tick = int64_t(std::floor(double(colour.timestampNs) / 1e9 * fps));
 			if (tick != boardTick_) {
 				display_.render(double(tick) / fps, picture_);
+				pipeline_.setBoardPicture(&picture_);
 				boardTick_ = tick;
 			}
-			pipeline_.setBoardPicture(&picture_);
 		}
 		auto start = std::chrono::steady_clock::now();
 		const Gray8Image *alpha;

@@ -7,6 +7,7 @@
 #include "algo/composite.hpp"
 #include "algo/depth_mapper.hpp"
 #include "algo/depth_seeder.hpp"
+#include "algo/board_picture_prior.hpp"
 #include "algo/pipeline.hpp"
 #include "algo/seed_mapper.hpp"
 #include "algo/siox_refiner.hpp"
@@ -140,10 +141,41 @@ void BM_PipelineFrameLectureBoardPicture(benchmark::State &state)
 	display.configure(Settings().sim, 1920);
 	display.render(9.0, picture);
 	pipelineFrame(state, lectureInputs(w, h), nullptr, [&](Pipeline &p) {
-		p.setBoardGeometry(boardScaling(w, h, picture.width(), picture.height()), RadialLens(), picture.width(),
+		p.setBoardGeometry(boardScaling(w, h, picture.width(), picture.height()), RadialLens::forImage(w, h, 0, 0), picture.width(),
 				   picture.height());
 		p.setBoardPicture(&picture);
 	});
+}
+
+// The board picture prior alone, per frame: the gain fitted and the
+// prediction made (predict), then taught to the board model (teach), with
+// every colour pixel on the display. What BM_PipelineFrameLectureBoardPicture
+// adds to BM_PipelineFrameLecture, measured without the whole frame's noise.
+void BM_BoardPicturePrior(benchmark::State &state)
+{
+	const int w = int(state.range(0)), h = int(state.range(1));
+	const Inputs &in = lectureInputs(w, h);
+	RgbImage picture;
+	SimBoardDisplay display;
+	display.configure(Settings().sim, 1920);
+	display.render(9.0, picture);
+	BoardPicturePrior prior;
+	prior.configure(w, h, boardScaling(w, h, picture.width(), picture.height()), RadialLens::forImage(w, h, 0, 0), picture.width(),
+			picture.height());
+	BoardModel model;
+	const Gray8Image allBoard(w, h, kTrimapBoard);
+	for (int k = 0; k < 16; ++k) // learn() visits a phase of the rows per call
+		model.learn(in.colour[0].rgb, allBoard);
+	int i = 0, taught = 0;
+	for (auto _ : state) {
+		const RgbImage &colour = in.colour[i++ % kFrames].rgb;
+		if (prior.predict(picture, colour, model)) {
+			model.teach(prior.sampled(), prior.gainQ8(), prior.onDisplay());
+			taught++;
+		}
+		benchmark::DoNotOptimize(model.row(0));
+	}
+	state.counters["taught"] = double(taught) / std::max(1, i); // 1: every frame predicted and taught
 }
 
 // The same without the band's minimum cut: what the cut costs.
@@ -267,6 +299,7 @@ void BM_DepthkeySioxStillCold(benchmark::State &state)
 BENCHMARK(BM_PipelineFrame) SIZES;
 BENCHMARK(BM_PipelineFrameLecture) SIZES;
 BENCHMARK(BM_PipelineFrameLectureBoardPicture) SIZES;
+BENCHMARK(BM_BoardPicturePrior) SIZES;
 BENCHMARK(BM_PipelineFrameLectureNoCut) SIZES;
 BENCHMARK(BM_PipelineFrameLectureNoUnmixing) SIZES;
 BENCHMARK(BM_SeedAndMap) SIZES;

@@ -84,16 +84,16 @@ TEST(AccuracyGate, PipelineOnTheSimulatedLecture)
 
 	EXPECT_GE(seeds[0].iou, 2.0 * depthOnly.iou);
 	EXPECT_GE(seeds[0].bf, 4.0 * depthOnly.bf);
-	// Floors: today's figures (0.983/0.921, 0.957/0.873, 0.966/0.900; clean
-	// 0.989/0.959), with the board model taught by the board's own picture
+	// Floors: today's figures (0.982/0.921, 0.957/0.873, 0.966/0.901; clean
+	// 0.989/0.961), with the board model taught by the board's own picture
 	// (the calibration's [board]), less 0.005 (IoU) and 0.01 (BF).
-	const Scores floors[3] = { { 0.978, 0.911 }, { 0.952, 0.863 }, { 0.961, 0.890 } };
+	const Scores floors[3] = { { 0.977, 0.911 }, { 0.952, 0.863 }, { 0.961, 0.891 } };
 	for (int s = 0; s < 3; ++s) {
 		EXPECT_GE(seeds[s].iou, floors[s].iou) << "seed " << s + 1;
 		EXPECT_GE(seeds[s].bf, floors[s].bf) << "seed " << s + 1;
 	}
 	EXPECT_GE(clean.iou, 0.984);
-	EXPECT_GE(clean.bf, 0.949);
+	EXPECT_GE(clean.bf, 0.951);
 
 	std::printf("%-30s %s\n", "run", "IoU    BF");
 	for (int s = 0; s < 3; ++s)
