@@ -12,6 +12,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
+
 #include <atomic>
 #include <csignal>
 #include <functional>
@@ -201,12 +204,15 @@ TEST_F(DaemonReload, ParsingALargeConfigDoesNotStallFrames)
 
 	std::atomic<bool> stop{ false };
 	std::atomic<int64_t> worstGapMs{ 0 };
+	std::atomic<bool> restart{ false }; // forget the gap in progress: the next window begins
 	std::thread watcher([&] {
 		uint64_t last = latestFrame(prefix_ + ".composite");
 		auto lastChange = std::chrono::steady_clock::now();
 		while (!stop) {
 			uint64_t now = latestFrame(prefix_ + ".composite");
 			auto t = std::chrono::steady_clock::now();
+			if (restart.exchange(false))
+				lastChange = t;
 			if (now != last) {
 				last = now;
 				lastChange = t;
@@ -217,6 +223,16 @@ TEST_F(DaemonReload, ParsingALargeConfigDoesNotStallFrames)
 			std::this_thread::sleep_for(2ms);
 		}
 	});
+	// The same daemon's worst gap without a reload, over as long: on a slow
+	// or busy host its own frame work already leaves gaps near 100 ms (this
+	// VM, at a third of its usual speed, saw 111-132 ms with the parse off
+	// the loop), and the parse must add little to that.
+	std::this_thread::sleep_for(500ms); // past the first frames' start-up
+	worstGapMs = 0;
+	restart = true;
+	std::this_thread::sleep_for(2100ms);
+	const int64_t baselineGapMs = worstGapMs.exchange(0);
+	restart = true;
 	daemon_.pollNotify();
 	const int readyBefore = daemon_.countNotify("READY=1");
 	for (int i = 0; i < 3; i++) {
@@ -240,12 +256,17 @@ TEST_F(DaemonReload, ParsingALargeConfigDoesNotStallFrames)
 	// the daemon's own frame work is 2-3 times slower and the parsing worker
 	// takes the second of two cores: a 165 ms gap was seen with the parse
 	// off the loop, while the same parse on the loop costs 500 ms or more.
+	// The limit is the larger of a fixed one and the baseline plus a margin
+	// well under a parse's cost.
 #if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-	constexpr int64_t kMaxGapMs = 250;
+	constexpr int64_t kMaxGapMs = 250, kMarginMs = 120;
 #else
-	constexpr int64_t kMaxGapMs = 100;
+	constexpr int64_t kMaxGapMs = 100, kMarginMs = 60;
 #endif
-	EXPECT_LT(worstGapMs.load(), kMaxGapMs) << "frames stalled during a reload";
+	const int64_t limitMs = std::max(kMaxGapMs, baselineGapMs + kMarginMs);
+	std::printf("    worst frame gap %lld ms during the reloads, %lld ms without (limit %lld ms)\n",
+		    (long long)worstGapMs.load(), (long long)baselineGapMs, (long long)limitMs);
+	EXPECT_LT(worstGapMs.load(), limitMs) << "frames stalled during a reload";
 }
 
 // output.v4l2_device on reload: a node that is no v4l2loopback output
