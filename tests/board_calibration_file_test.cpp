@@ -2,6 +2,7 @@
 // bit, and a cut, corrupt or impossible file is refused naming file, line,
 // key and why.
 #include "config/board_calibration_file.hpp"
+#include "tests/sample_calibration.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,17 +15,7 @@ namespace {
 
 BoardCalibration sample()
 {
-	BoardCalibration c;
-	c.colourToBoard.h = { 1.99998, -1.5e-05, 320.504, -4.38e-06, 1.99998, -11.4965, -1.1e-08, -9.9e-09, 1 };
-	c.colourWidth = 640;
-	c.colourHeight = 480;
-	c.boardWidth = 1920;
-	c.boardHeight = 780;
-	c.date = "2026-12-01T17:00:00Z";
-	c.points = 45;
-	c.rmsPx = 0.0123;
-	c.maxPx = 0.05;
-	return c;
+	return test::sampleBoardCalibration();
 }
 
 std::string replaceLine(std::string text, const std::string &from, const std::string &to)

@@ -330,18 +330,9 @@ TEST(CalibrationFile, BoardSectionRoundTripsAndIsChecked)
 {
 	Calibration c = sampleCalibration();
 	EXPECT_EQ(formatCalibration(c).find("[board]"), std::string::npos) << "no board, no section";
-	BoardCalibration b;
-	b.colourToBoard.h = { 2.5, 0.01, 320.25, -0.003, 2.5, -11.5, 1e-6, -2e-6, 1 };
+	BoardCalibration b = test::sampleBoardCalibration(); // 640x480, as the sample mapping
 	b.lensK1 = -0.034;
 	b.lensK2 = 0.008;
-	b.colourWidth = c.mapping.colourWidth;
-	b.colourHeight = c.mapping.colourHeight;
-	b.boardWidth = 1920;
-	b.boardHeight = 780;
-	b.date = "2026-12-01T00:00:00Z";
-	b.points = 45;
-	b.rmsPx = 0.0086;
-	b.maxPx = 0.0165;
 	c.board = b;
 	const std::string text = formatCalibration(c);
 	CalibrationResult result = parseCalibration(text, kFile);

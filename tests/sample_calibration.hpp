@@ -29,4 +29,21 @@ inline Calibration sampleCalibration()
 	return c;
 }
 
+// A valid board calibration (the simulated room's, 640x480 colour, 1920x780
+// board), for the board file and the calibration file's [board].
+inline BoardCalibration sampleBoardCalibration()
+{
+	BoardCalibration c;
+	c.colourToBoard.h = { 1.99998, -1.5e-05, 320.504, -4.38e-06, 1.99998, -11.4965, -1.1e-08, -9.9e-09, 1 };
+	c.colourWidth = 640;
+	c.colourHeight = 480;
+	c.boardWidth = 1920;
+	c.boardHeight = 780;
+	c.date = "2026-12-01T17:00:00Z";
+	c.points = 45;
+	c.rmsPx = 0.0123;
+	c.maxPx = 0.05;
+	return c;
+}
+
 } // namespace depthkey::test
