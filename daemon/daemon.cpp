@@ -187,6 +187,9 @@ void Daemon::onColourFrame(const ColourFrame &frame)
 	colourHeight_ = frame.rgb.height();
 	recorder_.recordColour(frame);
 	lastColourNs_ = loop_.nowUs() * 1000u; // when it came: a late camera clock must not look stale
+	// A box that cannot key every frame keys fewer (daemon/keying_budget.hpp).
+	if (!keyingBudget_.admit(loop_.nowUs()))
+		return;
 	// A full ring keys its oldest frame first, early, rather than lose it.
 	keyDueFrames(true);
 	pairing_.addColour(frame, loop_.nowUs() * 1000u);
@@ -237,7 +240,9 @@ void Daemon::keyFrame(const PairingQueue::Keying &keying)
 	preview_.offer(&frame, depth, depth ? &pipeline_.trimap() : nullptr, output_, frame.timestampNs,
 		       loop_.nowUs() * 1000u);
 	publish(frame.timestampNs, flags);
-	status_.countKeying(loop_.nowUs() - startUs);
+	const uint64_t keyingUs = loop_.nowUs() - startUs;
+	status_.countKeying(keyingUs);
+	keyingBudget_.spend(keyingUs);
 }
 
 void Daemon::publish(uint64_t captureNs, uint32_t flags)
@@ -325,6 +330,7 @@ StatusSnapshot Daemon::statusSnapshot() const
 	s.calibrationFile = settings_.mapping.calibrationFile;
 	s.board = board_.statusText();
 	s.webcam = { webcam_.path(), webcam_.status(), webcam_.framesWritten() };
+	s.shed = keyingBudget_.shed();
 	return s;
 }
 

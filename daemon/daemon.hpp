@@ -11,6 +11,7 @@
 #include "daemon/frame_outputs.hpp"
 #include "daemon/frame_pairing.hpp"
 #include "daemon/frame_recorder.hpp"
+#include "daemon/keying_budget.hpp"
 #include "daemon/no_signal_picture.hpp"
 #include "daemon/preview_feed.hpp"
 #include "daemon/stage_dumps.hpp"
@@ -111,6 +112,7 @@ private:
 	int colourWidth_ = 0, colourHeight_ = 0, depthWidth_ = 0, depthHeight_ = 0; // last frames
 	PipelineOutput output_;
 	FramePairing pairing_;     // colour frames waiting for depth, the depth camera's offset
+	KeyingBudget keyingBudget_; // sheds colour frames a slow box cannot key
 	bool haveColour_ = false;
 	uint64_t lastColourNs_ = 0;   // arrival (loop clock) of the last colour frame
 	uint64_t lastFrameTickNs_ = 0; // loop clock of the last onFrameTick

@@ -104,14 +104,15 @@ std::string StatusReporter::statusLine(const StatusSnapshot &s, const Rates &rat
 	char text[768];
 	std::snprintf(text, sizeof(text),
 		      "colour %s %s %.1f fps %llu dropped; depth %s %s %.1f fps %llu dropped; "
-		      "paired %llu unpaired %llu; %s; output %.1f fps, keying %.1f ms (p99 %.1f); readers %d; %s; %s",
+		      "paired %llu unpaired %llu; %s; output %.1f fps, keying %.1f ms (p99 %.1f), %llu shed; readers %d; %s; %s",
 		      s.colour.present ? s.colour.name.c_str() : "-", deviceStateName(cs.state), rates.colourFps,
 		      static_cast<unsigned long long>(cs.droppedFrames),
 		      s.depth.present ? s.depth.name.c_str() : "-", deviceStateName(ds.state), rates.depthFps,
 		      static_cast<unsigned long long>(ds.droppedFrames),
 		      static_cast<unsigned long long>(s.pairing.paired),
 		      static_cast<unsigned long long>(s.pairing.unpaired), offset, rates.outputFps,
-		      double(keying_.quantileUs(0.5)) / 1000.0, double(keying_.quantileUs(0.99)) / 1000.0, s.readers.total(),
+		      double(keying_.quantileUs(0.5)) / 1000.0, double(keying_.quantileUs(0.99)) / 1000.0,
+		      static_cast<unsigned long long>(s.shed), s.readers.total(),
 		      s.calibrated		? "calibrated"
 		      : s.calibrationLoaded ? "calibration for other frame sizes (identity mapping)"
 					    : "not calibrated (identity mapping)",

@@ -47,6 +47,7 @@ struct StatusSnapshot {
 	std::string calibrationFile;
 	std::string board;                  // BoardOutput::statusText()
 	StatusWebcam webcam;
+	uint64_t shed = 0;                  // colour frames not keyed: the box is too slow
 };
 
 class StatusReporter

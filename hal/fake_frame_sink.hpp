@@ -6,6 +6,7 @@
 #include "hal/frame_sink.hpp"
 
 #include <cerrno>
+#include <unistd.h>
 
 namespace depthkey {
 
@@ -33,6 +34,8 @@ public:
 				      : check(image.width(), image.height());
 		if (ret)
 			return ret;
+		if (publishDelayUs_)
+			usleep(publishDelayUs_); // a slow box: keying takes this much longer
 		composite_ = image;
 		compositeCount_++;
 		noColourCount_ += (flags & DK_SHM_FLAG_COLOUR_OK) == 0;
@@ -77,6 +80,7 @@ public:
 	}
 
 	void failOpenWith(int error) { failOpen_ = error; }
+	void setPublishDelayUs(unsigned us) { publishDelayUs_ = us; }
 
 	bool isOpen() const { return open_; }
 	int opens() const { return opens_; }
@@ -108,6 +112,7 @@ private:
 	OutputSettings settings_;
 	bool open_ = false;
 	int failOpen_ = 0;
+	unsigned publishDelayUs_ = 0;
 	int opens_ = 0;
 	int width_ = 0;
 	int height_ = 0;

@@ -86,6 +86,39 @@ private:
 	EventSource timer_;
 };
 
+// A 32x24 colour camera at 50 fps, keyed as each frame comes (no pairing
+// delay), the preview on an ephemeral loopback port.
+Settings smallFastSettings()
+{
+	Settings settings;
+	settings.colour.width = 32;
+	settings.colour.height = 24;
+	settings.colour.fps = 50;
+	settings.pairing.delayMs = 0;
+	settings.preview.listen = "127.0.0.1:0";
+	return settings;
+}
+
+// One colour and one depth frame, delivered together stamped now.
+struct BothCameras {
+	explicit BothCameras(Harness &harness) : h(harness)
+	{
+		colour.rgb = RgbImage(32, 24, Rgb8{ 1, 2, 3 });
+		depth.depthMm = Gray16Image(8, 6, 1000);
+		depth.amplitude = Gray16Image(8, 6, 5000);
+		depth.intensity = Gray16Image(8, 6, 5000);
+	}
+	void deliver()
+	{
+		depth.timestampNs = colour.timestampNs = monotonicNs();
+		h.depth->deliver(depth);
+		h.colour->deliver(colour);
+	}
+	Harness &h;
+	ColourFrame colour;
+	DepthFrame depth;
+};
+
 } // namespace
 
 TEST(DaemonDegraded, PublishesOfflineFramesWhileACameraIsLostAndRecovers)
@@ -230,25 +263,10 @@ TEST(DaemonDegraded, WithoutDepthAHeldColourFrameLeavesAfterTheDelayWithItsTimes
 TEST(DaemonDegraded, AHeldLoopIsNotNoSignal)
 {
 	Harness h;
-	Settings settings;
-	settings.colour.width = 32;
-	settings.colour.height = 24;
-	settings.colour.fps = 50;
-	settings.pairing.delayMs = 0;
-	settings.preview.listen = "127.0.0.1:0";
 	Daemon daemon("unused.toml", {}, h.factory());
-	ASSERT_EQ(daemon.start(settings), 0);
-	ColourFrame colour;
-	colour.rgb = RgbImage(32, 24, Rgb8{ 1, 2, 3 });
-	DepthFrame depth;
-	depth.depthMm = Gray16Image(8, 6, 1000);
-	depth.amplitude = Gray16Image(8, 6, 5000);
-	depth.intensity = Gray16Image(8, 6, 5000);
-	auto deliverBoth = [&] {
-		depth.timestampNs = colour.timestampNs = monotonicNs();
-		h.depth->deliver(depth);
-		h.colour->deliver(colour);
-	};
+	ASSERT_EQ(daemon.start(smallFastSettings()), 0);
+	BothCameras cameras(h);
+	auto deliverBoth = [&] { cameras.deliver(); };
 	uint64_t noColourBefore = 0, framesBefore = 0;
 	Script script(daemon, 20000);
 	for (int i = 0; i < 5; ++i)
@@ -264,4 +282,44 @@ TEST(DaemonDegraded, AHeldLoopIsNotNoSignal)
 	unblockSignals();
 	EXPECT_EQ(h.sink->noColourCount(), noColourBefore) << "a NO SIGNAL frame after the loop was held";
 	EXPECT_GE(h.sink->compositeCount() - framesBefore, 5u);
+}
+
+// A box that keys slower than its colour camera delivers sheds colour frames
+// (daemon/keying_budget.hpp) instead of keying every one and leaving the
+// loop no turn for the depth camera, the LEDs and the readers: the HIL VM
+// keyed at 180 ms a frame and its SR-2 fell to under one frame a second.
+TEST(DaemonDegraded, ASlowBoxShedsColourFramesAndKeepsTheLoopTurning)
+{
+	Harness h;
+	Daemon daemon("unused.toml", {}, h.factory());
+	ASSERT_EQ(daemon.start(smallFastSettings()), 0);
+	BothCameras cameras(h);
+	auto deliverBoth = [&] { cameras.deliver(); };
+	constexpr unsigned kKeyingUs = 40000; // twice the colour period
+	Script script(daemon, 20000);
+	uint64_t startNs = 0, noColourBefore = 0;
+	script.then(deliverBoth);
+	script.then([&] {
+		// Measured from the first frame on: before it, NO SIGNAL is right.
+		noColourBefore = h.sink->noColourCount();
+		h.sink->setPublishDelayUs(kKeyingUs);
+		startNs = monotonicNs();
+	});
+	constexpr int kFrames = 100;
+	for (int i = 0; i < kFrames; ++i)
+		script.then(deliverBoth);
+	script.run();
+	const double elapsedS = double(monotonicNs() - startNs) / 1e9;
+	unblockSignals();
+	const uint64_t keyed = h.sink->compositeCount() - 1;
+	const double keyingS = double(keyed) * kKeyingUs / 1e6;
+	std::printf("%llu of %d frames keyed in %.2f s: keying %.2f s of it\n",
+		    static_cast<unsigned long long>(keyed), kFrames, elapsedS, keyingS);
+	// Three quarters of the loop's time, plus the burst saved at the start
+	// and the frame that spends past it.
+	const double limitS = 0.75 * elapsedS + double(KeyingBudget::kBurstUs + kKeyingUs) / 1e6;
+	EXPECT_LE(keyingS, limitS) << "keying took the whole loop";
+	EXPECT_LT(keyed, uint64_t(kFrames)) << "no frame was shed";
+	EXPECT_GE(keyed, uint64_t(kFrames / 3)) << "a slow box must still key what it can";
+	EXPECT_EQ(h.sink->noColourCount(), noColourBefore) << "a shed frame is no lost camera";
 }
