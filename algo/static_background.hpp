@@ -7,16 +7,23 @@
 // usual background model, here of depth): a pixel is "moving" where its
 // depth lies in front of the mean by more than kToleranceMm plus twice the
 // deviation (so a noisy pixel, the glossy monitor's weak echo, does not
-// count as moving). Moving pixels do not update the mean; instead the mean
+// count as moving), or where the mean of its 3x3 box lies in front of the
+// box's means by kToleranceMm plus twice the box's deviation over sqrt(n)
+// (the noise of a mean of n pixels): at the ToF's noisy image edge an arm
+// reaching in is nearer than one pixel's threshold, and only the box sees
+// it. Moving pixels do not update the mean; instead the mean
 // fades towards them by kFadeMmPerFrame, so a lecturer standing still is
 // taken for background only after tens of seconds, and a desk put into the
 // room is learned after a while.
 //
-// Two uint16 per ToF pixel (Q3 mm), integer arithmetic, no allocation once
-// sized.
+// Two uint16 per ToF pixel (Q3 mm) and the frame's int32 excess over the
+// mean, integer arithmetic, no allocation once sized.
 #pragma once
 
 #include "algo/image.hpp"
+
+#include <cstdint>
+#include <vector>
 
 namespace depthkey {
 
@@ -46,8 +53,13 @@ public:
 	int meanMm(size_t i) const { return i < mean_.size() ? mean_.data()[i] >> kFractionBits : 0; }
 
 private:
+	// Whether the 3x3 box around (x, y) lies in front of its means by more
+	// than kToleranceMm plus twice the deviation of the box's mean noise.
+	bool inFrontPooled(int x, int y) const;
+
 	Gray16Image mean_, deviation_; // Q3 mm; mean 0 = not seen yet
-	Gray8Image inFront_;
+	Gray8Image inFront_, pooled_;
+	std::vector<int32_t> excess_; // this frame's depth in front of the mean, Q3 mm
 };
 
 } // namespace depthkey

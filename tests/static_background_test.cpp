@@ -3,12 +3,14 @@
 // steps in front of the board is the lecturer.
 
 #include "algo/depth_seeder.hpp"
+#include "algo/lecturer_picker.hpp"
 #include "algo/morphology.hpp"
 #include "algo/static_background.hpp"
 #include "algo/trimap.hpp"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 using namespace depthkey;
@@ -72,6 +74,113 @@ TEST(StaticBackground, FurnitureAndNoiseAreStaticSomeoneInFrontOfTheBoardMoves)
 	frame.depthMm.at(2, 2) = 0;        // no measurement: never moving
 	background.update(frame.depthMm, moving);
 	EXPECT_EQ(moving.at(2, 2), 0);
+}
+
+// The ToF's image edge is noisy (about 150 mm there in the simulated
+// lecture, up to 30 cm in its corners): an arm reaching in 300 mm in front of
+// the board is under one pixel's threshold (150 mm plus twice its deviation),
+// and seed 2's arm went unseen for four frames (IoU 0). The mean of a 3x3
+// box, with a third of the noise, sees it; the board's noise alone stays
+// static.
+TEST(StaticBackground, AnArmReachingInAtTheNoisyEdgeMoves)
+{
+	std::mt19937 random(11);
+	std::normal_distribution<double> noise(0.0, 150.0);
+	StaticBackground background;
+	Gray8Image moving;
+	Gray16Image depth(40, 30);
+	auto noisy = [&](int x, int y, double mm) { depth.at(x, y) = uint16_t(std::lround(mm + noise(random))); };
+	int falseMoving = 0, samples = 0;
+	for (int i = 0; i < 260; ++i) {
+		for (int y = 0; y < 30; ++y)
+			for (int x = 0; x < 40; ++x)
+				noisy(x, y, 2000);
+		background.update(depth, moving);
+		if (i < 60)
+			continue; // learning the board's depth and noise
+		for (size_t p = 0; p < moving.size(); ++p)
+			falseMoving += moving.data()[p] != 0;
+		samples += int(moving.size());
+	}
+	EXPECT_LE(falseMoving * 1000, samples) << falseMoving << " of " << samples << " board samples moving";
+	// The arm: 4 rows, 8 columns from the left edge, at 1700 mm.
+	for (int y = 0; y < 30; ++y)
+		for (int x = 0; x < 40; ++x)
+			noisy(x, y, x < 8 && y >= 13 && y < 17 ? 1700 : 2000);
+	background.update(depth, moving);
+	int armMoving = 0;
+	for (int y = 13; y < 17; ++y)
+		for (int x = 0; x < 8; ++x)
+			armMoving += moving.at(x, y) != 0;
+	// The lecturer picker's least moving pixels (algo/lecturer_picker.hpp).
+	std::printf("%d of the arm's 32 pixels moving, %d of %d board samples\n", armMoving, falseMoving, samples);
+	EXPECT_GE(armMoving, LecturerPicker::kMinMovingPixels) << "of the arm's 32 pixels";
+}
+
+// A lone wild depth (a ToF's flying pixel) far in front of a quiet board
+// moves neither itself nor, through the 3x3 mean, its neighbours.
+TEST(StaticBackground, AFlyingPixelDoesNotMoveItsNeighbours)
+{
+	StaticBackground background;
+	Gray8Image moving;
+	Gray16Image depth(9, 9, 2000);
+	for (int i = 0; i < 40; ++i)
+		background.update(depth, moving);
+	depth.at(4, 4) = 500;
+	background.update(depth, moving);
+	for (size_t p = 0; p < moving.size(); ++p)
+		ASSERT_EQ(moving.data()[p], 0) << "pixel " << p;
+}
+
+// The 3x3 test against a floating-point reference: after one frame every
+// mean is that frame's depth and every deviation 15/16 of kToleranceMm (it
+// starts there and follows the frame's zero deviation by 1/16), so the
+// second frame's decision is known in closed form. Excesses stay under one
+// pixel's own threshold (150 + 2 x 140.6 mm), so only the box can move a
+// pixel. Tolerance: pixels whose float margin is within 1 mm per pixel of
+// the box (the Q9 table of 1/sqrt(n), Q3 depths) may go either way; every
+// other pixel agrees.
+TEST(StaticBackground, TheBoxTestAgreesWithAFloatReference)
+{
+	std::mt19937 random(5);
+	std::uniform_int_distribution<int> board(1950, 2050), excess(100, 420);
+	const int w = 32, h = 24;
+	Gray16Image first(w, h), second(w, h);
+	for (int y = 0; y < h; ++y)
+		for (int x = 0; x < w; ++x) {
+			first.at(x, y) = uint16_t(board(random));
+			// Patches: whole 4x4 blocks near, so the box's mean varies.
+			const int block = ((x / 4) * 7 + (y / 4) * 3) % 5;
+			second.at(x, y) = uint16_t(first.at(x, y) - (block < 2 ? excess(random) : excess(random) / 4));
+		}
+	StaticBackground background;
+	Gray8Image moving;
+	background.update(first, moving);
+	background.update(second, moving);
+	const double tol = StaticBackground::kToleranceMm;
+	int agreed = 0, near = 0, movingCount = 0;
+	for (int y = 0; y < h; ++y)
+		for (int x = 0; x < w; ++x) {
+			double sumExcess = 0;
+			int n = 0;
+			for (int yy = std::max(0, y - 1); yy <= std::min(h - 1, y + 1); ++yy)
+				for (int xx = std::max(0, x - 1); xx <= std::min(w - 1, x + 1); ++xx, ++n)
+					sumExcess += double(first.at(xx, yy)) - double(second.at(xx, yy));
+			const double deviation = tol * 15.0 / 16.0;
+			const double threshold = n * tol + 2.0 * n * deviation / std::sqrt(double(n));
+			const double margin = sumExcess - threshold;
+			if (std::fabs(margin) <= n) {
+				near++;
+				continue;
+			}
+			const bool expected = margin > 0;
+			movingCount += expected;
+			EXPECT_EQ(moving.at(x, y) != 0, expected) << "pixel " << x << "," << y << " margin " << margin;
+			agreed++;
+		}
+	std::printf("%d pixels agree (%d moving), %d within the tolerance\n", agreed, movingCount, near);
+	EXPECT_GT(movingCount, 20);
+	EXPECT_GT(agreed - movingCount, 20);
 }
 
 TEST(StaticBackground, SomeoneStandingStillFadesIntoTheBackgroundSlowly)

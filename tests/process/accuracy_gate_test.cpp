@@ -84,14 +84,18 @@ TEST(AccuracyGate, PipelineOnTheSimulatedLecture)
 
 	EXPECT_GE(seeds[0].iou, 2.0 * depthOnly.iou);
 	EXPECT_GE(seeds[0].bf, 4.0 * depthOnly.bf);
-	// Floors: today's figures (0.982/0.921, 0.957/0.873, 0.966/0.901; clean
+	// Floors: today's figures (0.985/0.927, 0.966/0.880, 0.966/0.903; clean
 	// 0.989/0.961), with the board model taught by the board's own picture
-	// (the calibration's [board]), less 0.005 (IoU) and 0.01 (BF).
-	const Scores floors[3] = { { 0.977, 0.911 }, { 0.952, 0.863 }, { 0.961, 0.891 } };
+	// (the calibration's [board]) and an arm entering at the ToF's noisy edge
+	// seen (algo/static_background.hpp), less 0.005 (IoU) and 0.01 (BF) per
+	// seed; the means (0.972/0.903) at the targets, which they meet.
+	const Scores floors[3] = { { 0.980, 0.917 }, { 0.961, 0.870 }, { 0.961, 0.893 } };
 	for (int s = 0; s < 3; ++s) {
 		EXPECT_GE(seeds[s].iou, floors[s].iou) << "seed " << s + 1;
 		EXPECT_GE(seeds[s].bf, floors[s].bf) << "seed " << s + 1;
 	}
+	EXPECT_GE(mean.iou, 0.970);
+	EXPECT_GE(mean.bf, 0.900);
 	EXPECT_GE(clean.iou, 0.984);
 	EXPECT_GE(clean.bf, 0.951);
 
