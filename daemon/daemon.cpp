@@ -188,7 +188,7 @@ void Daemon::onColourFrame(const ColourFrame &frame)
 	recorder_.recordColour(frame);
 	lastColourNs_ = loop_.nowUs() * 1000u; // when it came: a late camera clock must not look stale
 	// A box that cannot key every frame keys fewer (daemon/keying_budget.hpp).
-	if (!keyingBudget_.admit(loop_.nowUs()))
+	if (colour_ && colour_->freeRunning() && !keyingBudget_.admit(loop_.nowUs()))
 		return;
 	// A full ring keys its oldest frame first, early, rather than lose it.
 	keyDueFrames(true);

@@ -25,8 +25,11 @@ public:
 	}
 	void stop() override { status_ = { DeviceState::Stopped, 0, "" }; }
 	DeviceStatus status() const override { return status_; }
+	bool freeRunning() const override { return freeRunning_; }
 
 	void deliver(const Frame &frame) { onFrame_(frame); }
+	// false: a source that waits for the daemon (a replay not in real time).
+	void setFreeRunning(bool freeRunning) { freeRunning_ = freeRunning; }
 	void setState(DeviceState state, int error, const std::string &detail)
 	{
 		status_ = { state, error, detail };
@@ -36,6 +39,7 @@ public:
 
 private:
 	std::string name_;
+	bool freeRunning_ = true;
 	FrameHandler onFrame_;
 	StatusHandler onStatus_;
 	DeviceStatus status_;

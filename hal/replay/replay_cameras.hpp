@@ -22,6 +22,7 @@ public:
 	}
 	void stop() override { timeline_->detachColour(); }
 	DeviceStatus status() const override { return timeline_->status(); }
+	bool freeRunning() const override { return timeline_->settings().realtime; }
 
 private:
 	std::shared_ptr<ReplayTimeline> timeline_;
