@@ -8,19 +8,21 @@
 
 namespace depthkey {
 
-// Retry delays 100 ms, 200 ms, 400 ms, capped at 500 ms. A returning device
-// must be streaming again within 2 s: waiting for the next attempt (at most the
-// cap) plus re-opening and the first frame (up to ~1.5 s for an SR-2 on a busy
-// box, measured in the HIL VM) must fit in it; with a 1 s cap the VM measured
-// 2.2-2.4 s under load. An attempt costs little (an open that fails); the doubling
-// keeps a box with a camera unplugged for hours from spinning. The delay only
+// Retry delays 100 ms, 200 ms, capped at 250 ms. A returning device must be
+// streaming again within 2 s: waiting for the next attempt (at most the cap)
+// plus re-opening and the first frame (up to ~1.5 s for an SR-2 or the board's
+// capture stick on a busy box, measured in the HIL VM) must fit in it; with a
+// 1 s cap the VM measured 2.2-2.4 s under load, with 500 ms the board's stick
+// 2.1-2.3 s. An attempt costs little (an open that fails: four a second
+// while a camera is unplugged); the doubling keeps a device that opens and
+// fails at once from spinning. The delay only
 // starts again from the first one once the device delivered a good frame, so
 // a device that opens and fails at once keeps backing off.
 class ReconnectBackoff
 {
 public:
 	static constexpr uint64_t kFirstUs = 100'000;
-	static constexpr uint64_t kMaxUs = 500'000;
+	static constexpr uint64_t kMaxUs = 250'000;
 
 	// The delay before the next attempt; each call doubles the next one.
 	uint64_t nextDelayUs()
