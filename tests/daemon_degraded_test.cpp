@@ -345,7 +345,13 @@ TEST(DaemonDegraded, ASlowBoxShedsColourFramesAndKeepsTheLoopTurning)
 	// and the frame that spends past it.
 	const double limitS = 0.75 * run.elapsedS + double(KeyingBudget::kBurstUs + kKeyingUs) / 1e6;
 	EXPECT_LE(keyingS, limitS) << "keying took the whole loop";
-	EXPECT_LT(run.keyed, uint64_t(kFrames)) << "no frame was shed";
+	// Keying every frame would have taken more than the share: some must
+	// have been shed. (Under the sanitizers the rest of each loop turn is
+	// slower than the keying, frames come one a turn, and none need be.)
+	if (double(kFrames) * kKeyingUs / 1e6 > limitS)
+		EXPECT_LT(run.keyed, uint64_t(kFrames)) << "no frame was shed";
+	else
+		std::printf("keying all %d frames would fit in the share here: none need be shed\n", kFrames);
 	EXPECT_GE(run.keyed, uint64_t(kFrames / 3)) << "a slow box must still key what it can";
 	EXPECT_EQ(run.noColour, 0u) << "a shed frame is no lost camera";
 }
