@@ -60,7 +60,6 @@ void StaticBackground::update(const Gray16Image &depthMm, Gray8Image &moving)
 			pooled[x] = e[x] != kInvalid && inFrontPooled(x, y);
 	}
 	for (int y = 0; y < h; ++y) {
-		const uint16_t *d = depthMm.row(y);
 		uint16_t *mean = mean_.row(y), *dev = deviation_.row(y);
 		const int32_t *e = excess_.data() + size_t(y) * w;
 		const uint8_t *pooled = pooled_.row(y);
@@ -75,7 +74,7 @@ void StaticBackground::update(const Gray16Image &depthMm, Gray8Image &moving)
 				mean[x] = uint16_t(mu - kFadeMmPerFrame * kOne);
 				continue;
 			}
-			const int z = (d[x] < 8191 ? d[x] : 8191) * kOne;
+			const int z = mu - e[x]; // the clamped Q3 depth of the first pass
 			// Arithmetic shifts of signed values (C++20): rounds towards
 			// minus infinity, a bias of under 1/8 mm.
 			mean[x] = uint16_t(mu + ((z - mu) >> kRateShift));
