@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <sys/mman.h>
@@ -64,14 +65,21 @@ TEST(PreviewScreenshot, ChromiumShowsTheStageImages)
 	// picture: not the black of a box without one (nor of a broken-image
 	// icon). Colour and depth always have texture (board, desk, noise); the
 	// composite and seeds may be flat while the lecturer is out of view.
+	// A box without a picture is the figure's black (#000: mean and
+	// deviation about 0); the dark board alone sums to a mean of 82. The
+	// colour box's texture depends on where the simulated lecturer is: 61-209
+	// with him in it, 23.6 (CI, stop 22) with only the dark board and a few
+	// strokes there, so "textured" means a deviation over 10.
 	const char *names[] = { "composite", "colour", "depth", "seeds" };
 	for (int i = 0; i < 4; i++) {
 		cv::Mat box = page(stageBox(i));
 		cv::Scalar mean, deviation;
 		cv::meanStdDev(box, mean, deviation);
-		EXPECT_GT(mean[0] + mean[1] + mean[2], 60.0) << names[i] << " shows no picture in " << shot;
+		std::printf("    %s: mean %.1f, deviation %.1f (sums over B, G, R)\n", names[i], mean[0] + mean[1] + mean[2],
+			    deviation[0] + deviation[1] + deviation[2]);
+		EXPECT_GT(mean[0] + mean[1] + mean[2], 30.0) << names[i] << " shows no picture in " << shot;
 		if (i == 1 || i == 2) {
-			EXPECT_GT(deviation[0] + deviation[1] + deviation[2], 30.0)
+			EXPECT_GT(deviation[0] + deviation[1] + deviation[2], 10.0)
 				<< names[i] << " looks flat in " << shot << " (mean " << mean << ")";
 		}
 	}
