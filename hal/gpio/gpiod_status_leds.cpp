@@ -186,10 +186,52 @@ void GpiodStatusLeds::tick()
 			lines_[i]->set_value(level);
 			written_[i] = level;
 		} catch (const std::exception &e) {
+			if (chipGone()) {
+				dropChip(errnoOf(e), std::string("cannot set line: ") + e.what());
+				break;
+			}
 			release(i, errnoOf(e), std::string("cannot set line: ") + e.what());
 		}
 	}
 	tick_ = (tick_ + 1) % kLedTicksPerCycle;
+}
+
+// Whether the chip still answers: a line's info asked of it (an ioctl on
+// the chip's fd, ENODEV once the kernel removed the chip).
+bool GpiodStatusLeds::chipGone() const
+{
+	if (!chip_)
+		return true;
+	try {
+		chip_->get_line(0).update();
+		return false;
+	} catch (const std::exception &) {
+		return true;
+	}
+}
+
+// Lets go of every line and of the chip, reported once as the chip's fault;
+// retryMissing() looks the chip up afresh once a second, and its return is
+// reported as the chip's (the lines' own faults were not reported, so they
+// come back quietly with it).
+void GpiodStatusLeds::dropChip(int error, const std::string &what)
+{
+	for (size_t i = 0; i < kStatusLedCount; i++) {
+		if (lines_[i]) {
+			try {
+				lines_[i]->release();
+			} catch (const std::exception &) {
+				// Gone with its chip; dropping our handle is all that is left.
+			}
+			lines_[i].reset();
+		}
+		written_[i] = -1;
+		reported_[i] = false;
+	}
+	chip_.reset();
+	if (!chipReported_ && onFault_)
+		onFault_("", error, "GPIO chip " + settings_.chip + " is gone: " + what);
+	chipReported_ = true;
 }
 
 void GpiodStatusLeds::release(size_t led, int error, const std::string &what)

@@ -8,6 +8,10 @@
 // went away and came back is a new device), silently while they still fail;
 // one that is back is reported through onFault with error 0. So a chip that
 // returns, or a line another process let go, lights again by itself.
+// A line that fails because its chip went (a USB GPIO expander unplugged)
+// takes every line down with it: the others are gone too, though a steady
+// one would only fail when next written, and while the daemon held them the
+// old chip could not be let go and looked up afresh.
 #pragma once
 
 #include "hal/gpio/led_patterns.hpp"
@@ -48,6 +52,8 @@ private:
 	void retryMissing();
 	void tick();
 	void release(size_t led, int error, const std::string &what);
+	bool chipGone() const;
+	void dropChip(int error, const std::string &what);
 
 	FaultHandler onFault_;
 	std::unique_ptr<gpiod::chip> chip_;

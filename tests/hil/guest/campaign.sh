@@ -108,22 +108,27 @@ campaign_webcam_error() { # CONTROL
 	fi
 }
 
-# The LEDs' chip removed: the daemon goes on publishing whole frames and
-# releases the lines that fail (the heartbeat's at once: a line is written
-# only when its level changes). A reload that names the chip anew
-# re-requests them (the daemon also retries by itself, once a second; the
-# suite's section leds checks that):
-# timed from that reload until the daemon holds all its lines again, then
-# the heartbeat must blink. gpio-line-busy: while the chip is back another
-# process holds one LED line; the reload gets the other six, the daemon goes
-# on, and a second reload after that process let go gets all seven. The
-# lines held are the daemon's GPIO line handles (its other fds come and go
-# as cameras are re-opened).
-leds_reopen() {
-	local spelling=$led_chip
-	grep -qx "chip = \"$led_chip\"" "$DK_CONFIG" && spelling=/dev/$led_chip
-	sed -i "s|^chip = .*|chip = \"$spelling\"|" "$DK_CONFIG"
+# The LEDs' chip removed (gpio-chip-removed): the daemon goes on publishing
+# whole frames and lets go of all its lines (the first write that fails finds
+# the chip gone). The config names the chip by its label, so when the chip is
+# back, maybe as another gpiochipN (a USB GPIO expander re-plugged), the
+# daemon's own retry, once a second, looks it up and takes the lines again:
+# timed from the chip's return until the daemon holds all its lines, then the
+# heartbeat must blink. No reload.
+# gpio-line-busy: another process holds one LED line. It takes the line
+# while a reload has that LED not fitted; a reload with it fitted again gets
+# the other six (the daemon goes on publishing); timed from that process
+# letting go (the line's return) until the daemon holds all seven, again by
+# its own retry. The lines held are the daemon's GPIO line handles (its
+# other fds come and go as cameras are re-opened).
+LED_KEYS="power_line depth_line colour_line calibration_line reader_line error_line board_line"
+reload_count() { grep -c "configuration reloaded" "$DK_LOG"; }
+reloaded_more_than() { [ "$(reload_count)" -gt "$1" ]; }
+reload_and_wait() {
+	local before
+	before=$(reload_count)
 	kill -HUP "$DK_PID"
+	hil_wait 10 reloaded_more_than "$before" || gpio_fail reload "no 'configuration reloaded' within 10 s of SIGHUP"
 }
 whole_frames() { # WHAT
 	local out
@@ -144,32 +149,39 @@ leds_back() {
 	if hil_wait 10 lines_are "$LED_COUNT"; then
 		FAULT_MS=$(elapsed_ms "$1" "$(hil_uptime)")
 		led_shows "$LED_POWER" blinking ||
-			gpio_fail heartbeat "power line $LED_SEEN after the LEDs were requested again"
+			gpio_fail heartbeat "power line $LED_SEEN after the LEDs were taken again"
 	else
-		gpio_fail recovery "$(lines_held) lines held 10 s after the reload, not $LED_COUNT"
+		gpio_fail recovery "$(lines_held) lines held 10 s after the return, not $LED_COUNT"
 	fi
 }
-campaign_gpio() { # chip-removed|line-busy
-	local line since holder
+campaign_gpio_chip_removed() {
+	local since
 	gpio_chip_remove || { fault_fail inject "gpio-sim live=0 failed"; return; }
 	whole_frames frames-without-leds
-	hil_wait 5 lines_below "$LED_COUNT" || gpio_fail line-released "still $(lines_held) lines held 5 s after the chip went"
-	gpio_chip_return || { fault_fail restore "gpio-sim live=1 failed"; return; }
-	if [ "$1" = line-busy ]; then
-		line=$(word "$LED_LINES" $((RANDOM % LED_COUNT)))
-		gpioset --mode=signal "$led_chip" "$line=1" 9<&- &
-		holder=$!
-		hil_wait 10 gpio_is "$line" 1 || gpio_fail inject "gpioset could not take line $line"
-		leds_reopen
-		hil_wait 10 lines_are $((LED_COUNT - 1)) ||
-			gpio_fail other-leds "$(lines_held) lines held, expected $((LED_COUNT - 1)) with line $line busy"
-		whole_frames frames-with-line-busy
-		gpio_is "$line" 1 || gpio_fail line-busy "line $line is not the other user's any more"
-		kill "$holder"
-		wait "$holder" 2>/dev/null
-	fi
+	hil_wait 5 lines_are 0 || gpio_fail lines-released "still $(lines_held) lines held 5 s after the chip went"
 	since=$(hil_uptime)
-	leds_reopen
+	gpio_chip_return || { fault_fail restore "gpio-sim live=1 failed"; return; }
+	leds_back "$since"
+}
+campaign_gpio_line_busy() {
+	local k key line holder since
+	k=$((RANDOM % LED_COUNT))
+	key=$(word "$LED_KEYS" "$k") line=$(word "$LED_LINES" "$k")
+	sed -i "s|^$key = .*|$key = -1|" "$DK_CONFIG"
+	reload_and_wait
+	hil_wait 10 lines_are $((LED_COUNT - 1)) || gpio_fail unfit "$(lines_held) lines held with $key = -1"
+	gpioset --mode=signal "$led_chip" "$line=1" 9<&- &
+	holder=$!
+	hil_wait 10 gpio_is "$line" 1 || gpio_fail inject "gpioset could not take line $line"
+	sed -i "s|^$key = .*|$key = $line|" "$DK_CONFIG"
+	reload_and_wait
+	lines_are $((LED_COUNT - 1)) ||
+		gpio_fail other-leds "$(lines_held) lines held, expected $((LED_COUNT - 1)) with line $line busy"
+	whole_frames frames-with-line-busy
+	gpio_is "$line" 1 || gpio_fail line-busy "line $line is not the other user's any more"
+	since=$(hil_uptime)
+	kill "$holder"
+	wait "$holder" 2>/dev/null
 	leds_back "$since"
 }
 
@@ -180,8 +192,8 @@ campaign_run_fault() { # NAME
 	webcam-disconnect | webcam-streamon-fails) campaign_cameras_away "" "$1" ;;
 	webcam-qbuf-error) campaign_webcam_error inject_vidioc_qbuf_error ;;
 	webcam-fatal-error) campaign_webcam_error inject_fatal_streaming_error ;;
-	gpio-chip-removed) campaign_gpio chip-removed ;;
-	gpio-line-busy) campaign_gpio line-busy ;;
+	gpio-chip-removed) campaign_gpio_chip_removed ;;
+	gpio-line-busy) campaign_gpio_line_busy ;;
 	*) fault_fail unknown "no such fault" ;;
 	esac
 }
@@ -199,6 +211,9 @@ for ((i = 1; i <= CAMPAIGN_FAULTS; i++)); do
 done
 
 # --- the campaign ------------------------------------------------------------------
+# The LEDs' chip by its label, which stays when the chip comes back as
+# another gpiochipN.
+sed -i "s|^chip = .*|chip = \"$GPIO_LABEL\"|" "$DK_CONFIG"
 daemon_start
 check_flags campaign-daemon-frames "$ONLINE=$ONLINE" 10 --timeout 60
 crashes=0 baseline_at="" fds_start="" kinds_left=$n_single started=$(hil_uptime)
