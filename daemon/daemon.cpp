@@ -40,6 +40,7 @@ int Daemon::start(const Settings &settings)
 {
 	settings_ = settings;
 	overrides_.applyTo(settings_);
+	keyingBudget_.setSharePercent(settings_.daemon.keyingShare);
 	LogLevel level;
 	if (parseLogLevel(settings.daemon.logLevel, level))
 		logger().setLevel(level);
@@ -350,6 +351,7 @@ void Daemon::apply(const Settings &next, const PipelineFiles &files)
 {
 	Settings previous = settings_;
 	settings_ = next;
+	keyingBudget_.setSharePercent(next.daemon.keyingShare);
 	LogLevel level;
 	if (parseLogLevel(next.daemon.logLevel, level))
 		logger().setLevel(level);

@@ -11,7 +11,7 @@
 // taken for lost, and a returning camera's re-open took over 2 s.
 //
 // A token bucket of loop time: every microsecond that passes earns
-// kShareQ8/256 of a microsecond of keying, up to kBurstUs saved; keying a
+// the share (75 % by default) of a microsecond of keying, up to kBurstUs saved; keying a
 // frame spends its time. A colour frame arriving with nothing to spend is
 // shed (not keyed, counted). A box that keeps up (keying well under the
 // period) never sheds: a 21 ms keying at 30 fps earns 25 ms a frame.
@@ -28,14 +28,18 @@ namespace depthkey {
 class KeyingBudget
 {
 public:
-	// Three quarters of the loop for keying: the rest (a few ms a frame on
-	// a real box) is depth, LEDs, readers, the preview and the watchdog,
-	// and a VM emulating the devices needs its turns to be frequent.
-	static constexpr int64_t kShareQ8 = 192;
+	// Three quarters of the loop for keying by default (daemon.keying_share):
+	// the rest (a few ms a frame on a real box) is depth, LEDs, readers,
+	// the preview and the watchdog. A box whose devices need the loop more
+	// often (the HIL suite's VM emulating them under TCG) sets less.
+	static constexpr int kDefaultSharePercent = 75;
 	// Keying saved for a short burst (a held loop resuming with a few
 	// frames queued, a slow first frame), kept short so that a box keying
 	// too slowly starts to shed within a few frames.
 	static constexpr int64_t kBurstUs = 300'000;
+
+	// The share of the loop's time keying may take, 10..100 percent.
+	void setSharePercent(int percent) { shareQ8_ = std::clamp(percent, 10, 100) * 256 / 100; }
 
 	// Whether a colour frame arriving at nowUs may be keyed; false counts
 	// it as shed.
@@ -55,11 +59,12 @@ private:
 	void earn(uint64_t nowUs)
 	{
 		if (started_ && nowUs > lastUs_)
-			creditUs_ = std::min(kBurstUs, creditUs_ + int64_t(nowUs - lastUs_) * kShareQ8 / 256);
+			creditUs_ = std::min(kBurstUs, creditUs_ + int64_t(nowUs - lastUs_) * shareQ8_ / 256);
 		started_ = true;
 		lastUs_ = nowUs;
 	}
 
+	int64_t shareQ8_ = kDefaultSharePercent * 256 / 100;
 	int64_t creditUs_ = kBurstUs;
 	uint64_t lastUs_ = 0;
 	uint64_t shed_ = 0;

@@ -80,6 +80,7 @@ log_level = "debug"
 snapshot_dir = "/var/lib/depthkey/snapshots"
 record_dir = "/srv/recordings/today"
 record_compression = 6
+keying_share = 40
 [colour]
 backend = "v4l2"
 device = "/dev/v4l/by-id/usb-cam"
@@ -184,7 +185,7 @@ loop = false
 		ADD_FAILURE() << e.toString();
 
 	Settings expected;
-	expected.daemon = { "debug", "/var/lib/depthkey/snapshots", "/srv/recordings/today", 6 };
+	expected.daemon = { "debug", "/var/lib/depthkey/snapshots", "/srv/recordings/today", 6, 40 };
 	expected.colour = { "v4l2", "/dev/v4l/by-id/usb-cam", 1280, 720, 30, "mjpeg", 2000 };
 	expected.depth = { "sr2", 15, 500, 400, 5000, "1-2.3", 90, true, 12000, 20000,
 			   { { 0x0A, 7 }, { 0x0B, 255 } }, "usb-Intel_RealSense-video-index0",
@@ -214,6 +215,14 @@ loop = false
 	EXPECT_NE(expected.output, defaults.output);
 	EXPECT_NE(expected.sim, defaults.sim);
 	EXPECT_NE(expected.replay, defaults.replay);
+}
+
+TEST(ConfigLoader, KeyingShareIsAPercentFrom10)
+{
+	ConfigError e = onlyError("[daemon]\nkeying_share = 5\n");
+	EXPECT_EQ(e.key, "daemon.keying_share");
+	EXPECT_NE(e.message.find("10..100"), std::string::npos) << e.message;
+	EXPECT_EQ(onlyError("[daemon]\nkeying_share = 101\n").key, "daemon.keying_share");
 }
 
 TEST(ConfigLoader, SimRangesAreChecked)

@@ -84,3 +84,25 @@ TEST(KeyingBudget, ABurstAfterAHeldLoopIsKeyedInFull)
 		budget.spend(10000);
 	}
 }
+
+TEST(KeyingBudget, ALowerShareLeavesTheLoopMoreTime)
+{
+	// daemon.keying_share = 40: the HIL VM's 180 ms frames at 10 fps key
+	// with two fifths of the loop, where the default keys with three quarters.
+	KeyingBudget lower, standard;
+	lower.setSharePercent(40);
+	Outcome low = simulate(lower, 100000, 180000, 60);
+	Outcome high = simulate(standard, 100000, 180000, 60);
+	const double lowShare = double(low.keyingUs) / double(low.elapsedUs);
+	const double highShare = double(high.keyingUs) / double(high.elapsedUs);
+	std::printf("share 40: keying %.3f of the loop, %llu shed; share 75: %.3f, %llu shed\n", lowShare,
+		    static_cast<unsigned long long>(low.shed), highShare, static_cast<unsigned long long>(high.shed));
+	EXPECT_NEAR(lowShare, 0.40, 0.03);
+	EXPECT_NEAR(highShare, 0.75, 0.03);
+	// Out-of-range settings are held to 10..100 percent.
+	KeyingBudget tiny, all;
+	tiny.setSharePercent(0);
+	all.setSharePercent(1000);
+	EXPECT_NEAR(double(simulate(tiny, 100000, 180000, 60).keyingUs) / 60e6, 0.10, 0.02);
+	EXPECT_EQ(simulate(all, 100000, 180000, 60).shed, 0u);
+}
