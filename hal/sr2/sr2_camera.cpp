@@ -14,6 +14,12 @@ namespace {
 // This many refused frames in a row and the camera is re-opened: a reset
 // cures a camera out of step with the host; isolated bad frames are dropped.
 constexpr int kMaxBadFramesInRow = 10;
+// A frame read that times out is reported at once (the camera is lost), and
+// the frame requested again on the same handle; only this many in a row
+// re-open the camera. A camera that stalled and resumes answers the next
+// request: re-opening first (close, back-off, open, register writes) cost
+// the HIL suite's SR-2 a second after its return, over its 2 s limit.
+constexpr int kReadTimeoutsBeforeReopen = 3;
 // stop() waits this long for a cancelled transfer before giving up on it.
 constexpr int kStopWaitMs = 3000;
 
@@ -94,6 +100,7 @@ void Sr2Camera::tryOpen()
 	phase_ = Phase::Running;
 	streaming_ = false;
 	badInRow_ = 0;
+	readTimeoutsInRow_ = 0;
 	pendingWrites_.clear();
 	pendingWrites_.push_back({ sr2::kRegOutputMode.address, sr2::kOutputDistanceIntensityAmplitude });
 	pendingWrites_.push_back({ sr2::kRegIntegrationTime.address, integrationTime_ });
@@ -190,6 +197,13 @@ void Sr2Camera::onTransferDone(libusb_transfer *t)
 		status_.droppedFrames++;
 		return next();
 	case LIBUSB_TRANSFER_TIMED_OUT:
+		if (t == bulk_ && ++readTimeoutsInRow_ < kReadTimeoutsBeforeReopen) {
+			streaming_ = false;
+			setStatus(DeviceState::Lost, -ETIMEDOUT,
+				  std::string(what) + " timed out after " + std::to_string(settings_.timeoutMs) +
+					  " ms (stalled)");
+			return next();
+		}
 		return fail(-ETIMEDOUT, std::string(what) + " timed out after " +
 						std::to_string(settings_.timeoutMs) + " ms (stalled)");
 	case LIBUSB_TRANSFER_NO_DEVICE:
@@ -221,6 +235,7 @@ void Sr2Camera::onFrameData(size_t length)
 		return next();
 	}
 	badInRow_ = 0;
+	readTimeoutsInRow_ = 0;
 	if (!streaming_) {
 		streaming_ = true;
 		backoff_.reset();

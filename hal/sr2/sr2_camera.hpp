@@ -71,6 +71,7 @@ private:
 	uint64_t lastRequestUs_ = 0;
 	int integrationTime_ = 0;
 	int badInRow_ = 0;
+	int readTimeoutsInRow_ = 0;
 	bool streaming_ = false;
 	DepthFrame frame_;
 };
