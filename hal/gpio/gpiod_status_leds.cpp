@@ -8,11 +8,13 @@ namespace depthkey {
 
 namespace {
 
-// Missing lines are retried once a second, by the clock: a busy loop runs
+// Missing lines are retried twice a second, by the clock: a busy loop runs
 // the LED timer late (each late tick moves the schedule), and counting ticks
 // made "once a second" several seconds on a slow machine (the HIL VM under
-// load took 8-11 s to take a returned chip back).
-constexpr uint64_t kLedRetryUs = 1000000;
+// load took 8-11 s to take a returned chip back). Once a second gave 2.07 s
+// in the campaign from a chip's return (the retry's phase plus a late loop);
+// a lookup is a few opens and ioctls, and runs only while a line is missing.
+constexpr uint64_t kLedRetryUs = 500000;
 
 int errnoOf(const std::exception &e)
 {

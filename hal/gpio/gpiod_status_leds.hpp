@@ -3,7 +3,7 @@
 // writes each level when it changes, on a 125 ms event-loop timer. The C++
 // binding throws; every call is wrapped here and becomes a negative errno.
 // A line that fails is released and reported once through onFault; the
-// other LEDs and the daemon go on. Once a second the missing lines are
+// other LEDs and the daemon go on. Twice a second the missing lines are
 // requested again (the chip opened afresh when none is held: a chip that
 // went away and came back is a new device), silently while they still fail;
 // one that is back is reported through onFault with error 0. So a chip that

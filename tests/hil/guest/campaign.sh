@@ -112,7 +112,7 @@ campaign_webcam_error() { # CONTROL
 # whole frames and lets go of all its lines (the first write that fails finds
 # the chip gone). The config names the chip by its label, so when the chip is
 # back, maybe as another gpiochipN (a USB GPIO expander re-plugged), the
-# daemon's own retry, once a second, looks it up and takes the lines again:
+# daemon's own retry, twice a second, looks it up and takes the lines again:
 # timed from the chip's return until the daemon holds all its lines, then the
 # heartbeat must blink. No reload.
 # gpio-line-busy: another process holds one LED line. It takes the line

@@ -322,7 +322,7 @@ fi
 
 # The LEDs' chip removed and back: the daemon goes on publishing, lets go of
 # all its lines (the first write that fails finds the chip gone), and takes
-# them again by itself (it retries once a second), the heartbeat blinking
+# them again by itself (it retries twice a second), the heartbeat blinking
 # again, without a reload, within 2 s of the chip's return. The config names
 # the chip by its label here: the chip may come back as another gpiochipN,
 # as a USB GPIO expander re-plugged would.
