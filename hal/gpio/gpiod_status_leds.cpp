@@ -213,20 +213,13 @@ bool GpiodStatusLeds::chipGone() const
 }
 
 // Lets go of every line and of the chip, reported once as the chip's fault;
-// retryMissing() looks the chip up afresh once a second, and its return is
+// retryMissing() looks the chip up afresh twice a second, and its return is
 // reported as the chip's (the lines' own faults were not reported, so they
 // come back quietly with it).
 void GpiodStatusLeds::dropChip(int error, const std::string &what)
 {
 	for (size_t i = 0; i < kStatusLedCount; i++) {
-		if (lines_[i]) {
-			try {
-				lines_[i]->release();
-			} catch (const std::exception &) {
-				// Gone with its chip; dropping our handle is all that is left.
-			}
-			lines_[i].reset();
-		}
+		letGo(i);
 		written_[i] = -1;
 		reported_[i] = false;
 	}
@@ -236,16 +229,22 @@ void GpiodStatusLeds::dropChip(int error, const std::string &what)
 	chipReported_ = true;
 }
 
+// Releases one line's handle, if held.
+void GpiodStatusLeds::letGo(size_t led)
+{
+	if (!lines_[led])
+		return;
+	try {
+		lines_[led]->release();
+	} catch (const std::exception &) {
+		// Already gone with its chip; dropping our handle is all that is left.
+	}
+	lines_[led].reset();
+}
+
 void GpiodStatusLeds::release(size_t led, int error, const std::string &what)
 {
-	if (lines_[led]) {
-		try {
-			lines_[led]->release();
-		} catch (const std::exception &) {
-			// Already gone with its chip; dropping our handle is all that is left.
-		}
-		lines_[led].reset();
-	}
+	letGo(led);
 	if (!reported_[led] && onFault_)
 		onFault_(statusLedName(static_cast<StatusLed>(led)), error, what);
 	reported_[led] = true;

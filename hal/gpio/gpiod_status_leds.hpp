@@ -52,6 +52,7 @@ private:
 	void retryMissing();
 	void tick();
 	void release(size_t led, int error, const std::string &what);
+	void letGo(size_t led);
 	bool chipGone() const;
 	void dropChip(int error, const std::string &what);
 

@@ -201,16 +201,15 @@ void Sr2Camera::onTransferDone(libusb_transfer *t)
 	case LIBUSB_TRANSFER_OVERFLOW: // more data than one frame: refuse it, go on
 		status_.droppedFrames++;
 		return next();
-	case LIBUSB_TRANSFER_TIMED_OUT:
-		if (t == bulk_ && ++readTimeoutsInRow_ < kReadTimeoutsBeforeReopen) {
-			streaming_ = false;
-			setStatus(DeviceState::Lost, -ETIMEDOUT,
-				  std::string(what) + " timed out after " + std::to_string(settings_.timeoutMs) +
-					  " ms (stalled)");
-			return next();
-		}
-		return fail(-ETIMEDOUT, std::string(what) + " timed out after " +
-						std::to_string(settings_.timeoutMs) + " ms (stalled)");
+	case LIBUSB_TRANSFER_TIMED_OUT: {
+		std::string detail = std::string(what) + " timed out after " + std::to_string(settings_.timeoutMs) +
+				     " ms (stalled)";
+		if (t != bulk_ || ++readTimeoutsInRow_ >= kReadTimeoutsBeforeReopen)
+			return fail(-ETIMEDOUT, detail);
+		streaming_ = false;
+		setStatus(DeviceState::Lost, -ETIMEDOUT, detail);
+		return next();
+	}
 	case LIBUSB_TRANSFER_NO_DEVICE:
 		return fail(-ENODEV, std::string("unplugged during ") + what);
 	case LIBUSB_TRANSFER_STALL:

@@ -122,8 +122,6 @@ campaign_webcam_error() { # CONTROL
 # its own retry. The lines held are the daemon's GPIO line handles (its
 # other fds come and go as cameras are re-opened).
 LED_KEYS="power_line depth_line colour_line calibration_line reader_line error_line board_line"
-reload_count() { grep -c "configuration reloaded" "$DK_LOG"; }
-reloaded_more_than() { [ "$(reload_count)" -gt "$1" ]; }
 reload_and_wait() {
 	local before
 	before=$(reload_count)

@@ -326,9 +326,9 @@ fi
 # again, without a reload, within 2 s of the chip's return. The config names
 # the chip by its label here: the chip may come back as another gpiochipN,
 # as a USB GPIO expander re-plugged would.
-leds_by_label() { [ "$(grep -c "configuration reloaded" "$DK_LOG")" -gt "$1" ] && lines_are "$LED_COUNT"; }
+leds_by_label() { reloaded_more_than "$1" && lines_are "$LED_COUNT"; }
 if hil_section leds; then
-	reloads=$(grep -c "configuration reloaded" "$DK_LOG")
+	reloads=$(reload_count)
 	sed -i "s|^chip = .*|chip = \"$GPIO_LABEL\"|" "$DK_CONFIG"
 	kill -HUP "$DK_PID"
 	hil_check leds-by-label hil_wait 10 leds_by_label "$reloads"

@@ -118,6 +118,8 @@ shm_watch() { "$HIL_BIN/depthkey-hil-shm-watch" "$@"; }
 lost_count() { grep -c "$1 lost" "$DK_LOG"; }
 lost_more_than() { [ "$(lost_count "$1")" -gt "$2" ]; }
 again_count() { grep -c "$1 streaming again" "$DK_LOG"; }
+reload_count() { grep -c "configuration reloaded" "$DK_LOG"; }
+reloaded_more_than() { [ "$(reload_count)" -gt "$1" ]; }
 again_more_than() { [ "$(again_count "$1")" -gt "$2" ]; }
 # again_at DEVICE: the uptime of the daemon's last "DEVICE streaming again".
 again_at() { grep "$1 streaming again" "$DK_LOG" | tail -n1 | sed 's/^\[\([0-9.]*\)\].*/\1/'; }
