@@ -42,6 +42,7 @@ private:
 	void onFrameData(size_t length);
 	void fail(int error, const std::string &detail);
 	void finishClose();
+	void queueRegisterWrites();
 	void setStatus(DeviceState state, int error, const std::string &detail);
 	int registerHotplug();
 	void onHotplug(libusb_device *device, bool arrived);
