@@ -43,6 +43,7 @@ struct Options {
 	uint64_t seed = 1;
 	bool depthNoise = true;
 	int simBoardWidth = 1920;     // --sim also fits the simulated board (its [board]); 0 = not
+	int simColourWidth = 640, simColourHeight = 480; // --sim-colour-size: the camera's size
 	std::string sequence;
 	int step = 1;
 	std::string output;
@@ -63,7 +64,8 @@ struct Options {
 void usage(FILE *out)
 {
 	std::fprintf(out,
-		     "usage: depthkey-calibrate (--sim [--seed N] [--no-depth-noise] [--sim-board-width N] |\n"
+		     "usage: depthkey-calibrate (--sim [--seed N] [--no-depth-noise] [--sim-board-width N]\n"
+		     "                                 [--sim-colour-size WxH] |\n"
 		     "                           --sequence DIR [--step N] |\n"
 		     "                           --live [--config FILE] [--view-timeout S])\n"
 		     "                          --output FILE [--model paper|parallax]\n"
@@ -117,6 +119,8 @@ int parseOptions(int argc, char **argv, Options &o)
 			o.seed = std::strtoull(v, nullptr, 10);
 		else if (a == "--sim-board-width")
 			ok = (o.simBoardWidth = std::atoi(v)) == 0 || (o.simBoardWidth >= 16 && o.simBoardWidth <= 3840);
+		else if (a == "--sim-colour-size")
+			ok = parseSize(v, o.simColourWidth, o.simColourHeight, 1920, 1080);
 		else if (a == "--sequence")
 			o.sequence = v;
 		else if (a == "--config")
@@ -242,7 +246,7 @@ public:
 			return live_.open({ o.config, o.grid, o.depths, o.viewTimeoutS }, error);
 		if (!o.sim)
 			return openSequence(o.sequence, error);
-		rig_.configure(640, 480, true, 60);
+		rig_.configure(o.simColourWidth, o.simColourHeight, true, 60);
 		sim::PatternConditions conditions;
 		conditions.seed = o.seed;
 		conditions.depthNoise = o.depthNoise;
@@ -278,7 +282,9 @@ public:
 	{
 		if (options_->live)
 			return live_.colourName();
-		return options_->sim ? "sim colour 640x480 seed " + std::to_string(options_->seed)
+		return options_->sim ? "sim colour " + std::to_string(options_->simColourWidth) + "x" +
+					       std::to_string(options_->simColourHeight) + " seed " +
+					       std::to_string(options_->seed)
 				     : "sequence " + options_->sequence + " rgb";
 	}
 	std::string tofName() const

@@ -47,12 +47,14 @@ mkdir -p "$results"
 [ -z "$v4l2loopback_error" ] ||
 	echo "v4l2loopback.ko could not be built: $(echo "$v4l2loopback_error" | tail -n1)" >"$results/v4l2loopback-missing"
 # The daemon in the VM runs calibrated, as a set-up box would: the mapping of
-# the simulator's camera rig, which the emulated devices render.
-"$bin/depthkey-calibrate" --sim --output "$results/calibration.toml" >"$results/calibrate.log" 2>&1 ||
+# the simulator's camera rig, which the emulated devices render, for the
+# webcam's 320x180 (tests/hil/guest/faults.sh says why that size).
+"$bin/depthkey-calibrate" --sim --sim-colour-size 320x180 --output "$results/calibration.toml" \
+	>"$results/calibrate.log" 2>&1 ||
 	fail_setup "depthkey-calibrate --sim failed: $(tail -n1 "$results/calibrate.log")"
 # And in the board's geometry: a board calibration for the capture stick's
 # 640x360 (the simulator's board: the geometry is what is tested, not its truth).
-"$bin/depthkey-calibrate" --board --sim --board-size 640x360 --output "$results/board.toml" \
+"$bin/depthkey-calibrate" --board --sim --board-size 640x360 --colour-size 320x180 --output "$results/board.toml" \
 	>"$results/calibrate-board.log" 2>&1 ||
 	fail_setup "depthkey-calibrate --board --sim failed: $(tail -n1 "$results/calibrate-board.log")"
 vm_options=(--results "$results" --layer "$udev" --env "HIL_BIN=$bin" --env "HIL_SANITIZER=$sanitizer")

@@ -67,10 +67,11 @@ struct TruthReport {
 };
 
 // 0.5 to 2.5 m in steps of 0.25 m: the working range, fitted depths and not.
-TruthReport compareWithTruth(const MappingModel &model)
+// The rig depthkey-calibrate --sim uses, at its colour size.
+TruthReport compareWithTruth(const MappingModel &model, int colourWidth = 640, int colourHeight = 480)
 {
 	CameraRig rig;
-	rig.configure(640, 480, true, 60);  // the rig depthkey-calibrate --sim uses
+	rig.configure(colourWidth, colourHeight, true, 60);
 	TruthReport report;
 	double sumSquares = 0, maxPx = 0;
 	int points = 0;
@@ -203,6 +204,32 @@ TEST_F(CalibrateTool, FailedCalibrationLeavesTheGoodFile)
 	std::stringstream again;
 	again << after.rdbuf();
 	EXPECT_EQ(again.str(), text.str());
+}
+
+// The HIL suite's webcam is 320x180 (tests/hil/guest/faults.sh): --sim
+// calibrates that camera, and as well in its own pixels.
+TEST_F(CalibrateTool, SimulatorCalibratesAnotherColourSize)
+{
+	ToolRun run = calibrate("--sim --sim-colour-size 320x180 --output " + dir_ + "/small.toml");
+	ASSERT_EQ(run.status, 0) << run.out;
+	CalibrationResult loaded = loadCalibration(dir_ + "/small.toml");
+	ASSERT_TRUE(loaded.ok());
+	EXPECT_EQ(loaded.calibration.colourCamera, "sim colour 320x180 seed 1");
+	EXPECT_EQ(loaded.calibration.mapping.colourWidth, 320);
+	EXPECT_EQ(loaded.calibration.mapping.colourHeight, 180);
+	TruthReport truth = compareWithTruth(loaded.calibration.mapping, 320, 180);
+	print("parallax at 320x180", truth);
+	EXPECT_LE(truth.overall.rmsPx, 0.5);
+}
+
+TEST(CalibrateToolOptions, BadColourSizeIsAUsageError)
+{
+	for (const char *size : { "8x8", "320", "4000x3000", "320x180x2" }) {
+		ToolRun run = calibrate(std::string("--sim --sim-colour-size ") + size + " --output /tmp/never.toml");
+		EXPECT_EQ(run.status, 2) << size;
+		EXPECT_NE(run.out.find(std::string("--sim-colour-size has a bad value: ") + size), std::string::npos)
+			<< run.out;
+	}
 }
 
 TEST(CalibrateToolOptions, MissingSourceIsAUsageError)

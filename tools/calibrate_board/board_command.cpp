@@ -29,6 +29,14 @@
 
 namespace depthkey {
 
+bool parseSize(const char *text, int &w, int &h, int maxW, int maxH)
+{
+	char x;
+	int end = 0; // nothing may follow: "320x180x2" is not a size
+	return std::sscanf(text, "%d%c%d%n", &w, &x, &h, &end) == 3 && text[end] == '\0' && (x == 'x' || x == 'X') &&
+	       w >= 16 && h >= 16 && w <= maxW && h <= maxH;
+}
+
 namespace {
 
 struct BoardOptions {
@@ -54,13 +62,6 @@ void usage(FILE *out)
 		     "                                   | --image COLOUR.png)\n"
 		     "                          [--board-size WxH] [--grid COLSxROWS] [--fill F]\n"
 		     "                          [--output FILE] [--max-rms PX]\n");
-}
-
-bool parseSize(const char *text, int &w, int &h, int maxW, int maxH)
-{
-	char x;
-	return std::sscanf(text, "%d%c%d", &w, &x, &h) == 3 && (x == 'x' || x == 'X') && w >= 16 && h >= 16 &&
-	       w <= maxW && h <= maxH;
 }
 
 int parse(int argc, char **argv, BoardOptions &o)

@@ -9,6 +9,8 @@
 
 namespace depthkey {
 
+// Parses "WxH" (either x), each side at least 16 and at most maxW / maxH.
+bool parseSize(const char *text, int &w, int &h, int maxW, int maxH);
 // True when argv asks for --board.
 bool wantsBoardCalibration(int argc, char **argv);
 // The whole command; returns the exit status.

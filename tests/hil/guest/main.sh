@@ -46,7 +46,7 @@ gpioset_pid=$!
 hil_check gpio-sim-readback hil_wait 10 gpio_is 7 1
 kill "$gpioset_pid"; wait "$gpioset_pid" 2>/dev/null
 
-hil_check vivid-streams v4l2-ctl -d /dev/video0 --set-fmt-video=width=640,height=480,pixelformat=YUYV \
+hil_check vivid-streams v4l2-ctl -d /dev/video0 --set-fmt-video=width=320,height=180,pixelformat=YUYV \
 	--stream-mmap --stream-count=10
 hil_check vivid-board-streams v4l2-ctl -d /dev/video1 --set-fmt-video=width=640,height=360,pixelformat=YUYV \
 	--stream-mmap --stream-count=5
