@@ -131,7 +131,6 @@ again_more_than() { [ "$(again_count "$1")" -gt "$2" ]; }
 # again_at DEVICE: the uptime of the daemon's last "DEVICE streaming again".
 again_at() { grep "$1 streaming again" "$DK_LOG" | tail -n1 | sed 's/^\[\([0-9.]*\)\].*/\1/'; }
 daemon_alive() { kill -0 "$DK_PID" 2>/dev/null; }
-fd_count() { local n=0 f; for f in /proc/"$DK_PID"/fd/*; do n=$((n + 1)); done; echo "$n"; }
 # fd_split: "OTHER VIDEO": the daemon's fds other than V4L2 nodes, and the
 # most fds open on any one /dev/video node. A camera or the board's stick
 # that is re-opening has its node closed for a moment (under TCG the board's
@@ -142,6 +141,8 @@ fd_split() {
 	for f in /proc/"$DK_PID"/fd/*; do readlink "$f"; done 2>/dev/null |
 		awk '/^\/dev\/video/ { v[$0]++; next } { n++ } END { m = 0; for (k in v) if (v[k] > m) m = v[k]; print n + 0, m }'
 }
+# fd_names: what the daemon's fds are (sorted, for comm), to say which are new.
+fd_names() { local f; for f in /proc/"$DK_PID"/fd/*; do readlink "$f"; done 2>/dev/null | sort; }
 rss_kb() { sed -n 's/^VmRSS:[[:space:]]*\([0-9]*\) kB/\1/p' /proc/"$DK_PID"/status; }
 # rss_settled_kb: the least VmRSS of five samples 0.2 s apart. Large blocks
 # live for a moment (a NO SIGNAL picture, a frame in flight) are mmapped and
