@@ -153,8 +153,8 @@ TEST_F(PreviewDaemon, PageStreamStatusAndMetrics)
 	// Under the sanitizers the two timing figures (the colour rate and the
 	// latency measured from motion) are printed, not judged: the simulated
 	// cameras render on the daemon's loop, which ASan slows 2-5 times, so
-	// both measure the build and the host's load more than the daemon. CI
-	// at stop 23's candidate (2483563) saw 8.8-10.6 fps and a latency
+	// both measure the build and the host's load more than the daemon. A
+	// fresh-clone .ci/run at 2483563 saw 8.8-10.6 fps and a latency
 	// settled at -25 ms; the same build with two busy loops beside it saw
 	// 3-8 fps and estimates wandering from +93 to -35 ms. The plain build's
 	// process-check (make test) judges both.
