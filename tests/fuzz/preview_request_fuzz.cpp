@@ -13,21 +13,17 @@
 // fewest rounds crypt allows, 1000: each wrong password costs a hash, and
 // the verification code is the same whatever the count); the seed corpus
 // carries requests with and without its Authorization header.
-#include "algo/image.hpp"
-#include "algo/stage_images.hpp"
 #include "config/listen_address.hpp"
 #include "hal/preview/preview_encoder.hpp"
 #include "hal/preview/preview_server.hpp"
+#include "tests/preview_test_support.hpp"
 
-#include <arpa/inet.h>
 #include <atomic>
 #include <chrono>
 #include <crypt.h>
 #include <cstdio>
 #include <cstdlib>
 #include <fcntl.h>
-#include <netinet/in.h>
-#include <poll.h>
 #include <string>
 #include <sys/socket.h>
 #include <sys/stat.h>
@@ -88,20 +84,13 @@ struct Server {
 	// the encoder thread took a third of the time re-encoding watched stages).
 	void feed()
 	{
-		RgbImage rgb(32, 24, Rgb8{ 40, 90, 160 });
-		Gray16Image depth(16, 12, 1500);
-		Gray8Image gray(32, 24, 128);
-		const StageImage images[kPreviewStageCount] = {
-			{ "colour", StageKind::Colour, &rgb },      { "depth", StageKind::Depth, nullptr, &depth },
-			{ "seeds", StageKind::Seeds, nullptr, nullptr, &gray }, { "alpha", StageKind::Mask, nullptr, nullptr, &gray },
-			{ "composite", StageKind::Colour, &rgb },
-		};
+		const test::PreviewTestPictures pictures;
 		while (!stop) {
 			timespec ts;
 			clock_gettime(CLOCK_MONOTONIC, &ts);
 			const uint64_t now = uint64_t(ts.tv_sec) * 1000000000u + uint64_t(ts.tv_nsec);
 			for (size_t s = 0; s < kPreviewStageCount; ++s)
-				encoder.offer(PreviewStage(s), images[s], now, now);
+				encoder.offer(PreviewStage(s), pictures.images[s], now, now);
 			std::this_thread::sleep_for(std::chrono::milliseconds(5));
 		}
 	}
@@ -117,45 +106,19 @@ Server &server()
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-	const int port = server().port;
-	const int fd = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+	const int fd = test::connectToPreview(server().port);
 	if (fd < 0)
 		return 0;
-	sockaddr_in address{};
-	address.sin_family = AF_INET;
-	address.sin_port = htons(uint16_t(port));
-	address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-	if (connect(fd, reinterpret_cast<sockaddr *>(&address), sizeof(address)) == 0) {
-		// The bytes as sent, then our half closed: the server sees the end.
-		size_t sent = 0;
-		while (sent < size) {
-			const ssize_t n = send(fd, data + sent, size - sent, MSG_NOSIGNAL);
-			if (n <= 0)
-				break;
-			sent += size_t(n);
-		}
-		shutdown(fd, SHUT_WR);
-		// Read the answer until the server closes, a stream has sent its
-		// first JPEG (the part's end marker after the boundary), or 300 ms pass.
-		char buffer[4096];
-		std::string reply;
-		const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(300);
-		for (;;) {
-			const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
-			if (left.count() <= 0)
-				break;
-			pollfd p{ fd, POLLIN, 0 };
-			if (poll(&p, 1, int(left.count())) <= 0)
-				break;
-			const ssize_t n = recv(fd, buffer, sizeof(buffer), 0);
-			if (n <= 0)
-				break;
-			reply.append(buffer, size_t(n));
-			const size_t part = reply.find("\r\n--boundarydonotcross\r\n");
-			if (part != std::string::npos && reply.find("\xff\xd9\r\n", part) != std::string::npos)
-				break;
-		}
+	// The bytes as sent, then our half closed: the server sees the end.
+	size_t sent = 0;
+	while (sent < size) {
+		const ssize_t n = send(fd, data + sent, size - sent, MSG_NOSIGNAL);
+		if (n <= 0)
+			break;
+		sent += size_t(n);
 	}
+	shutdown(fd, SHUT_WR);
+	test::readPreviewReply(fd, std::chrono::milliseconds(300));
 	close(fd);
 	return 0;
 }
