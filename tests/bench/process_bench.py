@@ -12,9 +12,11 @@ Prints, for issue 15's targets (figures, never a pass/fail: no timed test):
     READY=1 on a NOTIFY_SOCKET of ours, as systemd would see it, then after
     N seconds VmRSS, VmHWM and VmRSS split into anonymous memory (heap,
     frame buffers), file-backed pages (code and libraries) and shared memory
-    (the output rings), from /proc/PID/status, and the largest VmRSS read
-    every 0.2 s over the second half of the N seconds (the per-frame graph of
-    the band's cut comes and goes: a single sample may or may not count it);
+    (the output rings), from /proc/PID/status, and VmRSS read every 10 ms
+    over the second half of the N seconds: its median (the reading a
+    technician's `ps` gets most often), least and largest. The per-frame
+    graph of the band's cut (6-8 MB) comes and goes, so a single reading may
+    or may not count it;
   - the same on replayed cameras at 640x480: a sequence of the simulated
     lecture recorded once by depthkey-eval into BUILD/bench-sequence, the
     board a solid colour. Sim minus replay is what the simulator costs;
@@ -194,17 +196,20 @@ def run_daemon(bin_dir, config, work, seconds, extra_env=None):
             if "READY=1" in message.split("\n"):
                 ready_ms = (time.monotonic() - start) * 1000.0
         drain_for(sock, seconds / 2)
-        largest = 0
+        samples = []
         end = time.monotonic() + seconds / 2
         while time.monotonic() < end:
-            drain_for(sock, min(0.2, end - time.monotonic()))
+            drain_for(sock, min(0.01, end - time.monotonic()))
             if proc.poll() is not None:
                 break
-            largest = max(largest, status_kb(proc.pid).get("VmRSS", 0))
-        if proc.poll() is not None:
+            samples.append(status_kb(proc.pid).get("VmRSS", 0))
+        if proc.poll() is not None or not samples:
             raise RuntimeError("depthkeyd exited early (see %s/daemon.log)" % work)
         status = status_kb(proc.pid)
-        status["VmRSSLargest"] = max(largest, status.get("VmRSS", 0))
+        samples.append(status.get("VmRSS", 0))
+        status["VmRSSLargest"] = max(samples)
+        status["VmRSSMedian"] = statistics.median(samples)
+        status["VmRSSLeast"] = min(samples)
         breakdown = smaps_breakdown(proc.pid)
     finally:
         proc.terminate()
@@ -308,7 +313,8 @@ def main():
             for _ in range(args.runs):
                 ms, status, breakdown = run_daemon(bin_dir, config, work, args.seconds)
                 ready.append(ms)
-                for key in ("VmRSS", "VmRSSLargest", "VmHWM", "RssAnon", "RssFile", "RssShmem"):
+                for key in ("VmRSS", "VmRSSMedian", "VmRSSLeast", "VmRSSLargest", "VmHWM", "RssAnon", "RssFile",
+                            "RssShmem"):
                     rss.setdefault(key, []).append(status.get(key, 0) / 1024.0)
             for name in ("composite", "lecturer", "lecturer.board"):
                 try:
@@ -318,6 +324,8 @@ def main():
             print("depthkeyd on %s:" % title)
             print("  exec to READY=1: %s" % spread(ready, "ms"))
             for key, label in (("VmRSS", "VmRSS after %gs" % args.seconds),
+                               ("VmRSSMedian", "VmRSS over %g-%gs, median" % (args.seconds / 2, args.seconds)),
+                               ("VmRSSLeast", "VmRSS over %g-%gs, least" % (args.seconds / 2, args.seconds)),
                                ("VmRSSLargest", "largest VmRSS, %g-%gs" % (args.seconds / 2, args.seconds)),
                                ("VmHWM", "VmHWM (peak)"),
                                ("RssAnon", "  of it anonymous (heap, buffers)"),
