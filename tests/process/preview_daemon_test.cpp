@@ -211,7 +211,14 @@ TEST_F(PreviewDaemon, ClientsThatStopReadingDoNotSlowTheFrameRate)
 	std::this_thread::sleep_for(1500ms); // their socket buffers are full by now
 	const double fps = publishedFps();
 	EXPECT_GE(fps, 0.8 * alone) << "alone " << alone << " fps, with three clients that stopped reading " << fps;
-	EXPECT_GT(alone, 5.0) << "the daemon hardly ran";
+	// The floor keeps the comparison above from passing on a daemon that
+	// did not run; ThreadSanitizer's build runs at 2-3 fps here.
+#if defined(__SANITIZE_THREAD__)
+	constexpr double kLeastFps = 1.0;
+#else
+	constexpr double kLeastFps = 5.0;
+#endif
+	EXPECT_GT(alone, kLeastFps) << "the daemon hardly ran";
 	// The stalled clients are still connected and a new one is served.
 	EXPECT_EQ(mjpegParts(curlGet(url + "/stream/composite.mjpg", "--max-time 1").body).empty(), false);
 	for (int fd : stalled)

@@ -4,6 +4,7 @@
 
 #include "tests/process/shell_command.hpp"
 
+#include <atomic>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -23,7 +24,9 @@ struct HttpReply {
 // a stream cut by --max-time still returns what arrived.
 inline HttpReply curlGet(const std::string &url, const std::string &options = "")
 {
-	static int counter = 0;
+	// Atomic: tests call this from several threads at once (a name taken
+	// twice would mix two replies; ThreadSanitizer found it).
+	static std::atomic<int> counter{ 0 };
 	const std::string file = "/tmp/depthkey-curl-" + std::to_string(getpid()) + "-" + std::to_string(counter++);
 	int status;
 	std::string out = run("curl -s -o " + file + " -w '%{http_code} %{content_type}' " + options + " '" + url + "'",
