@@ -77,8 +77,15 @@ void PreviewFeed::offer(const ColourFrame *colour, const DepthFrame *depth, cons
 
 void PreviewFeed::setStatus(const PreviewStatus &status)
 {
-	if (server_.running())
-		server_.setStatus(status);
+	if (!server_.running())
+		return;
+	server_.setStatus(status);
+	// A client the server had to refuse (libmicrohttpd missing or not
+	// starting): its threads do not log, so the journal hears it here.
+	if (std::string error = server_.takeError(); !error.empty())
+		logger().errorOnce("preview", error, { { "DEVICE", "preview" } });
+	else if (server_.serving())
+		logger().clearError("preview", "preview server serving", { { "DEVICE", "preview" } });
 }
 
 } // namespace depthkey

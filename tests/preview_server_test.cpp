@@ -70,9 +70,10 @@ protected:
 		rmdir(dir_.c_str());
 	}
 
-	void startServer(int maxClients)
+	void startServer(int maxClients, const MicroHttpd *(*load)(std::string &) = nullptr)
 	{
 		PreviewServerOptions options;
+		options.load = load;
 		ASSERT_TRUE(parseListenAddress("127.0.0.1:0", options.address).empty());
 		options.passwordFile = passwords_;
 		options.maxClients = maxClients;
@@ -167,7 +168,7 @@ TEST_F(PreviewServerTest, ServesConcurrentClientsWhileTheStatusChanges)
 		{ "/nothing", kAuth, 404, "no such page" },
 	};
 	// Ten threads at once, each its client three times over: within the
-	// server's connection limit (max_clients + 4 = 12), which closes more.
+	// server's connection limit (max_clients + 16 = 24), which closes more.
 	std::vector<std::string> replies(clients.size() * 3);
 	std::vector<std::thread> threads;
 	for (size_t c = 0; c < clients.size(); ++c)
@@ -233,6 +234,82 @@ TEST_F(PreviewServerTest, StopsPromptlyWithStreamsOpen)
 	watching = false;
 	for (std::thread &t : viewers)
 		t.join();
+}
+
+// Loaders that count their calls: the real one, and one that fails as a
+// missing library would.
+std::atomic<int> loads{ 0 };
+const MicroHttpd *countedLoad(std::string &error)
+{
+	++loads;
+	return loadMicroHttpd(error);
+}
+const MicroHttpd *failingLoad(std::string &error)
+{
+	++loads;
+	error = "cannot load libmicrohttpd.so.12: no such file (test)";
+	return nullptr;
+}
+
+TEST_F(PreviewServerTest, LoadsLibmicrohttpdOnlyWhenTheFirstClientComes)
+{
+	loads = 0;
+	startServer(4, &countedLoad);
+	std::this_thread::sleep_for(std::chrono::milliseconds(50));
+	EXPECT_TRUE(server_.running());
+	EXPECT_FALSE(server_.serving());
+	EXPECT_EQ(loads.load(), 0);
+	const std::string first = get("/status.json");
+	EXPECT_EQ(status(first), 200) << first.substr(0, 200);
+	EXPECT_TRUE(server_.serving());
+	EXPECT_EQ(loads.load(), 1);
+	const std::string second = get("/metrics");
+	EXPECT_EQ(status(second), 200) << second.substr(0, 200);
+	EXPECT_EQ(loads.load(), 1);
+	EXPECT_EQ(server_.takeError(), "");
+}
+
+TEST_F(PreviewServerTest, AClientIsToldWhyWhenTheLibraryCannotBeLoadedAndTheNextTriesAgain)
+{
+	loads = 0;
+	startServer(4, &failingLoad);
+	const std::string first = get("/status.json");
+	EXPECT_EQ(status(first), 503) << first.substr(0, 200);
+	EXPECT_NE(first.find("preview unavailable: cannot load libmicrohttpd.so.12: no such file (test)"),
+		  std::string::npos)
+		<< first;
+	EXPECT_FALSE(server_.serving());
+	EXPECT_NE(server_.takeError().find("cannot load libmicrohttpd.so.12"), std::string::npos);
+	EXPECT_EQ(server_.takeError(), ""); // once
+	const std::string second = get("/");
+	EXPECT_EQ(status(second), 503);
+	EXPECT_EQ(loads.load(), 2);
+	const auto before = std::chrono::steady_clock::now();
+	server_.stop();
+	EXPECT_LT(std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - before)
+			  .count(),
+		  500);
+	EXPECT_FALSE(server_.running());
+}
+
+TEST_F(PreviewServerTest, StopsAndRestartsBeforeAnyClient)
+{
+	loads = 0;
+	startServer(4, &countedLoad);
+	const int port = server_.port();
+	server_.stop();
+	EXPECT_FALSE(server_.running());
+	// The port is free again: a new server (a reload) can bind it.
+	PreviewServerOptions options;
+	ASSERT_TRUE(parseListenAddress("127.0.0.1:" + std::to_string(port), options.address).empty());
+	options.passwordFile = passwords_;
+	options.load = &countedLoad;
+	std::string error;
+	ASSERT_EQ(server_.start(options, encoder_, error), 0) << error;
+	EXPECT_EQ(loads.load(), 0);
+	const std::string reply = get("/status.json");
+	EXPECT_EQ(status(reply), 200) << reply.substr(0, 200);
+	EXPECT_EQ(loads.load(), 1);
 }
 
 } // namespace

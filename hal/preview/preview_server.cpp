@@ -6,8 +6,11 @@
 #include <arpa/inet.h>
 #include <cerrno>
 #include <cstring>
+#include <utility>
 #include <microhttpd.h>
 #include <netinet/in.h>
+#include <poll.h>
+#include <sys/eventfd.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -19,7 +22,14 @@ constexpr const char *kBoundary = "boundarydonotcross"; // uStreamer's
 constexpr auto kStreamWait = std::chrono::milliseconds(500);
 constexpr auto kSnapshotWait = std::chrono::milliseconds(3000);
 constexpr unsigned kIdleTimeoutS = 10;
-constexpr int kExtraConnections = 4; // page, status and metrics beside the streams
+constexpr int kListenBacklog = 16;
+// Connections beyond the streams (the page, status, metrics, snapshots, and
+// closed ones whose threads have not yet been reaped): libmicrohttpd closes
+// any connection over its limit without a word. The connections waiting in
+// the backlog when the library is loaded all arrive at once and finish at
+// once, so the limit leaves room for a backlog of them (with 4, ten clients
+// reconnecting together lost one reply in seven runs of the unit test).
+constexpr int kExtraConnections = kListenBacklog;
 constexpr size_t kMaxVerified = 16;
 constexpr const char *kSecurityPolicy =
 	"default-src 'self'; script-src 'self' 'unsafe-inline'; style-src 'unsafe-inline'; img-src 'self'";
@@ -81,23 +91,24 @@ void freeStream(void *cls)
 	delete s;
 }
 
-MHD_Result queue(MHD_Connection *connection, unsigned status, const std::string &body, const char *type)
+MHD_Result queue(const MicroHttpd &mhd, MHD_Connection *connection, unsigned status, const std::string &body,
+		 const char *type)
 {
 	MHD_Response *response =
-		MHD_create_response_from_buffer(body.size(), const_cast<char *>(body.data()), MHD_RESPMEM_MUST_COPY);
+		mhd.createResponseFromBuffer(body.size(), const_cast<char *>(body.data()), MHD_RESPMEM_MUST_COPY);
 	if (!response)
 		return MHD_NO;
-	MHD_add_response_header(response, "Content-Type", type);
-	MHD_add_response_header(response, "Cache-Control", "no-store");
-	MHD_add_response_header(response, "X-Content-Type-Options", "nosniff");
-	MHD_Result ret = MHD_queue_response(connection, status, response);
-	MHD_destroy_response(response);
+	mhd.addResponseHeader(response, "Content-Type", type);
+	mhd.addResponseHeader(response, "Cache-Control", "no-store");
+	mhd.addResponseHeader(response, "X-Content-Type-Options", "nosniff");
+	MHD_Result ret = mhd.queueResponse(connection, status, response);
+	mhd.destroyResponse(response);
 	return ret;
 }
 
-MHD_Result queueText(MHD_Connection *connection, unsigned status, const std::string &text)
+MHD_Result queueText(const MicroHttpd &mhd, MHD_Connection *connection, unsigned status, const std::string &text)
 {
-	return queue(connection, status, text + "\n", "text/plain; charset=utf-8");
+	return queue(mhd, connection, status, text + "\n", "text/plain; charset=utf-8");
 }
 
 MHD_Result onRequest(void *cls, MHD_Connection *connection, const char *url, const char *method,
@@ -153,7 +164,7 @@ int listenOn(const ListenAddress &address, UniqueFd &fd, std::string &error)
 		step = "IPV6_V6ONLY";
 	else if (bind(fd.get(), reinterpret_cast<sockaddr *>(&storage), length) < 0)
 		step = "bind";
-	else if (listen(fd.get(), 16) < 0)
+	else if (listen(fd.get(), kListenBacklog) < 0)
 		step = "listen";
 	if (!step)
 		return 0;
@@ -172,6 +183,23 @@ int boundPort(int fd)
 	if (storage.ss_family == AF_INET6)
 		return ntohs(reinterpret_cast<sockaddr_in6 *>(&storage)->sin6_port);
 	return ntohs(reinterpret_cast<sockaddr_in *>(&storage)->sin_port);
+}
+
+// Answers the connection waiting on listenFd with 503 and why, then closes
+// it: the server could not be started for it, and a client must not hang
+// on a connection nobody will read.
+void refuse(int listenFd, const std::string &why)
+{
+	UniqueFd client(accept4(listenFd, nullptr, nullptr, SOCK_CLOEXEC | SOCK_NONBLOCK));
+	if (!client.isValid())
+		return;
+	const std::string body = why + "\n";
+	const std::string reply = "HTTP/1.1 503 Service Unavailable\r\nContent-Type: text/plain; charset=utf-8\r\n"
+				  "Connection: close\r\nContent-Length: " +
+				  std::to_string(body.size()) + "\r\n\r\n" + body;
+	if (send(client.get(), reply.data(), reply.size(), MSG_NOSIGNAL | MSG_DONTWAIT) < 0) {
+		// the client left already: nothing to tell it
+	}
 }
 
 } // namespace
@@ -193,36 +221,103 @@ int PreviewServer::start(const PreviewServerOptions &options, PreviewEncoder &en
 		std::lock_guard lock(authMutex_);
 		verified_.clear();
 	}
-	UniqueFd fd;
-	int ret = listenOn(options.address, fd, error);
+	int ret = listenOn(options.address, listen_, error);
 	if (ret < 0)
 		return ret;
+	wake_ = UniqueFd(eventfd(0, EFD_CLOEXEC));
+	if (!wake_.isValid()) {
+		ret = -errno;
+		error = std::string("cannot create the preview's eventfd: ") + std::strerror(errno);
+		listen_.reset();
+		return ret;
+	}
 	encoder_ = &encoder;
 	maxClients_ = options.maxClients;
-	const unsigned flags = MHD_USE_THREAD_PER_CONNECTION | MHD_USE_INTERNAL_POLLING_THREAD |
-			       (options.address.ipv6 ? MHD_USE_IPv6 : 0);
-	daemon_ = MHD_start_daemon(flags, 0, nullptr, nullptr, &onRequest, this, MHD_OPTION_LISTEN_SOCKET, fd.get(),
-				   MHD_OPTION_CONNECTION_LIMIT,
-				   static_cast<unsigned>(options.maxClients + kExtraConnections),
-				   MHD_OPTION_CONNECTION_TIMEOUT, kIdleTimeoutS, MHD_OPTION_END);
-	if (!daemon_) {
-		ret = errno ? -errno : -EIO;
-		error = "libmicrohttpd did not start";
-		return ret; // fd closes here
-	}
-	port_ = boundPort(fd.get());
-	fd.release(); // MHD owns it now: MHD_stop_daemon closes it
+	load_ = options.load ? options.load : &loadMicroHttpd;
+	ipv6_ = options.address.ipv6;
+	port_ = boundPort(listen_.get());
+	started_ = true;
+	doorman_ = std::thread(&PreviewServer::waitForFirstClient, this);
 	return 0;
+}
+
+// Until the first client knocks only this thread (a poll() on the socket,
+// a few kB of stack) stands for the server: libmicrohttpd and GnuTLS are
+// loaded then, and the connection waiting in the backlog is its first.
+void PreviewServer::waitForFirstClient()
+{
+	pollfd fds[2] = { { listen_.get(), POLLIN, 0 }, { wake_.get(), POLLIN, 0 } };
+	for (;;) {
+		if (poll(fds, 2, -1) < 0) {
+			if (errno == EINTR)
+				continue;
+			noteError(std::string("preview server: poll: ") + std::strerror(errno));
+			return;
+		}
+		if (fds[1].revents)
+			return; // stop()
+		if (!(fds[0].revents & (POLLIN | POLLERR | POLLHUP)))
+			continue;
+		std::string error;
+		if (startServing(error) == 0)
+			return;
+		noteError("preview server not serving: " + error);
+		refuse(listen_.get(), "preview unavailable: " + error);
+	}
+}
+
+int PreviewServer::startServing(std::string &error)
+{
+	const MicroHttpd *mhd = load_(error);
+	if (!mhd)
+		return -ENOENT;
+	mhd_ = mhd; // before the first request can reach handle()
+	const unsigned flags =
+		MHD_USE_THREAD_PER_CONNECTION | MHD_USE_INTERNAL_POLLING_THREAD | (ipv6_ ? MHD_USE_IPv6 : 0);
+	MHD_Daemon *daemon = mhd->startDaemon(flags, 0, nullptr, nullptr, &onRequest, this, MHD_OPTION_LISTEN_SOCKET,
+					      listen_.get(), MHD_OPTION_CONNECTION_LIMIT,
+					      static_cast<unsigned>(maxClients_ + kExtraConnections),
+					      MHD_OPTION_CONNECTION_TIMEOUT, kIdleTimeoutS, MHD_OPTION_END);
+	if (!daemon) {
+		int ret = errno ? -errno : -EIO;
+		error = std::string(kMicroHttpdSoname) + " did not start" + (errno ? std::string(": ") + std::strerror(errno) : "");
+		return ret;
+	}
+	listen_.release(); // libmicrohttpd owns it now: MHD_stop_daemon closes it
+	daemon_ = daemon;
+	return 0;
+}
+
+void PreviewServer::noteError(std::string error)
+{
+	std::lock_guard lock(errorMutex_);
+	error_ = std::move(error);
+}
+
+std::string PreviewServer::takeError()
+{
+	std::lock_guard lock(errorMutex_);
+	return std::exchange(error_, std::string());
 }
 
 void PreviewServer::stop()
 {
-	if (!daemon_)
+	if (!started_)
 		return;
-	// Closes the listening socket too (MHD owns it now); waits for the
-	// connection threads, each back within kStreamWait.
-	MHD_stop_daemon(daemon_);
-	daemon_ = nullptr;
+	if (doorman_.joinable()) {
+		uint64_t one = 1;
+		if (write(wake_.get(), &one, sizeof(one)) < 0) {
+			// an eventfd write fails only when its counter is full: it is readable then anyway
+		}
+		doorman_.join();
+	}
+	// Closes the listening socket too (libmicrohttpd owns it once serving);
+	// waits for the connection threads, each back within kStreamWait.
+	if (MHD_Daemon *daemon = daemon_.exchange(nullptr))
+		mhd_->stopDaemon(daemon);
+	listen_.reset();
+	wake_.reset();
+	started_ = false;
 }
 
 void PreviewServer::setStatus(const PreviewStatus &status)
@@ -251,7 +346,7 @@ bool PreviewServer::authorised(MHD_Connection *connection)
 	if (!needAuth_)
 		return true;
 	char *password = nullptr;
-	char *user = MHD_basic_auth_get_username_password(connection, &password);
+	char *user = mhd_->basicAuthGetUsernamePassword(connection, &password);
 	bool ok = false;
 	if (user && password) {
 		std::string key = std::string(user) + '\0' + password;
@@ -268,9 +363,9 @@ bool PreviewServer::authorised(MHD_Connection *connection)
 		}
 	}
 	if (user)
-		MHD_free(user);
+		mhd_->free(user);
 	if (password)
-		MHD_free(password);
+		mhd_->free(password);
 	return ok;
 }
 
@@ -278,31 +373,31 @@ int PreviewServer::handle(MHD_Connection *connection, const char *urlText, const
 {
 	if (!authorised(connection)) {
 		const std::string body = "authentication required\n";
-		MHD_Response *response = MHD_create_response_from_buffer(
+		MHD_Response *response = mhd_->createResponseFromBuffer(
 			body.size(), const_cast<char *>(body.data()), MHD_RESPMEM_MUST_COPY);
-		MHD_Result ret = MHD_queue_basic_auth_fail_response(connection, "depthkey preview", response);
-		MHD_destroy_response(response);
+		MHD_Result ret = mhd_->queueBasicAuthFailResponse(connection, "depthkey preview", response);
+		mhd_->destroyResponse(response);
 		return ret == MHD_YES;
 	}
 	if (std::strcmp(method, "GET") != 0 && std::strcmp(method, "HEAD") != 0)
-		return queueText(connection, MHD_HTTP_METHOD_NOT_ALLOWED, "only GET") == MHD_YES;
+		return queueText(*mhd_, connection, MHD_HTTP_METHOD_NOT_ALLOWED, "only GET") == MHD_YES;
 
 	const std::string_view url = urlText;
 	PreviewStage stage;
 	if (url == "/" || url == "/index.html") {
-		MHD_Response *response = MHD_create_response_from_buffer(
+		MHD_Response *response = mhd_->createResponseFromBuffer(
 			previewPageHtml().size(), const_cast<char *>(previewPageHtml().data()), MHD_RESPMEM_PERSISTENT);
-		MHD_add_response_header(response, "Content-Type", "text/html; charset=utf-8");
-		MHD_add_response_header(response, "Content-Security-Policy", kSecurityPolicy);
-		MHD_add_response_header(response, "Cache-Control", "no-store");
-		MHD_Result ret = MHD_queue_response(connection, MHD_HTTP_OK, response);
-		MHD_destroy_response(response);
+		mhd_->addResponseHeader(response, "Content-Type", "text/html; charset=utf-8");
+		mhd_->addResponseHeader(response, "Content-Security-Policy", kSecurityPolicy);
+		mhd_->addResponseHeader(response, "Cache-Control", "no-store");
+		MHD_Result ret = mhd_->queueResponse(connection, MHD_HTTP_OK, response);
+		mhd_->destroyResponse(response);
 		return ret == MHD_YES;
 	}
 	if (url == "/status.json")
-		return queue(connection, MHD_HTTP_OK, previewStatusJson(status()), "application/json") == MHD_YES;
+		return queue(*mhd_, connection, MHD_HTTP_OK, previewStatusJson(status()), "application/json") == MHD_YES;
 	if (url == "/metrics")
-		return queue(connection, MHD_HTTP_OK, previewStatusMetrics(status()),
+		return queue(*mhd_, connection, MHD_HTTP_OK, previewStatusMetrics(status()),
 			     "text/plain; version=0.0.4; charset=utf-8") == MHD_YES;
 	if (stageUrl(url, "/snapshot/", ".jpg", stage)) {
 		encoder_->watch(stage);
@@ -310,15 +405,15 @@ int PreviewServer::handle(MHD_Connection *connection, const char *urlText, const
 		auto frame = encoder_->waitNewer(stage, current ? current->sequence : 0, kSnapshotWait);
 		encoder_->unwatch(stage);
 		if (!frame)
-			return queueText(connection, MHD_HTTP_SERVICE_UNAVAILABLE,
+			return queueText(*mhd_, connection, MHD_HTTP_SERVICE_UNAVAILABLE,
 					 "no " + std::string(previewStageName(stage)) + " frame within 3 s") == MHD_YES;
-		return queue(connection, MHD_HTTP_OK,
+		return queue(*mhd_, connection, MHD_HTTP_OK,
 			     std::string(frame->jpeg.begin(), frame->jpeg.end()), "image/jpeg") == MHD_YES;
 	}
 	if (stageUrl(url, "/stream/", ".mjpg", stage)) {
 		if (++streams_ > maxClients_) {
 			streams_--;
-			return queueText(connection, MHD_HTTP_SERVICE_UNAVAILABLE,
+			return queueText(*mhd_, connection, MHD_HTTP_SERVICE_UNAVAILABLE,
 					 "too many preview streams (preview.max_clients = " +
 						 std::to_string(maxClients_) + ")") == MHD_YES;
 		}
@@ -328,20 +423,20 @@ int PreviewServer::handle(MHD_Connection *connection, const char *urlText, const
 		s->streams = &streams_;
 		s->stage = stage;
 		MHD_Response *response =
-			MHD_create_response_from_callback(MHD_SIZE_UNKNOWN, 64 * 1024, &readStream, s, &freeStream);
+			mhd_->createResponseFromCallback(MHD_SIZE_UNKNOWN, 64 * 1024, &readStream, s, &freeStream);
 		if (!response) {
 			freeStream(s);
 			return false;
 		}
 		const std::string type = std::string("multipart/x-mixed-replace;boundary=") + kBoundary;
-		MHD_add_response_header(response, "Content-Type", type.c_str());
-		MHD_add_response_header(response, "Cache-Control", "no-store, no-cache, must-revalidate, max-age=0");
-		MHD_add_response_header(response, "Pragma", "no-cache");
-		MHD_Result ret = MHD_queue_response(connection, MHD_HTTP_OK, response);
-		MHD_destroy_response(response);
+		mhd_->addResponseHeader(response, "Content-Type", type.c_str());
+		mhd_->addResponseHeader(response, "Cache-Control", "no-store, no-cache, must-revalidate, max-age=0");
+		mhd_->addResponseHeader(response, "Pragma", "no-cache");
+		MHD_Result ret = mhd_->queueResponse(connection, MHD_HTTP_OK, response);
+		mhd_->destroyResponse(response);
 		return ret == MHD_YES;
 	}
-	return queueText(connection, MHD_HTTP_NOT_FOUND,
+	return queueText(*mhd_, connection, MHD_HTTP_NOT_FOUND,
 			 "no such page; try /, /stream/STAGE.mjpg, /snapshot/STAGE.jpg, /status.json, /metrics "
 			 "(STAGE: colour, depth, seeds, alpha, composite)") == MHD_YES;
 }

@@ -1,5 +1,8 @@
 // The live preview's HTTP server, on libmicrohttpd (a thread per connection,
-// its own threads; nothing runs on the daemon's event loop):
+// its own threads; nothing runs on the daemon's event loop). The library is
+// loaded when the first client connects (hal/preview/microhttpd_library.hpp:
+// 2.5 MB of resident GnuTLS saved while nobody watches); until then one
+// thread waits on the listening socket. It serves:
 //
 //   /                    the page (hal/preview/preview_page.hpp)
 //   /stream/STAGE.mjpg   multipart/x-mixed-replace MJPEG, as uStreamer serves it
@@ -14,7 +17,9 @@
 #pragma once
 
 #include "config/listen_address.hpp"
+#include "hal/preview/microhttpd_library.hpp"
 #include "hal/preview/password_file.hpp"
+#include "hal/unique_fd.hpp"
 #include "hal/preview/preview_encoder.hpp"
 #include "hal/preview/preview_status.hpp"
 
@@ -23,6 +28,7 @@
 #include <mutex>
 #include <set>
 #include <string>
+#include <thread>
 
 struct MHD_Daemon;
 struct MHD_Connection;
@@ -33,6 +39,8 @@ struct PreviewServerOptions {
 	ListenAddress address;
 	std::string passwordFile; // "" = no authentication (loopback only)
 	int maxClients = 8;
+	// What loads libmicrohttpd (tests give one that fails); null: loadMicroHttpd.
+	const MicroHttpd *(*load)(std::string &error) = nullptr;
 };
 
 class PreviewServer
@@ -43,12 +51,18 @@ public:
 	PreviewServer(const PreviewServer &) = delete;
 	PreviewServer &operator=(const PreviewServer &) = delete;
 
-	// Binds and starts serving the encoder's stages. Refuses an address off
-	// loopback without a password file. Returns 0 or a negative errno with
-	// error saying what and where.
+	// Binds and listens; serves the encoder's stages from the first client
+	// on. Refuses an address off loopback without a password file. Returns 0
+	// or a negative errno with error saying what and where.
 	int start(const PreviewServerOptions &options, PreviewEncoder &encoder, std::string &error);
 	void stop();
-	bool running() const { return daemon_ != nullptr; }
+	bool running() const { return started_; }
+	// libmicrohttpd loaded and serving (after the first client).
+	bool serving() const { return daemon_ != nullptr; }
+	// Why the last client was refused (libmicrohttpd not loaded or not
+	// started; that client got 503 with it), once, then ""; the next client
+	// tries again. For the daemon's journal: the server's threads do not log.
+	std::string takeError();
 	int port() const { return port_; } // the bound port (options may ask for 0)
 
 	// A copy for the HTTP threads; called once a second by the daemon.
@@ -61,8 +75,20 @@ public:
 private:
 	bool authorised(MHD_Connection *connection);
 	PreviewStatus status();
+	void waitForFirstClient();
+	int startServing(std::string &error);
+	void noteError(std::string error);
 
-	MHD_Daemon *daemon_ = nullptr;
+	bool started_ = false;
+	UniqueFd listen_;          // ours until libmicrohttpd takes it
+	UniqueFd wake_;            // eventfd: stop() wakes the waiting thread
+	std::thread doorman_;      // waits for the first client
+	const MicroHttpd *(*load_)(std::string &error) = nullptr;
+	const MicroHttpd *mhd_ = nullptr;
+	std::atomic<MHD_Daemon *> daemon_{ nullptr };
+	bool ipv6_ = false;
+	std::mutex errorMutex_;
+	std::string error_;
 	PreviewEncoder *encoder_ = nullptr;
 	PasswordFile passwords_;
 	bool needAuth_ = false;
