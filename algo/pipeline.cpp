@@ -236,7 +236,6 @@ void Pipeline::rememberFrame(const RgbImage &colour, const Gray8Image &alpha)
 void Pipeline::compose(const RgbImage &colour, PipelineOutput &out) const
 {
 	compositeRoi(colour, out.alpha, board_, keyed_.roi, opacityQ8_, out.composite, kernelPath_);
-	lecturerLayer(colour, out.alpha, out.lecturer, kernelPath_);
 }
 
 void Pipeline::confidence(const RgbImage &colour, Gray8Image &out) const
@@ -252,7 +251,6 @@ void Pipeline::passThrough(const ColourFrame &colour, PipelineOutput &out)
 	std::fill(out.alpha.data(), out.alpha.data() + out.alpha.size(), uint8_t(255));
 	out.composite.resize(colour.rgb.width(), colour.rgb.height());
 	std::copy(colour.rgb.data(), colour.rgb.data() + colour.rgb.size(), out.composite.data());
-	lecturerLayer(colour.rgb, out.alpha, out.lecturer, kernelPath_);
 }
 
 } // namespace depthkey

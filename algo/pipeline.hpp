@@ -36,7 +36,9 @@ namespace depthkey {
 struct PipelineOutput {
 	Gray8Image alpha;     // 255 = lecturer
 	RgbImage composite;   // lecturer over the board source
-	RgbaImage lecturer;   // straight alpha
+	// The lecturer layer (straight alpha) is not kept here: it is the colour
+	// frame with this alpha, made where it goes (lecturerLayer(),
+	// algo/composite.hpp; in the daemon straight into shared memory).
 };
 
 // What the daemon reports and the previews show.

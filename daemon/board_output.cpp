@@ -1,5 +1,7 @@
 #include "daemon/board_output.hpp"
 
+#include "algo/composite.hpp"
+
 #include "daemon/log.hpp"
 #include "hal/sim/board_display.hpp"
 
@@ -212,10 +214,12 @@ void BoardOutput::scalePicture()
 	}
 }
 
-void BoardOutput::compose(const RgbaImage &cameraLayer, const Roi &roi, int opacityQ8)
+void BoardOutput::compose(const RgbImage &colour, const Gray8Image &alpha, const Roi &roi, int opacityQ8)
 {
-	if (boardGeometry())
-		compositor_.compose(cameraLayer, roi, outputPicture(), opacityQ8, composite_, lecturer_);
+	if (!boardGeometry())
+		return;
+	lecturerLayer(colour, alpha, cameraLayer_, layerPath_);
+	compositor_.compose(cameraLayer_, roi, outputPicture(), opacityQ8, composite_, lecturer_);
 }
 
 void BoardOutput::showBoardOnly()

@@ -12,6 +12,7 @@
 #include "algo/board_compositor.hpp"
 #include "algo/pipeline.hpp"
 #include "config/board_calibration_file.hpp"
+#include "hal/kernel_path_env.hpp"
 #include "hal/camera.hpp"
 #include "settings/settings.hpp"
 
@@ -41,9 +42,11 @@ public:
 	// effect at the next start() or apply().
 	void setCalibrationFileBoard(const std::optional<BoardCalibration> &board) { calibrationFileBoard_ = board; }
 
-	// After the pipeline ran: warps its camera-geometry lecturer layer into
-	// the board picture. Does nothing in camera geometry.
-	void compose(const RgbaImage &cameraLayer, const Roi &roi, int opacityQ8);
+	// After the pipeline ran: makes its camera-geometry lecturer layer from
+	// the colour frame and the alpha, and warps it into the board picture.
+	// Does nothing in camera geometry (where the layer is made only in the
+	// shared memory, hal/frame_sink.hpp).
+	void compose(const RgbImage &colour, const Gray8Image &alpha, const Roi &roi, int opacityQ8);
 	// The board picture alone, the lecturer layer empty (NO SIGNAL frames).
 	void showBoardOnly();
 
@@ -90,6 +93,8 @@ private:
 	bool fromCalibrationFile_ = false; // calibration_ came from calibrationFileBoard_
 	std::string notCalibrated_;    // why the composite is in camera geometry
 	BoardCompositor compositor_;
+	RgbaImage cameraLayer_;   // the lecturer layer in camera geometry, board geometry only
+	KernelPath layerPath_ = kernelPathFromEnvironment();
 	RgbImage composite_;
 	RgbaImage lecturer_;
 };

@@ -234,26 +234,26 @@ void Daemon::keyFrame(const PairingQueue::Keying &keying)
 	// lecture's content, and warping the whole colour frame would cost the
 	// CPU a slow box needs to get depth back.
 	if (depth)
-		board_.compose(output_.lecturer, pipeline_.roi(), opacityToQ8(settings_.composite.opacity));
+		board_.compose(frame.rgb, output_.alpha, pipeline_.roi(), opacityToQ8(settings_.composite.opacity));
 	else
 		board_.showBoardOnly();
 	stageDumps_.onKeyedFrame(frame, depth, status_.colourFrames(), pipelineView());
 	preview_.offer(&frame, depth, depth ? &pipeline_.trimap() : nullptr, output_, frame.timestampNs,
 		       loop_.nowUs() * 1000u);
-	publish(frame.timestampNs, flags);
+	publish(&frame.rgb, frame.timestampNs, flags);
 	const uint64_t keyingUs = loop_.nowUs() - startUs;
 	status_.countKeying(keyingUs);
 	keyingBudget_.spend(keyingUs);
 }
 
-void Daemon::publish(uint64_t captureNs, uint32_t flags)
+void Daemon::publish(const RgbImage *colour, uint64_t captureNs, uint32_t flags)
 {
 	if (framesStalled_)
 		return;
 	const bool board = board_.boardGeometry();
 	// Never waits; a full or lost device is its own status (hal/v4l2/v4l2_output.hpp).
 	webcam_.write(board ? board_.composite() : output_.composite);
-	if (outputs_.publish({ board ? board_.composite() : output_.composite, output_.lecturer,
+	if (outputs_.publish({ board ? board_.composite() : output_.composite, colour, output_.alpha,
 			       board ? &board_.lecturer() : nullptr, captureNs, flags }) < 0)
 		return;
 	status_.countPublished(flags & DK_SHM_FLAG_ONLINE);
@@ -286,7 +286,7 @@ void Daemon::publishNoSignal(uint64_t nowNs)
 		       settings_.colour.height, output_);
 	board_.showBoardOnly(); // in board geometry the board's picture goes on, marked offline
 	preview_.offer(nullptr, nullptr, nullptr, output_, nowNs, nowNs);
-	publish(nowNs, pairing_.depthFresh(nowNs) ? DK_SHM_FLAG_DEPTH_OK : 0);
+	publish(nullptr, nowNs, pairing_.depthFresh(nowNs) ? DK_SHM_FLAG_DEPTH_OK : 0);
 }
 
 StatusSummary Daemon::summary() const

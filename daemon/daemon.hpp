@@ -75,7 +75,8 @@ private:
 	void apply(const Settings &settings, const PipelineFiles &files);
 	void applyPipelineFiles(const PipelineFiles &files);
 	void checkCalibrationFits();
-	void publish(uint64_t captureNs, uint32_t flags);
+	// colour: the keyed frame, the lecturer layer's colours; null for NO SIGNAL.
+	void publish(const RgbImage *colour, uint64_t captureNs, uint32_t flags);
 	void publishNoSignal(uint64_t nowNs);
 	StatusSummary summary() const;
 	StatusSnapshot statusSnapshot() const;

@@ -72,7 +72,7 @@ int FrameOutputs::publish(const OutputFrame &frame)
 	}
 	int ret = sink_->publishComposite(frame.composite, frame.captureNs, frame.flags);
 	if (ret >= 0)
-		ret = sink_->publishLecturer(frame.lecturer, frame.captureNs, frame.flags);
+		ret = sink_->publishLecturer(frame.colour, frame.alpha, frame.captureNs, frame.flags);
 	if (ret >= 0 && frame.boardLecturer)
 		ret = sink_->publishBoardLecturer(*frame.boardLecturer, frame.captureNs, frame.flags);
 	if (ret < 0)

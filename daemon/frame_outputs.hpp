@@ -20,7 +20,10 @@ namespace depthkey {
 // One frame for every output, borrowed for the call.
 struct OutputFrame {
 	const RgbImage &composite;       // in the board's geometry when it is calibrated
-	const RgbaImage &lecturer;       // in the colour camera's geometry
+	// The lecturer layer, in the colour camera's geometry, is made from these
+	// where it is published (FrameSink::publishLecturer); no colour: NO SIGNAL.
+	const RgbImage *colour;
+	const Gray8Image &alpha;
 	const RgbaImage *boardLecturer;  // the layer in the board's geometry, or null
 	uint64_t captureNs;
 	uint32_t flags;                  // DK_SHM_FLAG_*

@@ -17,8 +17,6 @@ void NoSignalPicture::fill(const std::string &cameraName, int width, int height,
 	output.composite = picture_;
 	output.alpha.resize(width, height);
 	std::fill(output.alpha.data(), output.alpha.data() + output.alpha.size(), 0);
-	output.lecturer.resize(width, height);
-	std::fill(output.lecturer.data(), output.lecturer.data() + output.lecturer.size(), Rgba8{ 0, 0, 0, 0 });
 }
 
 } // namespace depthkey

@@ -2,9 +2,11 @@
 // counts them, and can be told to fail.
 #pragma once
 
+#include "algo/composite.hpp"
 #include "hal/depthkey_shm.h"
 #include "hal/frame_sink.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <unistd.h>
 
@@ -44,12 +46,20 @@ public:
 		return 0;
 	}
 
-	int publishLecturer(const RgbaImage &image, uint64_t captureNs, uint32_t flags) override
+	int publishLecturer(const RgbImage *colour, const Gray8Image &alpha, uint64_t captureNs,
+			    uint32_t flags) override
 	{
-		int ret = check(image.width(), image.height());
+		int ret = check(alpha.width(), alpha.height());
 		if (ret)
 			return ret;
-		lecturer_ = image;
+		if (colour) {
+			if (colour->width() != alpha.width() || colour->height() != alpha.height())
+				return -EINVAL;
+			lecturerLayer(*colour, alpha, lecturer_, KernelPath::C);
+		} else {
+			lecturer_.resize(alpha.width(), alpha.height());
+			std::fill(lecturer_.data(), lecturer_.data() + lecturer_.size(), Rgba8{ 0, 0, 0, 0 });
+		}
 		lecturerCount_++;
 		captureNs_ = captureNs;
 		flags_ = flags;

@@ -38,7 +38,12 @@ public:
 	// CLOCK_MONOTONIC capture time of the colour frame. Images must have the
 	// size given to open() (-EINVAL otherwise); -EBADF when not open.
 	virtual int publishComposite(const RgbImage &image, uint64_t captureNs, uint32_t flags) = 0;
-	virtual int publishLecturer(const RgbaImage &image, uint64_t captureNs, uint32_t flags) = 0;
+	// The lecturer layer, made from the colour frame and its alpha
+	// (lecturerLayer(), algo/composite.hpp) where it goes, so that no
+	// frame-sized RGBA image is kept beside the ring (issue 15). A null
+	// colour is the NO SIGNAL frame's layer: transparent black.
+	virtual int publishLecturer(const RgbImage *colour, const Gray8Image &alpha, uint64_t captureNs,
+				    uint32_t flags) = 0;
 	// The board-geometry lecturer layer; -EBADF when opened without a board size.
 	virtual int publishBoardLecturer(const RgbaImage &image, uint64_t captureNs, uint32_t flags) = 0;
 

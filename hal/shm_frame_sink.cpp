@@ -1,7 +1,9 @@
 #include "hal/shm_frame_sink.hpp"
 
+#include "algo/composite.hpp"
 #include "hal/depthkey_shm.h"
 
+#include <algorithm>
 #include <cerrno>
 
 namespace depthkey {
@@ -51,13 +53,8 @@ int ShmFrameSink::publish(ShmRingWriter &writer, const Image &image, uint64_t ca
 {
 	static_assert(sizeof(*image.data()) == 3 || sizeof(*image.data()) == 4);
 
-	if (writer.isOpen() && (image.width() != writer.width() || image.height() != writer.height())) {
-		sizeMismatch_ = &writer;
-		failed_ = nullptr;
-		mismatchWidth_ = image.width();
-		mismatchHeight_ = image.height();
-		return -EINVAL;
-	}
+	if (int ret = checkSize(writer, image.width(), image.height()); ret < 0)
+		return ret;
 	const int stride = image.width() * static_cast<int>(sizeof(*image.data()));
 	int ret = writer.write(reinterpret_cast<const uint8_t *>(image.data()), stride, captureNs,
 			       flags);
@@ -73,9 +70,41 @@ int ShmFrameSink::publishComposite(const RgbImage &image, uint64_t captureNs, ui
 	return publish(composite_, image, captureNs, flags);
 }
 
-int ShmFrameSink::publishLecturer(const RgbaImage &image, uint64_t captureNs, uint32_t flags)
+int ShmFrameSink::checkSize(const ShmRingWriter &writer, int width, int height)
 {
-	return publish(lecturer_, image, captureNs, flags);
+	if (!writer.isOpen() || (width == writer.width() && height == writer.height()))
+		return 0;
+	sizeMismatch_ = &writer;
+	failed_ = nullptr;
+	mismatchWidth_ = width;
+	mismatchHeight_ = height;
+	return -EINVAL;
+}
+
+int ShmFrameSink::publishLecturer(const RgbImage *colour, const Gray8Image &alpha, uint64_t captureNs,
+				  uint32_t flags)
+{
+	if (int ret = checkSize(lecturer_, alpha.width(), alpha.height()); ret < 0)
+		return ret;
+	if (colour && (colour->width() != alpha.width() || colour->height() != alpha.height())) {
+		const int ret = checkSize(lecturer_, colour->width(), colour->height());
+		return ret < 0 ? ret : -EBADF; // not open: nothing to write to
+	}
+	const int width = alpha.width();
+	int ret = lecturer_.writeRows(
+		[&](int y, uint8_t *row) {
+			Rgba8 *out = reinterpret_cast<Rgba8 *>(row);
+			if (colour)
+				lecturerLayerRow(path_, colour->row(y), alpha.row(y), out, width);
+			else
+				std::fill(out, out + width, Rgba8{ 0, 0, 0, 0 });
+		},
+		captureNs, flags);
+	if (ret) {
+		failed_ = &lecturer_;
+		sizeMismatch_ = nullptr;
+	}
+	return ret;
 }
 
 int ShmFrameSink::publishBoardLecturer(const RgbaImage &image, uint64_t captureNs, uint32_t flags)

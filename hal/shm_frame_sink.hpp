@@ -4,6 +4,7 @@
 #pragma once
 
 #include "hal/frame_sink.hpp"
+#include "hal/kernel_path_env.hpp"
 #include "hal/shm_ring_writer.hpp"
 
 namespace depthkey {
@@ -14,7 +15,8 @@ public:
 	int open(const OutputSettings &settings, int width, int height, int boardWidth = 0,
 		 int boardHeight = 0) override;
 	int publishComposite(const RgbImage &image, uint64_t captureNs, uint32_t flags) override;
-	int publishLecturer(const RgbaImage &image, uint64_t captureNs, uint32_t flags) override;
+	int publishLecturer(const RgbImage *colour, const Gray8Image &alpha, uint64_t captureNs,
+			    uint32_t flags) override;
 	int publishBoardLecturer(const RgbaImage &image, uint64_t captureNs, uint32_t flags) override;
 	ReaderCounts countReaders(uint64_t nowNs) override;
 	void close() override;
@@ -28,10 +30,13 @@ public:
 private:
 	template<typename Image>
 	int publish(ShmRingWriter &writer, const Image &image, uint64_t captureNs, uint32_t flags);
+	// -EINVAL and the mismatch noted when width x height is not the writer's.
+	int checkSize(const ShmRingWriter &writer, int width, int height);
 
 	ShmRingWriter composite_;
 	ShmRingWriter lecturer_;
 	ShmRingWriter boardLecturer_;   // open only in board geometry
+	KernelPath path_ = kernelPathFromEnvironment(); // the lecturer layer's rows
 	// The writer that failed last, or null when the failure was our own
 	// (sizeMismatch_) or there was none.
 	const ShmRingWriter *failed_ = nullptr;

@@ -311,22 +311,7 @@ int ShmRingWriter::write(const uint8_t *pixels, int srcStride, uint64_t captureN
 	if (!pixels || srcStride < stride_)
 		return fail(-EINVAL, "write with a bad source buffer");
 
-	const uint64_t frame = frame_ + 1;
-	const uint32_t index = static_cast<uint32_t>(frame % static_cast<uint64_t>(slots_));
-	dk_shm_slot &slot = header_->slots[index];
-	uint8_t *dst = data_ + index * slotSize_;
-
-	// Seqlock writer side: odd sequence, release fence, payload, even
-	// sequence with release. A reader that copied any byte of this payload
-	// then sees the sequence change and drops its copy.
-	const uint32_t seq = __atomic_load_n(&slot.sequence, __ATOMIC_RELAXED);
-	__atomic_store_n(&slot.sequence, seq + 1, __ATOMIC_RELAXED);
-	__atomic_thread_fence(__ATOMIC_RELEASE);
-
-	__atomic_store_n(&slot.frame, frame, __ATOMIC_RELAXED);
-	__atomic_store_n(&slot.timestamp_ns, captureNs, __ATOMIC_RELAXED);
-	__atomic_store_n(&slot.flags, flags, __ATOMIC_RELAXED);
-	__atomic_store_n(&slot.payload_bytes, rowBytes * height_, __ATOMIC_RELAXED);
+	uint8_t *dst = beginFrame(captureNs, flags);
 	if (static_cast<size_t>(srcStride) == rowBytes) {
 		std::memcpy(dst, pixels, rowBytes * height_);
 	} else {
@@ -334,11 +319,38 @@ int ShmRingWriter::write(const uint8_t *pixels, int srcStride, uint64_t captureN
 			std::memcpy(dst + y * rowBytes, pixels + static_cast<size_t>(y) * srcStride,
 				    rowBytes);
 	}
+	endFrame();
+	return 0;
+}
 
-	__atomic_store_n(&slot.sequence, seq + 2, __ATOMIC_RELEASE);
+uint8_t *ShmRingWriter::beginFrame(uint64_t captureNs, uint32_t flags)
+{
+	const uint64_t frame = frame_ + 1;
+	const uint32_t index = static_cast<uint32_t>(frame % static_cast<uint64_t>(slots_));
+	dk_shm_slot &slot = header_->slots[index];
+
+	// Seqlock writer side: odd sequence, release fence, payload, even
+	// sequence with release (endFrame). A reader that copied any byte of
+	// this payload then sees the sequence change and drops its copy.
+	const uint32_t seq = __atomic_load_n(&slot.sequence, __ATOMIC_RELAXED);
+	__atomic_store_n(&slot.sequence, seq + 1, __ATOMIC_RELAXED);
+	__atomic_thread_fence(__ATOMIC_RELEASE);
+
+	__atomic_store_n(&slot.frame, frame, __ATOMIC_RELAXED);
+	__atomic_store_n(&slot.timestamp_ns, captureNs, __ATOMIC_RELAXED);
+	__atomic_store_n(&slot.flags, flags, __ATOMIC_RELAXED);
+	__atomic_store_n(&slot.payload_bytes, static_cast<uint64_t>(stride_) * height_, __ATOMIC_RELAXED);
+	return data_ + index * slotSize_;
+}
+
+void ShmRingWriter::endFrame()
+{
+	const uint64_t frame = frame_ + 1;
+	dk_shm_slot &slot = header_->slots[frame % static_cast<uint64_t>(slots_)];
+	const uint32_t seq = __atomic_load_n(&slot.sequence, __ATOMIC_RELAXED);
+	__atomic_store_n(&slot.sequence, seq + 1, __ATOMIC_RELEASE);
 	__atomic_store_n(&header_->latest_frame, frame, __ATOMIC_RELEASE);
 	frame_ = frame;
-	return 0;
 }
 
 // Readers of an earlier writer re-open on the new generation and claim new

@@ -44,6 +44,23 @@ public:
 	// Returns 0, -EBADF when not open or -EINVAL for a bad buffer.
 	int write(const uint8_t *pixels, int srcStride, uint64_t captureNs, uint32_t flags);
 
+	// Publishes one frame made in place: makeRow(y, row) writes row y
+	// (width * bytesPerPixel bytes) straight into the slot, so the frame
+	// needs no buffer of its own beside the ring (issue 15: the lecturer
+	// layer, 1.2 MB at 640x480). Readers see the slot busy until the last
+	// row is made. Returns 0 or -EBADF when not open.
+	template<typename MakeRow>
+	int writeRows(MakeRow &&makeRow, uint64_t captureNs, uint32_t flags)
+	{
+		if (!header_)
+			return fail(-EBADF, "write to a closed ring");
+		uint8_t *dst = beginFrame(captureNs, flags);
+		for (int y = 0; y < height_; y++)
+			makeRow(y, dst + static_cast<size_t>(y) * static_cast<size_t>(stride_));
+		endFrame();
+		return 0;
+	}
+
 	// Marks the stream offline and unmaps. The object stays, holding the last
 	// frames, until the next open() (this process or a restarted one)
 	// replaces it.
@@ -82,6 +99,11 @@ private:
 	// 0 with out holding the new object, or a negative errno.
 	int createFresh(const std::string &name, unsigned int gid, const std::string &group, UniqueFd &out);
 	void writeHeader(uint64_t slotSize, uint64_t readerOffset, uint64_t dataOffset);
+	// The seqlock's two halves around a frame's payload: the slot of frame
+	// frame_ + 1 marked busy and its fields set (returns its pixels), then
+	// marked done and made the latest.
+	uint8_t *beginFrame(uint64_t captureNs, uint32_t flags);
+	void endFrame();
 	void clearReaders();
 
 	std::string name_;

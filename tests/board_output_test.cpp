@@ -100,9 +100,7 @@ TEST(BoardOutput, ComposesInBoardGeometryAndKeepsTheLastPictureWhileLost)
 	for (int y = 0; y < kCh; ++y)
 		for (int x = 0; x < kCw / 2; ++x)
 			alpha.at(x, y) = 255;
-	RgbaImage layer;
-	lecturerLayer(colour, alpha, layer);
-	board.compose(layer, Roi{ 0, 0, kCw / 2, kCh }, 256);
+	board.compose(colour, alpha, Roi{ 0, 0, kCw / 2, kCh }, 256);
 	EXPECT_EQ(board.composite().at(10, 50), (Rgb8{ 250, 0, 0 }));
 	EXPECT_EQ(board.composite().at(100, 50), (Rgb8{ 20, 40, 60 }));
 	EXPECT_EQ(board.lecturer().at(10, 50).a, 255);
@@ -111,7 +109,7 @@ TEST(BoardOutput, ComposesInBoardGeometryAndKeepsTheLastPictureWhileLost)
 	f.source->setState(DeviceState::Lost, -ENODEV, "unplugged");
 	EXPECT_FALSE(board.sourceOk());
 	EXPECT_NE(board.statusText().find("lost (last good picture kept)"), std::string::npos) << board.statusText();
-	board.compose(layer, Roi{ 0, 0, kCw / 2, kCh }, 256);
+	board.compose(colour, alpha, Roi{ 0, 0, kCw / 2, kCh }, 256);
 	EXPECT_EQ(board.composite().at(100, 50), (Rgb8{ 20, 40, 60 })) << "the last good picture stays";
 	ASSERT_FALSE(f.statuses.empty());
 	EXPECT_EQ(f.statuses.back(), (std::pair<std::string, DeviceState>{ "fake-board", DeviceState::Lost }));

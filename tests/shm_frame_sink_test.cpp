@@ -1,10 +1,12 @@
 // ShmFrameSink: the daemon's output, read back through the C reader.
+#include "algo/composite.hpp"
 #include "hal/depthkey_shm.h"
 #include "hal/shm_frame_sink.hpp"
 #include "tests/shm_test_util.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <vector>
 
@@ -37,12 +39,12 @@ RgbImage rgbPattern(int width, int height)
 	return image;
 }
 
-RgbaImage rgbaPattern(int width, int height)
+Gray8Image alphaPattern(int width, int height)
 {
-	RgbaImage image(width, height);
+	Gray8Image image(width, height);
 	for (int y = 0; y < height; y++)
 		for (int x = 0; x < width; x++)
-			image.at(x, y) = { uint8_t(x * 3), uint8_t(y), uint8_t(200 - x), uint8_t(x * y) };
+			image.at(x, y) = uint8_t(x * y + 7 * x);
 	return image;
 }
 
@@ -68,10 +70,14 @@ TEST(ShmFrameSink, PublishesBothStreams)
 	ASSERT_EQ(sink.open(names.settings(), 40, 30), 0) << sink.describeError();
 
 	const RgbImage composite = rgbPattern(40, 30);
-	const RgbaImage lecturer = rgbaPattern(40, 30);
+	const Gray8Image alpha = alphaPattern(40, 30);
 	const uint32_t flags = DK_SHM_FLAG_ONLINE | DK_SHM_FLAG_COLOUR_OK | DK_SHM_FLAG_DEPTH_OK;
 	ASSERT_EQ(sink.publishComposite(composite, 123456789, flags), 0);
-	ASSERT_EQ(sink.publishLecturer(lecturer, 123456789, DK_SHM_FLAG_COLOUR_OK), 0);
+	// The layer is made in the slot from the colour frame and its alpha: the
+	// same bytes as the C reference makes into an image of its own.
+	ASSERT_EQ(sink.publishLecturer(&composite, alpha, 123456789, DK_SHM_FLAG_COLOUR_OK), 0);
+	RgbaImage lecturer;
+	lecturerLayer(composite, alpha, lecturer, KernelPath::C);
 
 	dk_shm_frame_info info{};
 	auto bytes = readLatest(names.composite.str(), &info);
@@ -87,6 +93,13 @@ TEST(ShmFrameSink, PublishesBothStreams)
 	EXPECT_EQ(info.fourcc, DK_SHM_FORMAT_RGBA32);
 	EXPECT_EQ(info.flags, DK_SHM_FLAG_COLOUR_OK);
 	EXPECT_EQ(sink.describeError(), "");
+
+	// NO SIGNAL: no colour frame, the layer transparent black.
+	ASSERT_EQ(sink.publishLecturer(nullptr, alpha, 987654321, 0), 0);
+	bytes = readLatest(names.lecturer.str(), &info);
+	ASSERT_EQ(bytes.size(), 40u * 30 * 4);
+	EXPECT_EQ(std::count(bytes.begin(), bytes.end(), uint8_t(0)), ptrdiff_t(bytes.size()));
+	EXPECT_EQ(info.timestamp_ns, 987654321u);
 }
 
 // Each stream's readers are counted apart, the board-geometry layer's too
@@ -115,10 +128,18 @@ TEST(ShmFrameSink, WrongImageSizeNamesTheStream)
 	ShmFrameSink sink;
 	EXPECT_EQ(sink.publishComposite(rgbPattern(8, 8), 0, 0), -EBADF);
 	ASSERT_EQ(sink.open(names.settings(), 40, 30), 0);
-	EXPECT_EQ(sink.publishLecturer(rgbaPattern(16, 16), 0, 0), -EINVAL);
-	const std::string message = sink.describeError();
+	const RgbImage small = rgbPattern(16, 16);
+	EXPECT_EQ(sink.publishLecturer(&small, alphaPattern(16, 16), 0, 0), -EINVAL);
+	std::string message = sink.describeError();
 	EXPECT_NE(message.find(names.lecturer.str()), std::string::npos) << message;
 	EXPECT_NE(message.find("16x16"), std::string::npos) << message;
+	// A colour frame of another size than its alpha is refused too, not read past.
+	EXPECT_EQ(sink.publishLecturer(&small, alphaPattern(40, 30), 0, 0), -EINVAL);
+	message = sink.describeError();
+	EXPECT_NE(message.find("16x16"), std::string::npos) << message;
+	sink.close();
+	const RgbImage right = rgbPattern(40, 30);
+	EXPECT_EQ(sink.publishLecturer(&right, alphaPattern(40, 30), 0, 0), -EBADF);
 }
 
 TEST(ShmFrameSink, FailedOpenNamesTheObject)
