@@ -40,9 +40,17 @@ void PairingQueue::addColour(const ColourFrame &frame, uint64_t nowNs)
 	if (count_ == slotCount_)
 		pop(); // full: the caller did not make room (next() with makeRoom); it is lost
 	Slot &slot = slots_[(first_ + count_) % slotCount_];
-	slot.frame = frame; // same size: the vector reuses its storage
+	if (&slot.frame != &frame) // made elsewhere, not in freeSlot()
+		slot.frame = frame; // same size: the vector reuses its storage
 	slot.deadlineNs = nowNs + delayNs_;
 	count_++;
+}
+
+ColourFrame *PairingQueue::freeSlot()
+{
+	if (count_ == slotCount_)
+		return nullptr;
+	return &slots_[(first_ + count_) % slotCount_].frame;
 }
 
 bool PairingQueue::due(const Slot &slot, uint64_t nowNs, bool makeRoom) const

@@ -50,6 +50,11 @@ public:
 
 	void addDepth(const DepthFrame &frame) { pairer_.addDepth(frame); }
 	void addColour(const ColourFrame &frame, uint64_t nowNs);
+	// The slot the next addColour() fills, for a camera to make its frame in
+	// (Camera::lendFrames): addColour() of that very frame copies nothing.
+	// Null when the ring is full. Valid until addColour(), clear() or
+	// configure(); pop() and next() do not move it.
+	ColourFrame *freeSlot();
 
 	// The oldest held frame when it is due at nowNs, bracketed with depth;
 	// false when none is due. makeRoom: a colour frame is about to be

@@ -132,6 +132,17 @@ void Daemon::startCameras()
 	colour_ = factory_.colourCamera(settings_);
 	depth_ = factory_.depthCamera(settings_);
 	std::string colourName = colour_->name(), depthName = depth_->name();
+	// The colour camera makes its frame in the pairing ring's free slot: no
+	// copy, and no frame buffer of its own beside the ring (0.9 MB at
+	// 640x480). A full ring keys its oldest frame first, as onColourFrame
+	// does for a frame made elsewhere, only before the new frame is made
+	// rather than after: the simulator's frames arrive a render (10-20 ms)
+	// after their capture, so at 25 fps and 150 ms the oldest is still
+	// waiting when the next capture starts, though 160 ms after its own.
+	colour_->lendFrames([this]() -> ColourFrame * {
+		keyDueFrames(true);
+		return pairing_.queue().freeSlot();
+	});
 	int ret = colour_->start(
 		loop_, [this](const ColourFrame &f) { onColourFrame(f); },
 		[this, colourName](const DeviceStatus &s) { onDeviceStatus(colourName, s); });

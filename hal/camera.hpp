@@ -62,6 +62,16 @@ public:
 	// (daemon/keying_budget.hpp). False for a source that waits for the
 	// daemon (a replay not in real time), whose every frame is keyed.
 	virtual bool freeRunning() const { return true; }
+
+	// Where the camera may make its next frame: storage of the handler's (the
+	// daemon lends the pairing ring's free slot), so that the frame is not
+	// copied there and no frame-sized buffer of the camera's own is kept
+	// beside the ring (issue 15). Asked just before each frame is made; null:
+	// make it in the camera's own buffer. The frame handed to onFrame is then
+	// the lent one. A backend may ignore it (the default) and make every
+	// frame in its own buffer; set before start().
+	using FrameLender = std::function<Frame *()>;
+	virtual void lendFrames(FrameLender lender) { (void)lender; }
 };
 
 using ColourCamera = Camera<ColourFrame>;

@@ -128,3 +128,31 @@ TEST(PairingQueue, HoldsTheFramesOfOneDelayAndKeysEachAtItsTime)
 	EXPECT_EQ(keyed, 16u);
 	EXPECT_EQ(q.held(), 4u);
 }
+
+// A camera makes its frame in the slot the next addColour() fills
+// (Camera::lendFrames): the held frame is that very storage, not a copy, and
+// a full ring lends nothing.
+TEST(PairingQueue, AFrameMadeInTheFreeSlotIsHeldWithoutACopy)
+{
+	PairingQueue q;
+	q.configure(0, 150 * kMs, 150 * kMs, 2);
+	PairingQueue::Keying k;
+	ColourFrame *slot = q.freeSlot();
+	ASSERT_NE(slot, nullptr);
+	*slot = colourAt(1000, 7);
+	const Rgb8 *pixels = slot->rgb.data();
+	q.addColour(*slot, 1000 * kMs);
+	EXPECT_EQ(q.held(), 1u);
+	ColourFrame *second = q.freeSlot();
+	ASSERT_NE(second, nullptr);
+	EXPECT_NE(second, slot);
+	q.addColour(colourAt(1040, 8), 1040 * kMs); // made elsewhere: copied into that slot
+	EXPECT_EQ(second->sequence, 8u);
+	EXPECT_EQ(q.freeSlot(), nullptr); // full
+	ASSERT_TRUE(q.next(1150 * kMs, k));
+	EXPECT_EQ(k.colour, slot);
+	EXPECT_EQ(k.colour->rgb.data(), pixels);
+	EXPECT_EQ(k.colour->sequence, 7u);
+	q.pop();
+	EXPECT_EQ(q.freeSlot(), slot); // the keyed frame's slot is lent next
+}

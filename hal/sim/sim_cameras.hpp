@@ -24,12 +24,16 @@ public:
 	using typename Camera<Frame>::FrameHandler;
 	using typename Camera<Frame>::StatusHandler;
 
+	using typename Camera<Frame>::FrameLender;
+
+	void lendFrames(FrameLender lender) override { lender_ = std::move(lender); }
+
 	int start(EventLoop &loop, FrameHandler onFrame, StatusHandler onStatus) override
 	{
 		loop_ = &loop;
 		onFrame_ = std::move(onFrame);
 		prepare();
-		frame_.sequence = 0;
+		sequence_ = 0;
 		int ret = loop.addPeriodic(1000000u / fps(), [this] { capture(); }, timer_);
 		if (ret < 0)
 			return ret;
@@ -55,16 +59,21 @@ private:
 	void capture()
 	{
 		uint64_t now = loop_->nowUs();
-		render(now, frame_);
-		frame_.timestampNs = now * 1000u;
-		frame_.sequence++;
-		onFrame_(frame_);
+		Frame *lent = lender_ ? lender_() : nullptr;
+		Frame &frame = lent ? *lent : frame_; // frame_ stays empty while frames are lent
+		frame.sequence = sequence_;
+		render(now, frame);
+		frame.timestampNs = now * 1000u;
+		frame.sequence = ++sequence_;
+		onFrame_(frame);
 	}
 
 	EventLoop *loop_ = nullptr;
 	EventSource timer_;
 	FrameHandler onFrame_;
+	FrameLender lender_;
 	Frame frame_;
+	uint64_t sequence_ = 0; // the last frame's number, whichever buffer it was made in
 	DeviceStatus status_;
 };
 
