@@ -96,16 +96,10 @@ void LectureSimulator::ensureColourGrid()
 	colourGrid_.configure(rig_.colour(), 1, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(), scene,
 			      sim::RayGrid::Channels::Colour);
 	colourReady_ = true;
-	// One colour table a pixel (issue 15): a pixel off the board display
-	// keeps its static colour as an uninked texel's background, so that the
-	// grid's static colours need not be kept beside the board's texels.
-	const std::vector<Rgb8> staticColour = colourGrid_.takeStaticColour();
-	const std::vector<int32_t> &texelOf = colourGrid_.boardTexel();
-	board_.assign(texelOf.size(), sim::BoardTexel{});
-	for (size_t k = 0; k < texelOf.size(); ++k)
-		if (texelOf[k] < 0)
-			board_[k].background = staticColour[k];
-	boardCycle_ = ~0ull; // board_ holds no texels of this grid's board pixels yet
+	// One colour table (issue 15): a pixel off the board display keeps its
+	// static colour where a board pixel keeps its texel's.
+	backdrop_.build(colourGrid_.takeBoardTexel(), colourGrid_.takeStaticColour());
+	boardCycle_ = ~0ull; // the backdrop holds no texels of this grid's board pixels yet
 	if (shownPicture_.empty())
 		return;
 	// The picture on the display, per colour pixel where the display is seen.
@@ -125,7 +119,7 @@ void LectureSimulator::ensureColourGrid()
 	for (int y = 0; y < colourHeight_; ++y)
 		for (int x = 0; x < colourWidth_; ++x) {
 			size_t k = size_t(y) * colourWidth_ + x;
-			if (colourGrid_.boardTexel()[k] < 0)
+			if (!backdrop_.onBoard(k))
 				continue;
 			double sum[3] = { 0, 0, 0 };
 			for (int j = 0; j < kSub; ++j)
@@ -181,14 +175,10 @@ void LectureSimulator::ensureBoard(double timeS)
 	if (cycle == boardCycle_)
 		return;
 	// The whole board's raster (2.5 mm texels, 5.2 MB) only while the
-	// texels the colour pixels show are picked from it: those are kept, one
-	// a pixel (2.4 MB at 640x480), the raster let go (issue 15).
+	// texels the colour pixels show are picked from it (issue 15).
 	std::vector<sim::BoardTexel> raster;
 	script_.rasterise(cycle, raster);
-	const std::vector<int32_t> &texelOf = colourGrid_.boardTexel();
-	for (size_t k = 0; k < texelOf.size(); ++k)
-		if (texelOf[k] >= 0) // the other pixels hold their static colour
-			board_[k] = raster[static_cast<size_t>(texelOf[k])];
+	backdrop_.pick(raster);
 	boardCycle_ = cycle;
 }
 
@@ -225,10 +215,10 @@ void LectureSimulator::renderColour(double timeS, ColourFrame &out, GroundTruth 
 	lightingGains(timeS, gain);
 	const uint16_t tick = static_cast<uint16_t>(
 		std::min(65534.0, script_.cycleTime(timeS) / sim::LectureScript::kTickS));
-	const Rgb8 *ink = sim::LectureScript::inkColours();
 	const uint64_t noiseKey = timeKey(settings_.seed, 3, timeS);
 	const bool noise = settings_.colourNoise > 0;
-	const auto &texelOf = colourGrid_.boardTexel();
+	const bool showing = !shown_.empty();
+	size_t inked = 0; // the backdrop's running count, every pixel asked in row-major order
 	const auto &staticZ = colourGrid_.staticZ();
 	const int dx0 = colourGrid_.dirtyX0(), dx1 = colourGrid_.dirtyX1();
 	const int dy0 = colourGrid_.dirtyY0(), dy1 = colourGrid_.dirtyY1();
@@ -240,14 +230,9 @@ void LectureSimulator::renderColour(double timeS, ColourFrame &out, GroundTruth 
 		const sim::RayGrid::Row lecturer = lecturerRow ? colourGrid_.drawRow(y) : sim::RayGrid::Row{};
 		for (int x = 0; x < w; ++x) {
 			const size_t k = base + x;
-			Rgb8 c;
-			if (texelOf[k] >= 0 && !shown_.empty()) {
+			Rgb8 c = backdrop_.colourAt(k, tick, inked);
+			if (showing && backdrop_.onBoard(k))
 				c = shown_[k];
-			} else { // off the board: an uninked texel of the static colour
-				const sim::BoardTexel &texel = board_[k];
-				bool inked = texel.ink && tick >= texel.writeTick && tick < texel.eraseTick;
-				c = inked ? ink[texel.ink] : texel.background;
-			}
 			int alpha256 = 0;
 			if (lecturerRow && x >= dx0 && x < dx1 && lecturer.alpha[x] > 0) {
 				alpha256 = static_cast<int>(lecturer.alpha[x] * 256.0f + 0.5f);

@@ -47,12 +47,12 @@ public:
 
 	// Static background per sample.
 	const std::vector<float> &staticZ() const { return staticZ_; }          // camera-frame z, m
-	const std::vector<int32_t> &boardTexel() const { return boardTexel_; }  // -1: not the board display
-	// The static colours (non-board surfaces, wall) and reflectivities are
+	// The static colours (non-board surfaces, wall), the board texel each
+	// sample sees (-1: not the board display) and the reflectivities are
 	// handed over once: the simulator folds them into tables of its own
-	// (the board's texels per pixel, the ToF's amplitudes) and the grid
-	// keeps no copy.
+	// (sim::ColourBackdrop, the ToF's amplitudes) and the grid keeps no copy.
 	std::vector<Rgb8> takeStaticColour() { return std::move(staticColour_); }
+	std::vector<int32_t> takeBoardTexel() { return std::move(boardTexel_); }
 	std::vector<float> takeStaticReflectivity() { return std::move(staticReflectivity_); }
 
 	// The lecturer of one frame: poses the capsules in this camera's frame
