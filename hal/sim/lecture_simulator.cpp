@@ -158,13 +158,16 @@ void LectureSimulator::ensureDepthGrid()
 	// The reflectivities are only read here: the grid keeps none.
 	const std::vector<float> reflectivity = depthGrid_.takeStaticReflectivity();
 	staticAmplitude_.resize(depthGrid_.size());
-	for (size_t k = 0; k < depthGrid_.size(); ++k) {
-		int u = static_cast<int>(k % w) / kTofSamplesPerPixel, v = static_cast<int>(k / w) / kTofSamplesPerPixel;
-		float z = depthGrid_.staticZ()[k];
-		float d = static_cast<float>(kReferenceDistanceM) / z;
-		staticAmplitude_[k] = static_cast<float>(settings_.tofAmplitude) / kBoardReflectivity *
-				      reflectivity[k] * d * d *
-				      vignette_[static_cast<size_t>(v) * kTofWidth + u];
+	for (int j = 0; j < depthGrid_.height(); ++j) {
+		const float *staticZ = depthGrid_.staticZRow(j);
+		for (int i = 0; i < w; ++i) {
+			size_t k = static_cast<size_t>(j) * w + i;
+			int u = i / kTofSamplesPerPixel, v = j / kTofSamplesPerPixel;
+			float d = static_cast<float>(kReferenceDistanceM) / staticZ[i];
+			staticAmplitude_[k] = static_cast<float>(settings_.tofAmplitude) / kBoardReflectivity *
+					      reflectivity[k] * d * d *
+					      vignette_[static_cast<size_t>(v) * kTofWidth + u];
+		}
 	}
 	depthReady_ = true;
 }
@@ -219,7 +222,6 @@ void LectureSimulator::renderColour(double timeS, ColourFrame &out, GroundTruth 
 	const bool noise = settings_.colourNoise > 0;
 	const bool showing = !shown_.empty();
 	size_t inked = 0; // the backdrop's running count, every pixel asked in row-major order
-	const auto &staticZ = colourGrid_.staticZ();
 	const int dx0 = colourGrid_.dirtyX0(), dx1 = colourGrid_.dirtyX1();
 	const int dy0 = colourGrid_.dirtyY0(), dy1 = colourGrid_.dirtyY1();
 
@@ -228,6 +230,7 @@ void LectureSimulator::renderColour(double timeS, ColourFrame &out, GroundTruth 
 		const size_t base = static_cast<size_t>(y) * w;
 		const bool lecturerRow = y >= dy0 && y < dy1;
 		const sim::RayGrid::Row lecturer = lecturerRow ? colourGrid_.drawRow(y) : sim::RayGrid::Row{};
+		const float *staticZ = truth ? colourGrid_.staticZRow(y) : nullptr;
 		for (int x = 0; x < w; ++x) {
 			const size_t k = base + x;
 			Rgb8 c = backdrop_.colourAt(k, tick, inked);
@@ -254,7 +257,7 @@ void LectureSimulator::renderColour(double timeS, ColourFrame &out, GroundTruth 
 				truth->alpha.row(y)[x] = a8;
 				bool covered = alpha256 >= 128;
 				truth->mask.row(y)[x] = covered ? 255 : 0;
-				float z = covered ? lecturer.z[x] : staticZ[k];
+				float z = covered ? lecturer.z[x] : staticZ[x];
 				truth->depthMm.row(y)[x] = static_cast<uint16_t>(std::min(65535.0f, z * 1000.0f + 0.5f));
 			}
 		}
@@ -268,7 +271,6 @@ void LectureSimulator::renderDepth(double timeS, DepthFrame &out)
 	tof_.reset(kTofWidth, kTofHeight);
 	const int times = settings_.motionBlur && !target_ ? kMotionBlurSamples : 1;
 	const double exposure = settings_.tofExposureMs / 1000.0;
-	const auto &staticZ = depthGrid_.staticZ();
 	for (int ti = 0; ti < times; ++ti) {
 		double t = times == 1 ? timeS : timeS + exposure * (ti / (times - 1.0) - 0.5);
 		poseLecturer(t, capsules_);
@@ -276,11 +278,12 @@ void LectureSimulator::renderDepth(double timeS, DepthFrame &out)
 		for (int j = 0; j < depthGrid_.height(); ++j) {
 			// Alpha 0 all along a row no capsule reaches.
 			const sim::RayGrid::Row lecturer = depthGrid_.drawRow(j);
+			const float *staticZ = depthGrid_.staticZRow(j);
 			for (int i = 0; i < sw; ++i) {
 				size_t k = static_cast<size_t>(j) * sw + i;
 				size_t pixel = static_cast<size_t>(j / ss) * kTofWidth + i / ss;
 				float a = lecturer.alpha[i];
-				tof_.add(pixel, staticAmplitude_[k] * (1.0f - a), staticZ[k]);
+				tof_.add(pixel, staticAmplitude_[k] * (1.0f - a), staticZ[i]);
 				if (a > 0) {
 					const float z = lecturer.z[i];
 					float d = static_cast<float>(kReferenceDistanceM) / z;
