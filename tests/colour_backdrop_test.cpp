@@ -30,7 +30,8 @@ TEST(ColourBackdrop, SameColoursAsTheTexelsKeptWhole)
 	// jumps across the raster (escapes), the first and last texel.
 	std::vector<int32_t> texelOf;
 	std::vector<Rgb8> staticColour;
-	for (int k = 0; k < 20000; ++k) {
+	const int width = 200, height = 100;
+	for (int k = 0; k < width * height; ++k) {
 		uint64_t h = mixHash(k);
 		int32_t t;
 		if (h % 7 == 0)
@@ -41,15 +42,21 @@ TEST(ColourBackdrop, SameColoursAsTheTexelsKeptWhole)
 			t = std::clamp<int32_t>(texelOf.back() + int((h >> 8) % 15) - 7 + (int((h >> 16) % 15) - 7) * columns,
 						0, columns * rows - 1);
 		texelOf.push_back(k == 1 ? 0 : k == 2 ? columns * rows - 1 : t);
-		staticColour.push_back({ uint8_t(h >> 24), uint8_t(h >> 32), uint8_t(h >> 40) });
+		// Rows of many colours (kept whole) and of few (a palette).
+		if ((k / width) % 2)
+			staticColour.push_back({ uint8_t(h >> 24), uint8_t(h >> 32), uint8_t(h >> 40) });
+		else
+			staticColour.push_back({ uint8_t(h % 3 * 80), 40, 50 });
 	}
 	ColourBackdrop backdrop;
-	backdrop.build(texelOf, staticColour);
+	backdrop.build(width, texelOf, staticColour);
 	for (int cycle = 0; cycle < 2; ++cycle) {
 		std::vector<BoardTexel> raster(size_t(columns) * rows);
 		for (size_t i = 0; i < raster.size(); ++i) {
 			uint64_t h = mixHash(i * 2 + cycle);
-			raster[i].background = { uint8_t(h), uint8_t(h >> 8), uint8_t(h >> 16) };
+			// The first cycle's slide of many colours, the second's of few.
+			raster[i].background = cycle == 0 ? Rgb8{ uint8_t(h), uint8_t(h >> 8), uint8_t(h >> 16) }
+							  : Rgb8{ uint8_t(h % 4 * 60), 90, 30 };
 			if (h % 5 == 0) {
 				raster[i].ink = uint8_t(1 + (h >> 24) % 3);
 				raster[i].writeTick = uint16_t((h >> 32) % 100);
@@ -59,11 +66,15 @@ TEST(ColourBackdrop, SameColoursAsTheTexelsKeptWhole)
 		backdrop.pick(raster);
 		for (uint16_t tick : { 0, 50, 150, 65534 }) {
 			size_t inked = 0;
-			for (size_t k = 0; k < texelOf.size(); ++k) {
-				ASSERT_EQ(backdrop.onBoard(k), texelOf[k] >= 0);
-				Rgb8 want = direct(texelOf[k], staticColour[k], raster, tick);
-				Rgb8 got = backdrop.colourAt(k, tick, inked);
-				ASSERT_TRUE(got == want) << "pixel " << k;
+			for (int y = 0; y < height; ++y) {
+				const uint32_t *words = backdrop.row(y);
+				for (int x = 0; x < width; ++x) {
+					const size_t k = size_t(y) * width + x;
+					ASSERT_EQ(ColourBackdrop::onBoard(words[x]), texelOf[k] >= 0);
+					Rgb8 want = direct(texelOf[k], staticColour[k], raster, tick);
+					Rgb8 got = backdrop.colourAt(words[x], tick, inked);
+					ASSERT_TRUE(got == want) << "pixel " << k;
+				}
 			}
 		}
 	}

@@ -98,7 +98,7 @@ void LectureSimulator::ensureColourGrid()
 	colourReady_ = true;
 	// One colour table (issue 15): a pixel off the board display keeps its
 	// static colour where a board pixel keeps its texel's.
-	backdrop_.build(colourGrid_.takeBoardTexel(), colourGrid_.takeStaticColour());
+	backdrop_.build(colourWidth_, colourGrid_.takeBoardTexel(), colourGrid_.takeStaticColour());
 	boardCycle_ = ~0ull; // the backdrop holds no texels of this grid's board pixels yet
 	if (shownPicture_.empty())
 		return;
@@ -116,10 +116,11 @@ void LectureSimulator::ensureColourGrid()
 		return (at(x0, y0) * (1 - fx) + at(x1, y0) * fx) * (1 - fy) + (at(x0, y1) * (1 - fx) + at(x1, y1) * fx) * fy;
 	};
 	shown_.assign(size_t(colourWidth_) * colourHeight_, Rgb8{});
-	for (int y = 0; y < colourHeight_; ++y)
+	for (int y = 0; y < colourHeight_; ++y) {
+		const uint32_t *backdrop = backdrop_.row(y);
 		for (int x = 0; x < colourWidth_; ++x) {
 			size_t k = size_t(y) * colourWidth_ + x;
-			if (!backdrop_.onBoard(k))
+			if (!sim::ColourBackdrop::onBoard(backdrop[x]))
 				continue;
 			double sum[3] = { 0, 0, 0 };
 			for (int j = 0; j < kSub; ++j)
@@ -132,6 +133,7 @@ void LectureSimulator::ensureColourGrid()
 			shown_[k] = { clampU8(int(std::lround(sum[0] / (kSub * kSub)))), clampU8(int(std::lround(sum[1] / (kSub * kSub)))),
 				      clampU8(int(std::lround(sum[2] / (kSub * kSub)))) };
 		}
+	}
 }
 
 void LectureSimulator::ensureDepthGrid()
@@ -231,10 +233,11 @@ void LectureSimulator::renderColour(double timeS, ColourFrame &out, GroundTruth 
 		const bool lecturerRow = y >= dy0 && y < dy1;
 		const sim::RayGrid::Row lecturer = lecturerRow ? colourGrid_.drawRow(y) : sim::RayGrid::Row{};
 		const float *staticZ = truth ? colourGrid_.staticZRow(y) : nullptr;
+		const uint32_t *backdrop = backdrop_.row(y);
 		for (int x = 0; x < w; ++x) {
 			const size_t k = base + x;
-			Rgb8 c = backdrop_.colourAt(k, tick, inked);
-			if (showing && backdrop_.onBoard(k))
+			Rgb8 c = backdrop_.colourAt(backdrop[x], tick, inked);
+			if (showing && sim::ColourBackdrop::onBoard(backdrop[x]))
 				c = shown_[k];
 			int alpha256 = 0;
 			if (lecturerRow && x >= dx0 && x < dx1 && lecturer.alpha[x] > 0) {

@@ -19,7 +19,7 @@
 #include "hal/sim/camera_rig.hpp"
 #include "hal/sim/sample_rays.hpp"
 #include "hal/sim/scene_geometry.hpp"
-#include "hal/sim/static_depth.hpp"
+#include "hal/sim/row_palette.hpp"
 
 #include <vector>
 
@@ -97,7 +97,7 @@ private:
 	Eigen::Matrix3f toCamera_ = Eigen::Matrix3f::Identity();
 	Eigen::Vector3f origin_ = Eigen::Vector3f::Zero();
 	SampleRays rays_;
-	StaticDepth staticZ_;
+	RowPalette<float> staticZ_; // about a byte a sample: few depths a row (row_palette.hpp)
 	std::vector<float> staticReflectivity_;
 	std::vector<int32_t> boardTexel_;
 	std::vector<Rgb8> staticColour_;

@@ -1,16 +1,16 @@
-// The ray grid's compact static depth (hal/sim/static_depth.hpp): every row
-// read back bit for bit, whether it keeps a palette or its floats whole.
-#include "hal/sim/static_depth.hpp"
+// The simulator's row-by-row palettes (hal/sim/row_palette.hpp): every row
+// read back bit for bit, whether it keeps a palette or its values whole.
+#include "hal/sim/row_palette.hpp"
 #include "hal/sim/hash_noise.hpp"
 
 #include <bit>
 #include <gtest/gtest.h>
 #include <limits>
 
-using depthkey::sim::StaticDepth;
+using depthkey::sim::RowPalette;
 using depthkey::sim::mixHash;
 
-TEST(StaticDepth, RowsReadBackBitForBit)
+TEST(RowPalette, RowsReadBackBitForBit)
 {
 	const int width = 300, height = 7;
 	std::vector<float> z(size_t(width) * height);
@@ -27,7 +27,7 @@ TEST(StaticDepth, RowsReadBackBitForBit)
 			default: v = std::bit_cast<float>(uint32_t(h)); break;           // any bits, NaNs too
 			}
 		}
-	StaticDepth depth;
+	RowPalette<float> depth;
 	depth.assign(width, height, z);
 	// Out of order and twice, as a caller may ask.
 	for (int j : { 3, 0, 6, 1, 1, 2, 5, 4, 0 }) {
