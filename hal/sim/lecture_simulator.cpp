@@ -96,16 +96,10 @@ void LectureSimulator::ensureColourGrid()
 	colourGrid_.configure(rig_.colour(), 1, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(), scene,
 			      sim::RayGrid::Channels::Colour);
 	colourReady_ = true;
-	// One colour table a pixel (issue 15): a pixel off the board display
-	// keeps its static colour as an uninked texel's background, so that the
-	// grid's static colours need not be kept beside the board's texels.
-	const std::vector<Rgb8> staticColour = colourGrid_.takeStaticColour();
-	const std::vector<int32_t> &texelOf = colourGrid_.boardTexel();
-	board_.assign(texelOf.size(), sim::BoardTexel{});
-	for (size_t k = 0; k < texelOf.size(); ++k)
-		if (texelOf[k] < 0)
-			board_[k].background = staticColour[k];
-	boardCycle_ = ~0ull; // board_ holds no texels of this grid's board pixels yet
+	// One colour table (issue 15): a pixel off the board display keeps its
+	// static colour where a board pixel keeps its texel's.
+	backdrop_.build(colourWidth_, colourGrid_.takeBoardTexel(), colourGrid_.takeStaticColour());
+	boardCycle_ = ~0ull; // the backdrop holds no texels of this grid's board pixels yet
 	if (shownPicture_.empty())
 		return;
 	// The picture on the display, per colour pixel where the display is seen.
@@ -122,10 +116,11 @@ void LectureSimulator::ensureColourGrid()
 		return (at(x0, y0) * (1 - fx) + at(x1, y0) * fx) * (1 - fy) + (at(x0, y1) * (1 - fx) + at(x1, y1) * fx) * fy;
 	};
 	shown_.assign(size_t(colourWidth_) * colourHeight_, Rgb8{});
-	for (int y = 0; y < colourHeight_; ++y)
+	for (int y = 0; y < colourHeight_; ++y) {
+		const uint32_t *backdrop = backdrop_.row(y);
 		for (int x = 0; x < colourWidth_; ++x) {
 			size_t k = size_t(y) * colourWidth_ + x;
-			if (colourGrid_.boardTexel()[k] < 0)
+			if (!sim::ColourBackdrop::onBoard(backdrop[x]))
 				continue;
 			double sum[3] = { 0, 0, 0 };
 			for (int j = 0; j < kSub; ++j)
@@ -138,6 +133,7 @@ void LectureSimulator::ensureColourGrid()
 			shown_[k] = { clampU8(int(std::lround(sum[0] / (kSub * kSub)))), clampU8(int(std::lround(sum[1] / (kSub * kSub)))),
 				      clampU8(int(std::lround(sum[2] / (kSub * kSub)))) };
 		}
+	}
 }
 
 void LectureSimulator::ensureDepthGrid()
@@ -164,13 +160,16 @@ void LectureSimulator::ensureDepthGrid()
 	// The reflectivities are only read here: the grid keeps none.
 	const std::vector<float> reflectivity = depthGrid_.takeStaticReflectivity();
 	staticAmplitude_.resize(depthGrid_.size());
-	for (size_t k = 0; k < depthGrid_.size(); ++k) {
-		int u = static_cast<int>(k % w) / kTofSamplesPerPixel, v = static_cast<int>(k / w) / kTofSamplesPerPixel;
-		float z = depthGrid_.staticZ()[k];
-		float d = static_cast<float>(kReferenceDistanceM) / z;
-		staticAmplitude_[k] = static_cast<float>(settings_.tofAmplitude) / kBoardReflectivity *
-				      reflectivity[k] * d * d *
-				      vignette_[static_cast<size_t>(v) * kTofWidth + u];
+	for (int j = 0; j < depthGrid_.height(); ++j) {
+		const float *staticZ = depthGrid_.staticZRow(j);
+		for (int i = 0; i < w; ++i) {
+			size_t k = static_cast<size_t>(j) * w + i;
+			int u = i / kTofSamplesPerPixel, v = j / kTofSamplesPerPixel;
+			float d = static_cast<float>(kReferenceDistanceM) / staticZ[i];
+			staticAmplitude_[k] = static_cast<float>(settings_.tofAmplitude) / kBoardReflectivity *
+					      reflectivity[k] * d * d *
+					      vignette_[static_cast<size_t>(v) * kTofWidth + u];
+		}
 	}
 	depthReady_ = true;
 }
@@ -181,14 +180,10 @@ void LectureSimulator::ensureBoard(double timeS)
 	if (cycle == boardCycle_)
 		return;
 	// The whole board's raster (2.5 mm texels, 5.2 MB) only while the
-	// texels the colour pixels show are picked from it: those are kept, one
-	// a pixel (2.4 MB at 640x480), the raster let go (issue 15).
+	// texels the colour pixels show are picked from it (issue 15).
 	std::vector<sim::BoardTexel> raster;
 	script_.rasterise(cycle, raster);
-	const std::vector<int32_t> &texelOf = colourGrid_.boardTexel();
-	for (size_t k = 0; k < texelOf.size(); ++k)
-		if (texelOf[k] >= 0) // the other pixels hold their static colour
-			board_[k] = raster[static_cast<size_t>(texelOf[k])];
+	backdrop_.pick(raster);
 	boardCycle_ = cycle;
 }
 
@@ -225,11 +220,10 @@ void LectureSimulator::renderColour(double timeS, ColourFrame &out, GroundTruth 
 	lightingGains(timeS, gain);
 	const uint16_t tick = static_cast<uint16_t>(
 		std::min(65534.0, script_.cycleTime(timeS) / sim::LectureScript::kTickS));
-	const Rgb8 *ink = sim::LectureScript::inkColours();
 	const uint64_t noiseKey = timeKey(settings_.seed, 3, timeS);
 	const bool noise = settings_.colourNoise > 0;
-	const auto &texelOf = colourGrid_.boardTexel();
-	const auto &staticZ = colourGrid_.staticZ();
+	const bool showing = !shown_.empty();
+	size_t inked = 0; // the backdrop's running count, every pixel asked in row-major order
 	const int dx0 = colourGrid_.dirtyX0(), dx1 = colourGrid_.dirtyX1();
 	const int dy0 = colourGrid_.dirtyY0(), dy1 = colourGrid_.dirtyY1();
 
@@ -238,16 +232,13 @@ void LectureSimulator::renderColour(double timeS, ColourFrame &out, GroundTruth 
 		const size_t base = static_cast<size_t>(y) * w;
 		const bool lecturerRow = y >= dy0 && y < dy1;
 		const sim::RayGrid::Row lecturer = lecturerRow ? colourGrid_.drawRow(y) : sim::RayGrid::Row{};
+		const float *staticZ = truth ? colourGrid_.staticZRow(y) : nullptr;
+		const uint32_t *backdrop = backdrop_.row(y);
 		for (int x = 0; x < w; ++x) {
 			const size_t k = base + x;
-			Rgb8 c;
-			if (texelOf[k] >= 0 && !shown_.empty()) {
+			Rgb8 c = backdrop_.colourAt(backdrop[x], tick, inked);
+			if (showing && sim::ColourBackdrop::onBoard(backdrop[x]))
 				c = shown_[k];
-			} else { // off the board: an uninked texel of the static colour
-				const sim::BoardTexel &texel = board_[k];
-				bool inked = texel.ink && tick >= texel.writeTick && tick < texel.eraseTick;
-				c = inked ? ink[texel.ink] : texel.background;
-			}
 			int alpha256 = 0;
 			if (lecturerRow && x >= dx0 && x < dx1 && lecturer.alpha[x] > 0) {
 				alpha256 = static_cast<int>(lecturer.alpha[x] * 256.0f + 0.5f);
@@ -269,7 +260,7 @@ void LectureSimulator::renderColour(double timeS, ColourFrame &out, GroundTruth 
 				truth->alpha.row(y)[x] = a8;
 				bool covered = alpha256 >= 128;
 				truth->mask.row(y)[x] = covered ? 255 : 0;
-				float z = covered ? lecturer.z[x] : staticZ[k];
+				float z = covered ? lecturer.z[x] : staticZ[x];
 				truth->depthMm.row(y)[x] = static_cast<uint16_t>(std::min(65535.0f, z * 1000.0f + 0.5f));
 			}
 		}
@@ -283,7 +274,6 @@ void LectureSimulator::renderDepth(double timeS, DepthFrame &out)
 	tof_.reset(kTofWidth, kTofHeight);
 	const int times = settings_.motionBlur && !target_ ? kMotionBlurSamples : 1;
 	const double exposure = settings_.tofExposureMs / 1000.0;
-	const auto &staticZ = depthGrid_.staticZ();
 	for (int ti = 0; ti < times; ++ti) {
 		double t = times == 1 ? timeS : timeS + exposure * (ti / (times - 1.0) - 0.5);
 		poseLecturer(t, capsules_);
@@ -291,11 +281,12 @@ void LectureSimulator::renderDepth(double timeS, DepthFrame &out)
 		for (int j = 0; j < depthGrid_.height(); ++j) {
 			// Alpha 0 all along a row no capsule reaches.
 			const sim::RayGrid::Row lecturer = depthGrid_.drawRow(j);
+			const float *staticZ = depthGrid_.staticZRow(j);
 			for (int i = 0; i < sw; ++i) {
 				size_t k = static_cast<size_t>(j) * sw + i;
 				size_t pixel = static_cast<size_t>(j / ss) * kTofWidth + i / ss;
 				float a = lecturer.alpha[i];
-				tof_.add(pixel, staticAmplitude_[k] * (1.0f - a), staticZ[k]);
+				tof_.add(pixel, staticAmplitude_[k] * (1.0f - a), staticZ[i]);
 				if (a > 0) {
 					const float z = lecturer.z[i];
 					float d = static_cast<float>(kReferenceDistanceM) / z;

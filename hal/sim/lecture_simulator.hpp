@@ -14,6 +14,7 @@
 
 #include "algo/frames.hpp"
 #include "hal/sim/camera_rig.hpp"
+#include "hal/sim/colour_backdrop.hpp"
 #include "hal/sim/lecture_script.hpp"
 #include "hal/sim/lecturer_model.hpp"
 #include "hal/sim/ray_grid.hpp"
@@ -84,7 +85,7 @@ private:
 	bool colourReady_ = false, depthReady_ = false;
 	bool lecturerVisible_ = true;
 	std::vector<sim::Capsule> capsules_;
-	std::vector<sim::BoardTexel> board_; // per colour pixel: the board texel it shows, off the board its colour
+	sim::ColourBackdrop backdrop_;       // per colour pixel: the board texel it shows, off the board its colour
 	RgbImage shownPicture_;
 	std::vector<Rgb8> shown_;            // per colour pixel, when shownPicture_ is set
 	uint64_t boardCycle_ = ~0ull;

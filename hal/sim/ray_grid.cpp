@@ -27,7 +27,7 @@ void RayGrid::configure(const LensModel &lens, int samplesPerPixel, const Eigen:
 	origin_ = cameraOrigin.cast<float>();
 	size_t n = static_cast<size_t>(width_) * height_;
 	rays_.begin(lens, samples_);
-	staticZ_.assign(n, kFar);
+	std::vector<float> staticZ(n, kFar); // kept compactly once complete
 	// The channels not kept give their memory back.
 	const size_t colourSamples = colour_ ? n : 0, reflectivitySamples = colour_ ? 0 : n;
 	staticReflectivity_.assign(reflectivitySamples, 0.0f);
@@ -75,7 +75,7 @@ void RayGrid::configure(const LensModel &lens, int samplesPerPixel, const Eigen:
 					continue;
 				best = t;
 				Eigen::Vector3d hit = cameraOrigin + dir * t;
-				staticZ_[k] = static_cast<float>(t * ray.z());
+				staticZ[k] = static_cast<float>(t * ray.z());
 				Rgb8 colour = q.colour;
 				float reflectivity = q.reflectivity;
 				int32_t texel = -1;
@@ -96,6 +96,7 @@ void RayGrid::configure(const LensModel &lens, int samplesPerPixel, const Eigen:
 				}
 			}
 		}
+	staticZ_.assign(width_, height_, staticZ);
 	// Never seen: a lens whose mirrored samples round differently keeps
 	// every ray.
 	if (!rays_.exact()) {
@@ -172,10 +173,11 @@ RayGrid::Row RayGrid::drawRow(int j)
 	std::fill(rowAlpha_.begin() + rowX0_, rowAlpha_.begin() + rowX1_, 0.0f);
 	rowX0_ = width_;
 	rowX1_ = 0;
+	const float *staticZ = posed_.empty() ? nullptr : staticZ_.row(j);
 	// Capsule by capsule in their order, as each sample's result depends on.
 	for (const PosedCapsule &c : posed_)
 		if (j >= c.y0 && j < c.y1) {
-			drawSpan(c, j, c.x0, c.x1);
+			drawSpan(c, j, c.x0, c.x1, staticZ);
 			rowX0_ = std::min(rowX0_, c.x0);
 			rowX1_ = std::max(rowX1_, c.x1);
 		}
@@ -188,11 +190,10 @@ RayGrid::Row RayGrid::drawRow(int j)
 //   t = d.a + s B
 //   dist^2 = t^2 - 2 t (d.a) - 2 t s B + a.a + 2 s (a.ba) + s^2 C
 // all from per-capsule constants and two dot products per sample.
-void RayGrid::drawSpan(const PosedCapsule &c, int j, int x0, int x1)
+void RayGrid::drawSpan(const PosedCapsule &c, int j, int x0, int x1, const float *staticZ)
 {
 	const Eigen::Vector3f a = c.a, ba = c.ba;
 	const float r = c.r, C = c.C, aa = c.aa, aba = c.aba;
-	const size_t row = static_cast<size_t>(j) * width_;
 	for (int i = x0; i < x1; ++i) {
 		const SampleRays::Ray ray = rays_.at(i, j);
 		float dx = ray.x, dy = ray.y, dz = ray.z;
@@ -212,7 +213,7 @@ void RayGrid::drawSpan(const PosedCapsule &c, int j, int x0, int x1)
 			continue;
 		float inside = std::max(0.0f, r * r - dist2);
 		float z = (t - std::sqrt(inside)) * dz;
-		if (z >= staticZ_[row + i])
+		if (z >= staticZ[i])
 			continue; // behind the desk or the board
 		if (z < rowZ_[i] && (alpha >= 0.5f || rowAlpha_[i] < 0.5f)) {
 			rowZ_[i] = z;

@@ -19,6 +19,7 @@
 #include "hal/sim/camera_rig.hpp"
 #include "hal/sim/sample_rays.hpp"
 #include "hal/sim/scene_geometry.hpp"
+#include "hal/sim/row_palette.hpp"
 
 #include <vector>
 
@@ -42,17 +43,18 @@ public:
 	int width() const { return width_; }
 	int height() const { return height_; }
 	int samplesPerPixel() const { return samples_; }
-	size_t size() const { return staticZ_.size(); }
+	size_t size() const { return static_cast<size_t>(width_) * height_; }
 	const SampleRays &rays() const { return rays_; }
 
-	// Static background per sample.
-	const std::vector<float> &staticZ() const { return staticZ_; }          // camera-frame z, m
-	const std::vector<int32_t> &boardTexel() const { return boardTexel_; }  // -1: not the board display
-	// The static colours (non-board surfaces, wall) and reflectivities are
+	// Static background per sample: camera-frame z (m) along sample row j,
+	// valid until another row's is asked for (drawRow(j) asks for row j).
+	const float *staticZRow(int j) const { return staticZ_.row(j); }
+	// The static colours (non-board surfaces, wall), the board texel each
+	// sample sees (-1: not the board display) and the reflectivities are
 	// handed over once: the simulator folds them into tables of its own
-	// (the board's texels per pixel, the ToF's amplitudes) and the grid
-	// keeps no copy.
+	// (sim::ColourBackdrop, the ToF's amplitudes) and the grid keeps no copy.
 	std::vector<Rgb8> takeStaticColour() { return std::move(staticColour_); }
+	std::vector<int32_t> takeBoardTexel() { return std::move(boardTexel_); }
 	std::vector<float> takeStaticReflectivity() { return std::move(staticReflectivity_); }
 
 	// The lecturer of one frame: poses the capsules in this camera's frame
@@ -86,7 +88,7 @@ private:
 		int x0, x1, y0, y1; // samples it may cover
 	};
 	bool pose(const Capsule &scene, PosedCapsule &out) const;
-	void drawSpan(const PosedCapsule &c, int j, int x0, int x1);
+	void drawSpan(const PosedCapsule &c, int j, int x0, int x1, const float *staticZ);
 
 	LensModel lens_;
 	bool colour_ = true; // Channels::Colour, else Reflectivity
@@ -95,7 +97,8 @@ private:
 	Eigen::Matrix3f toCamera_ = Eigen::Matrix3f::Identity();
 	Eigen::Vector3f origin_ = Eigen::Vector3f::Zero();
 	SampleRays rays_;
-	std::vector<float> staticZ_, staticReflectivity_;
+	RowPalette<float> staticZ_; // about a byte a sample: few depths a row (row_palette.hpp)
+	std::vector<float> staticReflectivity_;
 	std::vector<int32_t> boardTexel_;
 	std::vector<Rgb8> staticColour_;
 	std::vector<PosedCapsule> posed_;
