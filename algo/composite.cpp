@@ -70,28 +70,27 @@ void compositeRoi(const RgbImage &lecturer, const Gray8Image &alpha, const RgbIm
 	out.resize(w, h);
 	if (w == 0 || h == 0)
 		return;
+	const CompositeInputs in{ &lecturer, &alpha, &board, roi, opacityQ8, path };
+	for (int y = 0; y < h; ++y)
+		compositeRoiRow(in, y, out.row(y));
+}
+
+void compositeRoiRow(const CompositeInputs &in, int y, Rgb8 *out)
+{
+	const int w = in.width(), h = in.height();
+	const Roi &roi = in.roi;
 	const int y0 = roi.empty() ? h : std::clamp(roi.y0, 0, h), y1 = roi.empty() ? h : std::clamp(roi.y1, y0, h);
 	const int x0 = std::clamp(roi.x0, 0, w), x1 = std::clamp(roi.x1, x0, w);
 	// A board one row high is that row everywhere (a solid colour).
-	const bool oneRow = board.height() == 1;
-	auto boardRow = [&](int y) { return board.row(oneRow ? 0 : y); };
-	// Rows above and below the ROI: one copy each where the board is whole
-	// (they are contiguous), a copy a row where it is one row.
-	if (!oneRow) {
-		std::memcpy(out.row(0), board.row(0), size_t(y0) * w * sizeof(Rgb8));
-		std::memcpy(out.row(y1), board.row(y1), size_t(h - y1) * w * sizeof(Rgb8));
-	} else {
-		for (int y = 0; y < h; ++y)
-			if (y < y0 || y >= y1)
-				std::memcpy(out.row(y), board.row(0), size_t(w) * sizeof(Rgb8));
+	const Rgb8 *b = in.board->row(in.board->height() == 1 ? 0 : y);
+	if (y < y0 || y >= y1) { // outside the ROI the alpha is 0: the board
+		std::memcpy(out, b, size_t(w) * sizeof(Rgb8));
+		return;
 	}
-	for (int y = y0; y < y1; ++y) {
-		Rgb8 *dst = out.row(y);
-		const Rgb8 *b = boardRow(y);
-		std::memcpy(dst, b, size_t(x0) * sizeof(Rgb8));
-		compositeRow(path, lecturer.row(y) + x0, alpha.row(y) + x0, b + x0, opacityQ8, dst + x0, x1 - x0);
-		std::memcpy(dst + x1, b + x1, size_t(w - x1) * sizeof(Rgb8));
-	}
+	std::memcpy(out, b, size_t(x0) * sizeof(Rgb8));
+	compositeRow(in.path, in.lecturer->row(y) + x0, in.alpha->row(y) + x0, b + x0, in.opacityQ8, out + x0,
+		     x1 - x0);
+	std::memcpy(out + x1, b + x1, size_t(w - x1) * sizeof(Rgb8));
 }
 
 void lecturerLayer(const RgbImage &colour, const Gray8Image &alpha, RgbaImage &out, KernelPath path)

@@ -55,6 +55,22 @@ void composite(const RgbImage &lecturer, const Gray8Image &alpha, const RgbImage
 // every row (a solid colour: the pipeline keeps no image of it).
 void compositeRoi(const RgbImage &lecturer, const Gray8Image &alpha, const RgbImage &board, const Roi &roi,
 		  int opacityQ8, RgbImage &out, KernelPath path = bestKernelPath());
+
+// What compositeRoi() is made of, for making it a row at a time where it
+// goes (the recorder's shared memory) without a frame-sized image of its own
+// (issue 15). Borrowed: valid while the frame is published.
+struct CompositeInputs {
+	const RgbImage *lecturer = nullptr; // the colour frame
+	const Gray8Image *alpha = nullptr;  // 0 outside roi
+	const RgbImage *board = nullptr;    // the colour frame's size, or one row (a solid colour)
+	Roi roi;
+	int opacityQ8 = 256;
+	KernelPath path = KernelPath::C;
+	int width() const { return lecturer->width(); }
+	int height() const { return lecturer->height(); }
+};
+// Row y of compositeRoi(): the same bytes. out holds width() pixels.
+void compositeRoiRow(const CompositeInputs &in, int y, Rgb8 *out);
 void lecturerLayer(const RgbImage &colour, const Gray8Image &alpha, RgbaImage &out,
 		   KernelPath path = bestKernelPath());
 

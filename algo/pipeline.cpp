@@ -235,7 +235,10 @@ void Pipeline::rememberFrame(const RgbImage &colour, const Gray8Image &alpha)
 // Outside the ROI the alpha is 0: only the ROI is blended.
 void Pipeline::compose(const RgbImage &colour, PipelineOutput &out) const
 {
-	compositeRoi(colour, out.alpha, board_, keyed_.roi, opacityQ8_, out.composite, kernelPath_);
+	if (makeComposite_)
+		compositeRoi(colour, out.alpha, board_, keyed_.roi, opacityQ8_, out.composite, kernelPath_);
+	else
+		out.composite = RgbImage{}; // made where it goes (compositeInputs())
 }
 
 void Pipeline::confidence(const RgbImage &colour, Gray8Image &out) const
@@ -249,8 +252,12 @@ void Pipeline::passThrough(const ColourFrame &colour, PipelineOutput &out)
 {
 	out.alpha.resize(colour.rgb.width(), colour.rgb.height());
 	std::fill(out.alpha.data(), out.alpha.data() + out.alpha.size(), uint8_t(255));
-	out.composite.resize(colour.rgb.width(), colour.rgb.height());
-	std::copy(colour.rgb.data(), colour.rgb.data() + colour.rgb.size(), out.composite.data());
+	if (makeComposite_) {
+		out.composite.resize(colour.rgb.width(), colour.rgb.height());
+		std::copy(colour.rgb.data(), colour.rgb.data() + colour.rgb.size(), out.composite.data());
+	} else {
+		out.composite = RgbImage{}; // the colour frame itself
+	}
 }
 
 } // namespace depthkey

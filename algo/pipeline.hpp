@@ -14,6 +14,7 @@
 #include "algo/board_model.hpp"
 #include "algo/board_picture_prior.hpp"
 #include "algo/colour_learner.hpp"
+#include "algo/composite.hpp"
 #include "algo/depth_mapper.hpp"
 #include "algo/depth_seeder.hpp"
 #include "algo/frame_pairer.hpp"
@@ -59,6 +60,19 @@ public:
 	// Takes what may change on reload; cheap when unchanged. A new mapping
 	// or new seeding restarts the colour learning.
 	void configure(const PipelineSettings &settings, const MappingModel &mapping);
+	// Whether process() and passThrough() make PipelineOutput::composite
+	// (the default). Off, the composite is left empty (its memory freed)
+	// and compositeInputs() says how to make it where it goes: the daemon
+	// makes it in the recorder's shared memory unless somebody else (the
+	// preview, a virtual webcam, a snapshot) reads it (issue 15: 0.9 MB at
+	// 640x480).
+	void setMakeComposite(bool make) { makeComposite_ = make; }
+	// After process() (not passThrough(), whose composite is the colour
+	// frame): the composite's parts, colour being the frame just keyed.
+	CompositeInputs compositeInputs(const RgbImage &colour, const Gray8Image &alpha) const
+	{
+		return { &colour, &alpha, &board_, keyed_.roi, opacityQ8_, kernelPath_ };
+	}
 	// The board's picture for the camera-geometry composite (scaled to the
 	// colour size, nearest neighbour); an empty image = board.colour.
 	void setBoardImage(const RgbImage &board);
@@ -142,6 +156,7 @@ private:
 	PipelineSettings settings_;
 	MappingModel mapping_;
 	int opacityQ8_ = 128;
+	bool makeComposite_ = true;
 	KernelPath kernelPath_ = bestKernelPath();
 
 	QuantisedLab lab_;

@@ -234,6 +234,9 @@ void Daemon::keyFrame(const PairingQueue::Keying &keying)
 	const ColourFrame &frame = *keying.colour;
 	uint32_t flags = DK_SHM_FLAG_COLOUR_OK;
 	const DepthFrame *depth = keying.depth.before ? keying.depth.before : keying.depth.after;
+	// The composite for the recorder is made in its shared memory; the
+	// pipeline makes an image of it only for the readers here.
+	pipeline_.setMakeComposite(compositeReadHere(loop_.nowUs() * 1000u));
 	if (depth) {
 		pipeline_.process(frame, keying.depth, output_);
 		flags |= DK_SHM_FLAG_DEPTH_OK | DK_SHM_FLAG_ONLINE;
@@ -251,20 +254,34 @@ void Daemon::keyFrame(const PairingQueue::Keying &keying)
 	stageDumps_.onKeyedFrame(frame, depth, status_.colourFrames(), pipelineView());
 	preview_.offer(&frame, depth, depth ? &pipeline_.trimap() : nullptr, output_, frame.timestampNs,
 		       loop_.nowUs() * 1000u);
-	publish(&frame.rgb, frame.timestampNs, flags);
+	publish(&frame.rgb, depth != nullptr, frame.timestampNs, flags);
 	const uint64_t keyingUs = loop_.nowUs() - startUs;
 	status_.countKeying(keyingUs);
 	keyingBudget_.spend(keyingUs);
 }
 
-void Daemon::publish(const RgbImage *colour, uint64_t captureNs, uint32_t flags)
+bool Daemon::compositeReadHere(uint64_t nowNs) const
+{
+	return (webcam_.enabled() && !board_.boardGeometry()) || preview_.wantsComposite(nowNs) ||
+	       stageDumps_.readsStages();
+}
+
+void Daemon::publish(const RgbImage *colour, bool keyed, uint64_t captureNs, uint32_t flags)
 {
 	if (framesStalled_)
 		return;
 	const bool board = board_.boardGeometry();
+	// The camera-geometry composite: the pipeline's image when it made one
+	// (NO SIGNAL's too), the colour frame itself without depth, else made
+	// from its parts in the shared memory.
+	const RgbImage *composite = board ? &board_.composite()
+				  : !output_.composite.empty() ? &output_.composite
+				  : !keyed ? colour : nullptr;
+	const CompositeInputs parts = keyed && colour ? pipeline_.compositeInputs(*colour, output_.alpha) : CompositeInputs{};
 	// Never waits; a full or lost device is its own status (hal/v4l2/v4l2_output.hpp).
-	webcam_.write(board ? board_.composite() : output_.composite);
-	if (outputs_.publish({ board ? board_.composite() : output_.composite, colour, output_.alpha,
+	if (composite)
+		webcam_.write(*composite);
+	if (outputs_.publish({ composite, &parts, colour, output_.alpha,
 			       board ? &board_.lecturer() : nullptr, captureNs, flags }) < 0)
 		return;
 	status_.countPublished(flags & DK_SHM_FLAG_ONLINE);
@@ -297,7 +314,7 @@ void Daemon::publishNoSignal(uint64_t nowNs)
 		       settings_.colour.height, output_);
 	board_.showBoardOnly(); // in board geometry the board's picture goes on, marked offline
 	preview_.offer(nullptr, nullptr, nullptr, output_, nowNs, nowNs);
-	publish(nullptr, nowNs, pairing_.depthFresh(nowNs) ? DK_SHM_FLAG_DEPTH_OK : 0);
+	publish(nullptr, false, nowNs, pairing_.depthFresh(nowNs) ? DK_SHM_FLAG_DEPTH_OK : 0);
 }
 
 StatusSummary Daemon::summary() const

@@ -75,8 +75,12 @@ private:
 	void apply(const Settings &settings, const PipelineFiles &files);
 	void applyPipelineFiles(const PipelineFiles &files);
 	void checkCalibrationFits();
-	// colour: the keyed frame, the lecturer layer's colours; null for NO SIGNAL.
-	void publish(const RgbImage *colour, uint64_t captureNs, uint32_t flags);
+	// colour: the frame, the lecturer layer's colours; null for NO SIGNAL.
+	// keyed: the pipeline ran on it (else it went out without depth).
+	void publish(const RgbImage *colour, bool keyed, uint64_t captureNs, uint32_t flags);
+	// Whether the pipeline's composite image is read by more than the
+	// recorder's shared memory this frame (preview, virtual webcam, stage dumps).
+	bool compositeReadHere(uint64_t nowNs) const;
 	void publishNoSignal(uint64_t nowNs);
 	StatusSummary summary() const;
 	StatusSnapshot statusSnapshot() const;

@@ -70,7 +70,8 @@ int FrameOutputs::publish(const OutputFrame &frame)
 		if (int ret = openSink(); ret < 0)
 			return ret;
 	}
-	int ret = sink_->publishComposite(frame.composite, frame.captureNs, frame.flags);
+	int ret = frame.composite ? sink_->publishComposite(*frame.composite, frame.captureNs, frame.flags)
+				  : sink_->publishComposite(*frame.compositeInputs, frame.captureNs, frame.flags);
 	if (ret >= 0)
 		ret = sink_->publishLecturer(frame.colour, frame.alpha, frame.captureNs, frame.flags);
 	if (ret >= 0 && frame.boardLecturer)

@@ -19,7 +19,10 @@ namespace depthkey {
 
 // One frame for every output, borrowed for the call.
 struct OutputFrame {
-	const RgbImage &composite;       // in the board's geometry when it is calibrated
+	// The composite, in the board's geometry when it is calibrated; null:
+	// made from compositeInputs where it goes (FrameSink::publishComposite).
+	const RgbImage *composite;
+	const CompositeInputs *compositeInputs;
 	// The lecturer layer, in the colour camera's geometry, is made from these
 	// where it is published (FrameSink::publishLecturer); no colour: NO SIGNAL.
 	const RgbImage *colour;

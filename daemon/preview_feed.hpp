@@ -28,6 +28,11 @@ public:
 	void offer(const ColourFrame *colour, const DepthFrame *depth, const Gray8Image *seeds,
 		   const PipelineOutput &output, uint64_t captureNs, uint64_t nowNs);
 	void setStatus(const PreviewStatus &status);
+	// Whether offer() at nowNs would take the composite: somebody watches it.
+	bool wantsComposite(uint64_t nowNs) const
+	{
+		return encoder_.running() && encoder_.wanted(PreviewStage::Composite, nowNs);
+	}
 
 private:
 	PreviewSettings settings_;

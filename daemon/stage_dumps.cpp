@@ -41,6 +41,11 @@ void StageDumps::onKeyedFrame(const ColourFrame &frame, const DepthFrame *depth,
 			      { { "SNAPSHOT_DIR", previewDir_ } });
 }
 
+bool StageDumps::readsStages() const
+{
+	return !snapshotDir_.empty() || (!previewDir_.empty() && previewsWritten_ < kPreviewCount);
+}
+
 void StageDumps::writeSnapshot(const DepthFrame *newestDepth, const PipelineView &view)
 {
 	if (snapshotDir_.empty()) {

@@ -36,6 +36,9 @@ public:
 			  const PipelineView &view);
 	// SIGUSR1: the stages of the last keyed frame with the newest depth.
 	void writeSnapshot(const DepthFrame *newestDepth, const PipelineView &view);
+	// Whether stages may still be written from the frames to come (a
+	// folder is set and, for --preview, not all written yet).
+	bool readsStages() const;
 
 private:
 	int writeStages(const std::string &dir, const std::string &prefix, const DepthFrame *depth,

@@ -46,6 +46,13 @@ public:
 		return 0;
 	}
 
+	int publishComposite(const CompositeInputs &inputs, uint64_t captureNs, uint32_t flags) override
+	{
+		compositeRoi(*inputs.lecturer, *inputs.alpha, *inputs.board, inputs.roi, inputs.opacityQ8, made_,
+			     KernelPath::C);
+		return publishComposite(made_, captureNs, flags);
+	}
+
 	int publishLecturer(const RgbImage *colour, const Gray8Image &alpha, uint64_t captureNs,
 			    uint32_t flags) override
 	{
@@ -111,6 +118,7 @@ public:
 	uint32_t lastFlags() const { return flags_; }
 
 private:
+	RgbImage made_; // the composite made from its parts, reused
 	int check(int width, int height) const { return check(width, height, width_, height_); }
 	int check(int width, int height, int wantWidth, int wantHeight) const
 	{

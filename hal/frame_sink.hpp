@@ -4,6 +4,7 @@
 // FakeFrameSink (hal/fake_frame_sink.hpp). Publishing never blocks.
 #pragma once
 
+#include "algo/composite.hpp"
 #include "algo/image.hpp"
 #include "settings/settings.hpp"
 
@@ -38,6 +39,9 @@ public:
 	// CLOCK_MONOTONIC capture time of the colour frame. Images must have the
 	// size given to open() (-EINVAL otherwise); -EBADF when not open.
 	virtual int publishComposite(const RgbImage &image, uint64_t captureNs, uint32_t flags) = 0;
+	// The same composite made from its parts where it goes (compositeRoiRow(),
+	// algo/composite.hpp): no frame-sized image of it kept beside the ring.
+	virtual int publishComposite(const CompositeInputs &inputs, uint64_t captureNs, uint32_t flags) = 0;
 	// The lecturer layer, made from the colour frame and its alpha
 	// (lecturerLayer(), algo/composite.hpp) where it goes, so that no
 	// frame-sized RGBA image is kept beside the ring (issue 15). A null

@@ -81,6 +81,27 @@ int ShmFrameSink::checkSize(const ShmRingWriter &writer, int width, int height)
 	return -EINVAL;
 }
 
+int ShmFrameSink::publishComposite(const CompositeInputs &in, uint64_t captureNs, uint32_t flags)
+{
+	const int width = in.width(), height = in.height();
+	if (int ret = checkSize(composite_, width, height); ret < 0)
+		return ret;
+	// Parts of other sizes than the colour frame would be read past.
+	const bool boardFits = in.board->width() == width && (in.board->height() == height || in.board->height() == 1);
+	if (in.alpha->width() != width || in.alpha->height() != height || !boardFits) {
+		const int ret = checkSize(composite_, boardFits ? in.alpha->width() : in.board->width(),
+					  boardFits ? in.alpha->height() : in.board->height());
+		return ret < 0 ? ret : -EBADF; // not open: nothing to write to
+	}
+	int ret = composite_.writeRows([&](int y, uint8_t *row) { compositeRoiRow(in, y, reinterpret_cast<Rgb8 *>(row)); },
+				       captureNs, flags);
+	if (ret) {
+		failed_ = &composite_;
+		sizeMismatch_ = nullptr;
+	}
+	return ret;
+}
+
 int ShmFrameSink::publishLecturer(const RgbImage *colour, const Gray8Image &alpha, uint64_t captureNs,
 				  uint32_t flags)
 {

@@ -15,6 +15,7 @@ public:
 	int open(const OutputSettings &settings, int width, int height, int boardWidth = 0,
 		 int boardHeight = 0) override;
 	int publishComposite(const RgbImage &image, uint64_t captureNs, uint32_t flags) override;
+	int publishComposite(const CompositeInputs &inputs, uint64_t captureNs, uint32_t flags) override;
 	int publishLecturer(const RgbImage *colour, const Gray8Image &alpha, uint64_t captureNs,
 			    uint32_t flags) override;
 	int publishBoardLecturer(const RgbaImage &image, uint64_t captureNs, uint32_t flags) override;

@@ -196,3 +196,36 @@ TEST(Pipeline, SeedsOncePerDepthFrameAndAgainAfterNewSettings)
 	pipeline.process(later, sim.depth, out); // no new settings: seeded for being new
 	EXPECT_FALSE(std::equal(moved.data(), moved.data() + moved.size(), pipeline.trimap().data()));
 }
+
+// Without a composite image of its own (setMakeComposite(false): the daemon
+// makes it in the recorder's shared memory), the pipeline's composite parts
+// give the bytes it would have made, frame after frame, and its alpha is
+// untouched by the choice.
+TEST(Pipeline, CompositeInputsMakeTheCompositeItWouldHaveMade)
+{
+	SimFrames sim(320, 240);
+	Settings settings;
+	settings.learning.initialFrames = 3;
+	Pipeline making, notMaking;
+	making.configure(PipelineSettings::from(settings), identity(320, 240));
+	notMaking.configure(PipelineSettings::from(settings), identity(320, 240));
+	notMaking.setMakeComposite(false);
+	PipelineOutput made, parts;
+	RgbImage fromParts;
+	for (int frame = 0; frame < 12; ++frame) {
+		sim.render(frame * 0.04);
+		making.process(sim.colour, sim.depth, made);
+		notMaking.process(sim.colour, sim.depth, parts);
+		ASSERT_FALSE(made.composite.empty());
+		EXPECT_TRUE(parts.composite.empty()) << frame;
+		EXPECT_EQ(parts.alpha, made.alpha) << frame;
+		const CompositeInputs in = notMaking.compositeInputs(sim.colour.rgb, parts.alpha);
+		fromParts.resize(in.width(), in.height());
+		for (int y = 0; y < in.height(); ++y)
+			compositeRoiRow(in, y, fromParts.row(y));
+		EXPECT_EQ(fromParts, made.composite) << frame;
+	}
+	// Pass-through (no depth): no image either, the colour frame is the composite.
+	notMaking.passThrough(sim.colour, parts);
+	EXPECT_TRUE(parts.composite.empty());
+}

@@ -102,6 +102,43 @@ TEST(ShmFrameSink, PublishesBothStreams)
 	EXPECT_EQ(info.timestamp_ns, 987654321u);
 }
 
+// The composite made in its slot from its parts: the bytes compositeRoi()
+// makes, with a whole board and a one-row (solid) board; parts of another
+// size are refused, not read past.
+TEST(ShmFrameSink, MakesTheCompositeFromItsPartsInTheSlot)
+{
+	SinkNames names;
+	ShmFrameSink sink;
+	ASSERT_EQ(sink.open(names.settings(), 40, 30), 0) << sink.describeError();
+	const RgbImage colour = rgbPattern(40, 30);
+	Gray8Image alpha(40, 30, 0);
+	for (int y = 5; y < 20; y++)
+		for (int x = 7; x < 31; x++)
+			alpha.at(x, y) = uint8_t(x * 9 + y);
+	RgbImage wholeBoard(40, 30), solidBoard(40, 1, Rgb8{ 10, 200, 30 });
+	for (int y = 0; y < 30; y++)
+		for (int x = 0; x < 40; x++)
+			wholeBoard.at(x, y) = { uint8_t(255 - x), uint8_t(y * 7), 90 };
+	for (const RgbImage *board : { &wholeBoard, &solidBoard }) {
+		const CompositeInputs in{ &colour, &alpha, board, Roi{ 7, 5, 31, 20 }, 180, bestKernelPath() };
+		ASSERT_EQ(sink.publishComposite(in, 42, DK_SHM_FLAG_ONLINE), 0) << sink.describeError();
+		RgbImage expected;
+		compositeRoi(colour, alpha, *board, in.roi, 180, expected, KernelPath::C);
+		dk_shm_frame_info info{};
+		const auto bytes = readLatest(names.composite.str(), &info);
+		ASSERT_EQ(bytes.size(), 40u * 30 * 3);
+		EXPECT_EQ(std::memcmp(bytes.data(), expected.data(), bytes.size()), 0) << board->height();
+		EXPECT_EQ(info.timestamp_ns, 42u);
+	}
+	const Gray8Image smallAlpha(16, 16, 0);
+	const CompositeInputs bad{ &colour, &smallAlpha, &wholeBoard, Roi{}, 256, KernelPath::C };
+	EXPECT_EQ(sink.publishComposite(bad, 0, 0), -EINVAL);
+	EXPECT_NE(sink.describeError().find("16x16"), std::string::npos) << sink.describeError();
+	const RgbImage smallBoard(20, 30);
+	const CompositeInputs badBoard{ &colour, &alpha, &smallBoard, Roi{}, 256, KernelPath::C };
+	EXPECT_EQ(sink.publishComposite(badBoard, 0, 0), -EINVAL);
+}
+
 // Each stream's readers are counted apart, the board-geometry layer's too
 // (a recorder rendering the board's strokes itself reads only that one).
 TEST(ShmFrameSink, CountsTheReadersOfEachStream)
