@@ -263,6 +263,10 @@ void PreviewServer::waitForFirstClient()
 			return;
 		noteError("preview server not serving: " + error);
 		refuse(listen_.get(), "preview unavailable: " + error);
+		// A client that cannot even be accepted (no fds left) keeps the
+		// socket readable: wait a little before trying again, awake for stop().
+		if (poll(&fds[1], 1, 100) > 0)
+			return;
 	}
 }
 
