@@ -254,7 +254,10 @@ void Daemon::keyFrame(const PairingQueue::Keying &keying)
 	stageDumps_.onKeyedFrame(frame, depth, status_.colourFrames(), pipelineView());
 	preview_.offer(&frame, depth, depth ? &pipeline_.trimap() : nullptr, output_, frame.timestampNs,
 		       loop_.nowUs() * 1000u);
-	publish(&frame.rgb, depth != nullptr, frame.timestampNs, flags);
+	CompositeInputs parts;
+	if (depth)
+		parts = pipeline_.compositeInputs(frame.rgb, output_.alpha);
+	publish(&frame.rgb, depth ? &parts : nullptr, frame.timestampNs, flags);
 	const uint64_t keyingUs = loop_.nowUs() - startUs;
 	status_.countKeying(keyingUs);
 	keyingBudget_.spend(keyingUs);
@@ -266,22 +269,23 @@ bool Daemon::compositeReadHere(uint64_t nowNs) const
 	       stageDumps_.readsStages();
 }
 
-void Daemon::publish(const RgbImage *colour, bool keyed, uint64_t captureNs, uint32_t flags)
+void Daemon::publish(const RgbImage *colour, const CompositeInputs *parts, uint64_t captureNs, uint32_t flags)
 {
 	if (framesStalled_)
 		return;
 	const bool board = board_.boardGeometry();
-	// The camera-geometry composite: the pipeline's image when it made one
-	// (NO SIGNAL's too), the colour frame itself without depth, else made
-	// from its parts in the shared memory.
-	const RgbImage *composite = board ? &board_.composite()
-				  : !output_.composite.empty() ? &output_.composite
-				  : !keyed ? colour : nullptr;
-	const CompositeInputs parts = keyed && colour ? pipeline_.compositeInputs(*colour, output_.alpha) : CompositeInputs{};
+	// The composite: the board's in board geometry, else the pipeline's
+	// image when it made one (NO SIGNAL's too), else made from its parts in
+	// the shared memory (null here) or, without depth, the colour frame.
+	const RgbImage *composite = &output_.composite;
+	if (board)
+		composite = &board_.composite();
+	else if (output_.composite.empty())
+		composite = parts ? nullptr : colour;
 	// Never waits; a full or lost device is its own status (hal/v4l2/v4l2_output.hpp).
 	if (composite)
 		webcam_.write(*composite);
-	if (outputs_.publish({ composite, &parts, colour, output_.alpha,
+	if (outputs_.publish({ composite, parts, colour, output_.alpha,
 			       board ? &board_.lecturer() : nullptr, captureNs, flags }) < 0)
 		return;
 	status_.countPublished(flags & DK_SHM_FLAG_ONLINE);
@@ -314,7 +318,7 @@ void Daemon::publishNoSignal(uint64_t nowNs)
 		       settings_.colour.height, output_);
 	board_.showBoardOnly(); // in board geometry the board's picture goes on, marked offline
 	preview_.offer(nullptr, nullptr, nullptr, output_, nowNs, nowNs);
-	publish(nullptr, false, nowNs, pairing_.depthFresh(nowNs) ? DK_SHM_FLAG_DEPTH_OK : 0);
+	publish(nullptr, nullptr, nowNs, pairing_.depthFresh(nowNs) ? DK_SHM_FLAG_DEPTH_OK : 0);
 }
 
 StatusSummary Daemon::summary() const

@@ -76,8 +76,9 @@ private:
 	void applyPipelineFiles(const PipelineFiles &files);
 	void checkCalibrationFits();
 	// colour: the frame, the lecturer layer's colours; null for NO SIGNAL.
-	// keyed: the pipeline ran on it (else it went out without depth).
-	void publish(const RgbImage *colour, bool keyed, uint64_t captureNs, uint32_t flags);
+	// parts: the keyed frame's composite parts; null when it went out
+	// without depth (the colour frame is the composite) and for NO SIGNAL.
+	void publish(const RgbImage *colour, const CompositeInputs *parts, uint64_t captureNs, uint32_t flags);
 	// Whether the pipeline's composite image is read by more than the
 	// recorder's shared memory this frame (preview, virtual webcam, stage dumps).
 	bool compositeReadHere(uint64_t nowNs) const;

@@ -58,16 +58,21 @@ int ShmFrameSink::publish(ShmRingWriter &writer, const Image &image, uint64_t ca
 	const int stride = image.width() * static_cast<int>(sizeof(*image.data()));
 	int ret = writer.write(reinterpret_cast<const uint8_t *>(image.data()), stride, captureNs,
 			       flags);
-	if (ret) {
-		failed_ = &writer;
-		sizeMismatch_ = nullptr;
-	}
-	return ret;
+	return noteWrite(writer, ret);
 }
 
 int ShmFrameSink::publishComposite(const RgbImage &image, uint64_t captureNs, uint32_t flags)
 {
 	return publish(composite_, image, captureNs, flags);
+}
+
+int ShmFrameSink::noteWrite(const ShmRingWriter &writer, int ret)
+{
+	if (ret) {
+		failed_ = &writer;
+		sizeMismatch_ = nullptr;
+	}
+	return ret;
 }
 
 int ShmFrameSink::checkSize(const ShmRingWriter &writer, int width, int height)
@@ -95,11 +100,7 @@ int ShmFrameSink::publishComposite(const CompositeInputs &in, uint64_t captureNs
 	}
 	int ret = composite_.writeRows([&](int y, uint8_t *row) { compositeRoiRow(in, y, reinterpret_cast<Rgb8 *>(row)); },
 				       captureNs, flags);
-	if (ret) {
-		failed_ = &composite_;
-		sizeMismatch_ = nullptr;
-	}
-	return ret;
+	return noteWrite(composite_, ret);
 }
 
 int ShmFrameSink::publishLecturer(const RgbImage *colour, const Gray8Image &alpha, uint64_t captureNs,
@@ -121,11 +122,7 @@ int ShmFrameSink::publishLecturer(const RgbImage *colour, const Gray8Image &alph
 				std::fill(out, out + width, Rgba8{ 0, 0, 0, 0 });
 		},
 		captureNs, flags);
-	if (ret) {
-		failed_ = &lecturer_;
-		sizeMismatch_ = nullptr;
-	}
-	return ret;
+	return noteWrite(lecturer_, ret);
 }
 
 int ShmFrameSink::publishBoardLecturer(const RgbaImage &image, uint64_t captureNs, uint32_t flags)

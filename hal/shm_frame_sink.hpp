@@ -33,6 +33,8 @@ private:
 	int publish(ShmRingWriter &writer, const Image &image, uint64_t captureNs, uint32_t flags);
 	// -EINVAL and the mismatch noted when width x height is not the writer's.
 	int checkSize(const ShmRingWriter &writer, int width, int height);
+	// A writer's result, its failure noted for describeError(); returns ret.
+	int noteWrite(const ShmRingWriter &writer, int ret);
 
 	ShmRingWriter composite_;
 	ShmRingWriter lecturer_;

@@ -236,7 +236,6 @@ int PreviewServer::start(const PreviewServerOptions &options, PreviewEncoder &en
 	load_ = options.load ? options.load : &loadMicroHttpd;
 	ipv6_ = options.address.ipv6;
 	port_ = boundPort(listen_.get());
-	started_ = true;
 	doorman_ = std::thread(&PreviewServer::waitForFirstClient, this);
 	return 0;
 }
@@ -306,22 +305,19 @@ std::string PreviewServer::takeError()
 
 void PreviewServer::stop()
 {
-	if (!started_)
+	if (!doorman_.joinable())
 		return;
-	if (doorman_.joinable()) {
-		uint64_t one = 1;
-		if (write(wake_.get(), &one, sizeof(one)) < 0) {
-			// an eventfd write fails only when its counter is full: it is readable then anyway
-		}
-		doorman_.join();
+	uint64_t one = 1;
+	if (write(wake_.get(), &one, sizeof(one)) < 0) {
+		// an eventfd write fails only when its counter is full: it is readable then anyway
 	}
+	doorman_.join();
 	// Closes the listening socket too (libmicrohttpd owns it once serving);
 	// waits for the connection threads, each back within kStreamWait.
 	if (MHD_Daemon *daemon = daemon_.exchange(nullptr))
 		mhd_->stopDaemon(daemon);
 	listen_.reset();
 	wake_.reset();
-	started_ = false;
 }
 
 void PreviewServer::setStatus(const PreviewStatus &status)

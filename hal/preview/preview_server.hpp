@@ -56,7 +56,7 @@ public:
 	// or a negative errno with error saying what and where.
 	int start(const PreviewServerOptions &options, PreviewEncoder &encoder, std::string &error);
 	void stop();
-	bool running() const { return started_; }
+	bool running() const { return doorman_.joinable(); } // started, not yet stopped
 	// libmicrohttpd loaded and serving (after the first client).
 	bool serving() const { return daemon_ != nullptr; }
 	// Why the last client was refused (libmicrohttpd not loaded or not
@@ -79,10 +79,9 @@ private:
 	int startServing(std::string &error);
 	void noteError(std::string error);
 
-	bool started_ = false;
 	UniqueFd listen_;          // ours until libmicrohttpd takes it
 	UniqueFd wake_;            // eventfd: stop() wakes the waiting thread
-	std::thread doorman_;      // waits for the first client
+	std::thread doorman_;      // waits for the first client; joined by stop()
 	const MicroHttpd *(*load_)(std::string &error) = nullptr;
 	const MicroHttpd *mhd_ = nullptr;
 	std::atomic<MHD_Daemon *> daemon_{ nullptr };
