@@ -374,8 +374,7 @@ FUZZ_TARGETS ?= $(FUZZ_ALL)
 FUZZ_LIB_SRCS := $(wildcard config/*.cpp) algo/mapping_model.cpp algo/homography.cpp algo/radial_lens.cpp hal/sr2/sr2_frame_parser.cpp \
 	hal/recording/sequence_reader.cpp hal/recording/sequence_format.cpp hal/image_file.cpp hal/image_file_reader.cpp hal/png_codec.cpp \
 	hal/v4l2/yuv_to_rgb.cpp hal/v4l2/mjpeg_decoder.cpp hal/v4l2/depth16_to_frame.cpp \
-	hal/preview/preview_server.cpp hal/preview/preview_encoder.cpp hal/preview/preview_status.cpp \
-	hal/preview/preview_page.cpp hal/preview/password_file.cpp hal/preview/jpeg_encoder.cpp hal/preview/stage_picture.cpp
+	$(wildcard hal/preview/*.cpp)
 # toml++ 3.3.0 reaches __builtin_unreachable() in its own inline code, a
 # UBSan "unreachable" report that is the library's (tomlplusplus#190, fixed
 # upstream by PR #305, not in Debian 12): exactly that check is switched
