@@ -247,6 +247,8 @@ bench-process: deps
 frame-instructions: $(BENCH)
 	@test -z "$(ARCH)" || { echo "make frame-instructions: counts on the native build (no ARCH=)" >&2; exit 1; }
 	@tests/bench/frame_instructions.sh $(BENCH)
+	@tests/bench/frame_instructions.sh $(BENCH) 640 480 BM_PipelineFrameLecture
+	@tests/bench/frame_instructions.sh $(BENCH) 1920 1080 BM_PipelineFrameLecture
 
 $(OBJ)/%.o: %.cpp
 	@mkdir -p $(dir $@)

@@ -6,7 +6,8 @@
 //                 [--save-sequence DIR]
 //
 // Its last line is, for scripts:
-//   summary method=pipeline frames=300 iou=0.973 bf=0.912 fnr=0.012 fpr=0.004 fps=850
+//   summary method=pipeline frames=300 iou=0.973 bf=0.912 fnr=0.012 fpr=0.004 fps=850 bf_scaled=0.912 bf_scaled_px=2
+// bf_scaled: boundary F at a tolerance of 2 px per 640 of width (bf_scaled_px).
 // fps counts the segmentation alone (not rendering or reading PNGs).
 #include "algo/latency_estimator.hpp"
 #include "algo/pipeline.hpp"
@@ -461,6 +462,11 @@ int main(int argc, char **argv)
 		method.useSimBoard();
 	SegmentationScorer scorer(2);
 	ScoreAverage average;
+	// Boundary F again at a tolerance scaled with the width (2 px per 640,
+	// issue 28): 2 px at 1920x1080 is a third of what it is at 640x480.
+	std::optional<SegmentationScorer> scaledScorer;
+	int scaledTolerancePx = 2;
+	ScoreAverage scaledAverage;
 	// Paired as the daemon pairs: colour frames wait for depth from both
 	// sides in time (pairing.delay_ms), "now" being the newest frame's time.
 	PairingQueue queue;
@@ -494,6 +500,11 @@ int main(int argc, char **argv)
 			const DepthFrame *depth = k.depth.before ? k.depth.before : k.depth.after;
 			const Gray8Image &alpha = method.run(keyed, k.depth);
 			SegmentationScore s = scorer.score(alpha, truthOf);
+			if (!scaledScorer) {
+				scaledTolerancePx = std::max(2, int((2 * keyed.rgb.width() + 320) / 640));
+				scaledScorer.emplace(scaledTolerancePx);
+			}
+			scaledAverage.add(scaledTolerancePx == 2 ? s : scaledScorer->score(alpha, truthOf));
 			if (depth)
 				method.attribute(alpha, truthOf, scorer);
 			long frame = average.frames();
@@ -561,8 +572,9 @@ int main(int argc, char **argv)
 	double fps = method.seconds() > 0 ? frames / method.seconds() : 0.0;
 	std::printf("depthkey-eval: %s, method %s, %ld frames, mapping %s\n", what.c_str(), o.method.c_str(), frames,
 		    method.calibrated() ? "from the calibration" : "by plain scaling (no calibration)");
-	std::printf("  IoU %.3f  boundary F (2 px) %.3f (precision %.3f, recall %.3f)\n", m.iou, m.boundaryF,
-		    m.boundaryPrecision, m.boundaryRecall);
+	std::printf("  IoU %.3f  boundary F (2 px) %.3f (precision %.3f, recall %.3f); at %d px (2 px per 640) %.3f\n",
+		    m.iou, m.boundaryF, m.boundaryPrecision, m.boundaryRecall, scaledTolerancePx,
+		    scaledAverage.mean().boundaryF);
 	std::printf("  lecturer pixels lost (FNR) %.3f  board pixels taken (FPR) %.3f  %.0f frames/s\n", m.fnr,
 		    m.fpr, fps);
 	method.printAttribution();
@@ -580,7 +592,9 @@ int main(int argc, char **argv)
 					   : "");
 	else
 		std::printf("  depth offset: not measured (too little motion seen in both cameras)\n");
-	std::printf("summary method=%s frames=%ld iou=%.3f bf=%.3f fnr=%.3f fpr=%.3f fps=%.0f\n", o.method.c_str(),
-		    frames, m.iou, m.boundaryF, m.fnr, m.fpr, fps);
+	std::printf("summary method=%s frames=%ld iou=%.3f bf=%.3f fnr=%.3f fpr=%.3f fps=%.0f bf_scaled=%.3f "
+		    "bf_scaled_px=%d\n",
+		    o.method.c_str(), frames, m.iou, m.boundaryF, m.fnr, m.fpr, fps, scaledAverage.mean().boundaryF,
+		    scaledTolerancePx);
 	return 0;
 }

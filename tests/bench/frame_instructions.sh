@@ -7,11 +7,14 @@
 # Pipeline::process and a dump after each call, so each dump is one whole
 # frame (mapping, seeding, learning, SIOX, composite). The bench's first 30
 # frames are learning; the figure is the median of the frames after them.
-# usage: frame_instructions.sh BENCH [WIDTH HEIGHT]
+# With a fourth argument, another of the bench's pipeline frames:
+# BM_PipelineFrameLecture is the simulated lecture with every artefact.
+# usage: frame_instructions.sh BENCH [WIDTH HEIGHT [BENCHMARK]]
 set -eu
 bench=$1
 width=${2:-640}
 height=${3:-480}
+name=${4:-BM_PipelineFrame}
 process='depthkey::Pipeline::process(depthkey::ColourFrame const&, depthkey::DepthFrame const&, depthkey::PipelineOutput&)'
 work=$(mktemp -d /tmp/depthkey-callgrind-XXXXXX)
 trap 'rm -rf "$work"' EXIT
@@ -20,7 +23,7 @@ trap 'rm -rf "$work"' EXIT
 # the 30 warm-up frames come first.
 valgrind --tool=callgrind --callgrind-out-file="$work/frame" \
 	--toggle-collect="$process" --dump-after="$process" \
-	"$bench" --benchmark_filter="^BM_PipelineFrame/$width/$height\$" --benchmark_min_time=0.01 \
+	"$bench" --benchmark_filter="^$name/$width/$height\$" --benchmark_min_time=0.01 \
 	>"$work/bench.log" 2>"$work/valgrind.log" || {
 	cat "$work/valgrind.log" "$work/bench.log" >&2
 	exit 1
@@ -36,10 +39,10 @@ if [ "$frames" -eq 0 ]; then
 	echo "frame_instructions: no steady frame was dumped (see $work)" >&2
 	exit 1
 fi
-printf '%s\n' "$counts" | awk -v w="$width" -v h="$height" -v n="$frames" '
+printf '%s\n' "$counts" | awk -v w="$width" -v h="$height" -v n="$frames" -v name="$name" '
 	{ v[NR] = $1 }
 	END {
 		median = (n % 2) ? v[(n + 1) / 2] : int((v[n / 2] + v[n / 2 + 1]) / 2)
-		printf "pipeline frame %dx%d: %d instructions (median of %d steady frames, min %d, max %d; callgrind, %s)\n",
-			w, h, median, n, v[1], v[n], "x86-64"
+		printf "%s %dx%d: %d instructions (median of %d steady frames, min %d, max %d; callgrind, %s)\n",
+			name, w, h, median, n, v[1], v[n], "x86-64"
 	}'
