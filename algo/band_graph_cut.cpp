@@ -6,26 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
-#include <cstring>
 #include <vector>
-
-// OpenCV's GCGraph is a header-only template: its one link-time need is
-// cv::error() behind CV_Assert, which would bring libopencv_core (and the
-// GL, X11 and LAPACK libraries it loads, some 4.5 MB resident) back into
-// the daemon, which links no OpenCV. Its assertions check what cut()
-// guarantees by construction (vertices that exist and differ, weights >= 0,
-// at least one edge), so a failure is a bug here: abort, as assert() would.
-// (cvdef.h: its types and MIN, no code.)
-#include <climits>
-#include <opencv2/core/cvdef.h>
-#define CV_Assert(expr) \
-	do { \
-		if (!(expr)) \
-			std::abort(); \
-	} while (0)
-#include <opencv2/imgproc/detail/gcgraph.hpp>
-#undef CV_Assert
 
 namespace depthkey {
 
@@ -58,99 +39,93 @@ void BandGraphCut::cut(const RgbImage &colour, const Gray8Image &trimap, const s
 {
 	if (spans.empty())
 		return;
-	const BandSpan &last = spans.back();
-	const int pixels = last.first + (last.x1 - last.x0);
-	// The flow is at most the sum of the source capacities, (127 + 4 *
-	// cut_smoothness) a pixel: 32-bit weights whenever that fits (every band
-	// at the default smoothness, even the whole 640x480 frame), 64-bit
-	// beyond. The graph is the frame's largest block and comes and goes with
-	// it (GCGraph has no reset): 32-bit weights make it 80 bytes a band pixel
-	// instead of 104, and the cut is the same, integer arithmetic without
-	// overflow either way.
-	if (int64_t(pixels) * (int64_t(kConfidenceLecturer) + 4 * int64_t(smoothness_)) <= INT32_MAX)
-		cutWith<int32_t>(colour, trimap, spans, pixels, confidence, decisions);
-	else
-		cutWith<int64_t>(colour, trimap, spans, pixels, confidence, decisions);
+	buildGrid(colour, trimap, spans, confidence);
+	solver_.solve(grid_, levelsForWidth(levels_, colour.width()));
+	for (const BandSpan &s : spans) {
+		const uint8_t *label = grid_.label.data() + size_t(s.y - gridY0_) * size_t(grid_.width);
+		for (int x = s.x0, k = s.first; x < s.x1; ++x, ++k)
+			decisions[k] = label[x - gridX0_] ? 255 : 0;
+	}
 }
 
-template<typename Weight>
-void BandGraphCut::cutWith(const RgbImage &colour, const Gray8Image &trimap, const std::vector<BandSpan> &spans,
-			   int pixels, const uint8_t *confidence, uint8_t *decisions)
+int BandGraphCut::levelsForWidth(int levels, int width)
 {
-	const int w = colour.width(), h = colour.height();
-	// The first span of each row (spans are row-major), for the pixel below.
-	rowFirstSpan_.assign(size_t(h) + 2, int(spans.size()));
-	for (int i = int(spans.size()) - 1; i >= 0; --i)
-		rowFirstSpan_[size_t(spans[size_t(i)].y)] = i;
-	for (int y = h; y >= 0; --y)
-		rowFirstSpan_[size_t(y)] = std::min(rowFirstSpan_[size_t(y)], rowFirstSpan_[size_t(y) + 1]);
+	if (levels <= 0)
+		return 0;
+	// + round(log2(width / 640)): 640 -> +0, 1280 -> +1, 1920 -> +2 (log2 3
+	// = 1.58), 960 -> +1 (0.58); integers only: width^2 against 640^2 * 2^(2k+1).
+	int extra = 0;
+	while (int64_t(width) * width * 2 >= (int64_t(640) * 640) << (2 * extra + 2))
+		++extra;
+	return levels + extra;
+}
 
-	cv::detail::GCGraph<Weight> graph(unsigned(pixels), unsigned(4 * pixels));
-	int edges = 0;
-	terminal_.resize(size_t(pixels));
-	for (int k = 0; k < pixels; ++k)
-		graph.addVtx();
+void BandGraphCut::buildGrid(const RgbImage &colour, const Gray8Image &trimap, const std::vector<BandSpan> &spans,
+			     const uint8_t *confidence)
+{
+	// The grid is the spans' bounding box: its other cells are fixed.
+	int x0 = spans.front().x0, x1 = spans.front().x1;
+	for (const BandSpan &s : spans) {
+		x0 = std::min(x0, s.x0);
+		x1 = std::max(x1, s.x1);
+	}
+	gridX0_ = x0;
+	gridY0_ = spans.front().y;
+	const int gw = x1 - x0, gh = spans.back().y + 1 - gridY0_;
+	grid_.reset(gw, gh);
+	for (const BandSpan &s : spans)
+		std::fill_n(grid_.state.data() + size_t(s.y - gridY0_) * size_t(gw) + size_t(s.x0 - x0), s.x1 - s.x0,
+			    CutGrid::kFree);
+
+	const int w = colour.width(), h = colour.height();
 	for (const BandSpan &s : spans) {
 		const Rgb8 *row = colour.row(s.y);
 		const uint8_t *t = trimap.row(s.y);
 		const bool hasUp = s.y > 0, hasDown = s.y + 1 < h;
 		const Rgb8 *up = hasUp ? colour.row(s.y - 1) : nullptr, *down = hasDown ? colour.row(s.y + 1) : nullptr;
 		const uint8_t *tUp = hasUp ? trimap.row(s.y - 1) : nullptr, *tDown = hasDown ? trimap.row(s.y + 1) : nullptr;
-		int below = rowFirstSpan_[size_t(s.y) + 1];
-		const int belowEnd = rowFirstSpan_[size_t(s.y) + 2];
+		const int gy = s.y - gridY0_;
+		const size_t rowStart = size_t(gy) * size_t(gw) - size_t(x0);
 		for (int x = s.x0, k = s.first; x < s.x1; ++x, ++k) {
-			// Cost of calling it board (source side cut) and lecturer.
-			const int data = int(confidence[k]) - int(kConfidenceLecturer);
-			int toLecturer = std::max(data, 0), toBoard = std::max(-data, 0);
+			const size_t c = rowStart + size_t(x);
+			// Leaning lecturer by the confidence's distance from the middle.
+			int32_t unary = int32_t(confidence[k]) - int32_t(kConfidenceLecturer);
+			uint8_t touches = 0;
 			// A fixed neighbour pulls with the edge's weight.
 			auto fixed = [&](uint8_t label, int weight) {
-				if (label == kTrimapLecturer)
-					toLecturer += weight;
-				else if (label == kTrimapBoard)
-					toBoard += weight;
+				if (label == kTrimapLecturer) {
+					unary += weight;
+					touches |= CutGrid::kTouchesLecturer;
+				} else if (label == kTrimapBoard) {
+					unary -= weight;
+					touches |= CutGrid::kTouchesBoard;
+				}
 			};
 			if (x > 0 && isTrimapSeed(t[x - 1]))
 				fixed(t[x - 1], edgeWeight(row[x], row[x - 1]));
+			int32_t right = 0, below = 0;
 			if (x + 1 < w) {
 				const int weight = edgeWeight(row[x], row[x + 1]);
-				if (x + 1 < s.x1) {
-					graph.addEdges(k, k + 1, weight, weight);
-					++edges;
-				} else {
+				if (x + 1 < s.x1)
+					right = weight;
+				else
 					fixed(t[x + 1], weight);
-				}
 			}
 			if (hasUp && isTrimapSeed(tUp[x]))
 				fixed(tUp[x], edgeWeight(row[x], up[x]));
 			if (hasDown) {
 				const int weight = edgeWeight(row[x], down[x]);
-				if (isTrimapSeed(tDown[x])) {
+				if (isTrimapSeed(tDown[x]))
 					fixed(tDown[x], weight);
-				} else {
-					// A band pixel below: in one of the next row's spans.
-					while (below < belowEnd && spans[size_t(below)].x1 <= x)
-						++below;
-					if (below < belowEnd && spans[size_t(below)].x0 <= x) {
-						graph.addEdges(k, spans[size_t(below)].first + (x - spans[size_t(below)].x0), weight,
-							       weight);
-						++edges;
-					}
-				}
+				else if (gy + 1 < gh && grid_.state[c + size_t(gw)] == CutGrid::kFree)
+					below = weight;
 			}
-			graph.addTermWeights(k, toLecturer, toBoard);
-			terminal_[size_t(k)] = toLecturer - toBoard;
+			grid_.unary[c] = unary;
+			grid_.right[c] = right;
+			grid_.down[c] = below;
+			grid_.touches[c] = touches;
 		}
 	}
-	if (!edges) {
-		// No two band pixels touch: each is its own cut (GCGraph's
-		// maxFlow() refuses a graph without edges).
-		for (int k = 0; k < pixels; ++k)
-			decisions[k] = terminal_[size_t(k)] > 0 ? 255 : 0;
-		return;
-	}
-	graph.maxFlow();
-	for (int k = 0; k < pixels; ++k)
-		decisions[k] = graph.inSourceSegment(k) ? 255 : 0;
 }
 
 } // namespace depthkey

@@ -11,19 +11,12 @@
 // the cut runs along the nearest colour edge between the core and the
 // superset's border instead of through the noise of the per-pixel decision.
 //
-// The max-flow is OpenCV's (cv::detail::GCGraph, the Boykov-Kolmogorov
-// algorithm grabCut uses), in 32-bit integers where the flow cannot overflow
-// them, else 64-bit. It has no reset, so its graph is made anew each frame:
-// the one stage that allocates per frame (a handful of blocks, sized by the
-// band; tests/pipeline_test.cpp bounds them). Keeping the graph between
-// frames (emptied by assigning an empty one, which keeps the vectors'
-// capacity) was tried: maxFlow() still grows its own list of orphans each
-// frame (2-6 blocks), the page faults a frame stayed the same (57 and 54 in
-// BM_PipelineFrameLecture at 640x480 with the daemon's 128 KiB mmap
-// threshold: the kernel backs the graph with huge pages), no time gain
-// showed in the noise, and the graph's 5-6 MB would stay resident.
+// The cut is solved coarse to fine (algo/coarse_to_fine_cut.hpp): this
+// file states the energy on the band's grid, that one cuts it.
 #pragma once
 
+#include "algo/coarse_to_fine_cut.hpp"
+#include "algo/cut_grid.hpp"
 #include "algo/image.hpp"
 
 #include <cstdint>
@@ -43,6 +36,17 @@ class BandGraphCut
 public:
 	// smoothness 0 turns the cut off; edgeSigma in 8-bit levels (RGB).
 	void configure(int smoothness, int edgeSigma);
+	// The coarse-to-fine solve: levels of 2x2 blocks (0 = one cut of the
+	// whole band) at 640 pixels wide, one more for each doubling of the
+	// width (so that the coarsest cell covers the same part of the scene at
+	// every size), and the coarse cells around a coarse edge cut again.
+	void setLevels(int levels, int margin)
+	{
+		levels_ = levels;
+		solver_.configure(margin);
+	}
+	static int levelsForWidth(int levels, int width);
+	const CoarseToFineCut &solver() const { return solver_; }
 	bool enabled() const { return smoothness_ > 0; }
 
 	// Decides every band pixel: decisions[k] = 255 (lecturer) or 0 for the
@@ -55,16 +59,18 @@ public:
 	int edgeWeight(Rgb8 a, Rgb8 b) const;
 
 private:
-	template<typename Weight>
-	void cutWith(const RgbImage &colour, const Gray8Image &trimap, const std::vector<BandSpan> &spans, int pixels,
-		     const uint8_t *confidence, uint8_t *decisions);
+	// The band's energy on the grid of the spans' bounding box.
+	void buildGrid(const RgbImage &colour, const Gray8Image &trimap, const std::vector<BandSpan> &spans,
+		       const uint8_t *confidence);
 
 	int smoothness_ = 0;
 	// smoothness * exp(-d2 / (2 sigma^2)) by squared RGB distance d2, up to
 	// where it rounds to 0.
 	std::vector<int> weightByDistance2_;
-	std::vector<int> rowFirstSpan_; // per row + 1: index of its first span
-	std::vector<int> terminal_;     // per band pixel: toLecturer - toBoard
+	int levels_ = 0;
+	CutGrid grid_;
+	int gridX0_ = 0, gridY0_ = 0;
+	CoarseToFineCut solver_;
 };
 
 } // namespace depthkey

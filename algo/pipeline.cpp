@@ -28,7 +28,8 @@ void Pipeline::configure(const PipelineSettings &settings, const MappingModel &m
 	learner_.configure(settings.learning);
 	refiner_.configure(settings.siox);
 	refiner_.setGraphCut(settings.decision.cutSmoothness, settings.decision.cutEdgeSigma,
-			     size_t(settings.decision.cutMaxBandPixels));
+			     size_t(settings.decision.cutMaxBandPixels), settings.decision.cutLevels,
+			     settings.decision.cutMargin);
 	evidence_.configure(settings.decision);
 	guided_.configure(settings.siox.guidedRadius, settings.siox.guidedEps);
 	unmixing_.configure(settings.decision.edgeUnmixing);

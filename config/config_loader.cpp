@@ -250,6 +250,8 @@ void bindDecision(TomlSection &sec, DecisionSettings &s)
 	sec.integer("cut_smoothness", s.cutSmoothness, 0, 10000);
 	sec.integer("cut_edge_sigma", s.cutEdgeSigma, 1, 64);
 	sec.integer("cut_max_band_pixels", s.cutMaxBandPixels, 0, 8294400);
+	sec.integer("cut_levels", s.cutLevels, 0, 4);
+	sec.integer("cut_margin", s.cutMargin, 0, 8);
 	sec.integer("edge_unmixing", s.edgeUnmixing, 0, 195075);
 }
 

@@ -186,6 +186,16 @@ void BM_PipelineFrameLectureNoCut(benchmark::State &state)
 		      [](PipelineSettings &s) { s.decision.cutSmoothness = 0; });
 }
 
+// The cut solved whole at full resolution (no coarse levels), as before
+// issue 28: what the coarse-to-fine solve saves.
+void BM_PipelineFrameLectureWholeCut(benchmark::State &state)
+{
+	pipelineFrame(state, lectureInputs(int(state.range(0)), int(state.range(1))), [](PipelineSettings &s) {
+		s.decision.cutLevels = 0;
+		s.decision.cutMaxBandPixels = 8294400;
+	});
+}
+
 // The same without the edge unmixing: what it costs.
 void BM_PipelineFrameLectureNoUnmixing(benchmark::State &state)
 {
@@ -301,6 +311,7 @@ BENCHMARK(BM_PipelineFrameLecture) SIZES;
 BENCHMARK(BM_PipelineFrameLectureBoardPicture) SIZES;
 BENCHMARK(BM_BoardPicturePrior) SIZES;
 BENCHMARK(BM_PipelineFrameLectureNoCut) SIZES;
+BENCHMARK(BM_PipelineFrameLectureWholeCut) SIZES;
 BENCHMARK(BM_PipelineFrameLectureNoUnmixing) SIZES;
 BENCHMARK(BM_SeedAndMap) SIZES;
 BENCHMARK(BM_Learn) SIZES;

@@ -1,0 +1,241 @@
+#include "algo/coarse_to_fine_cut.hpp"
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+
+// OpenCV's GCGraph is a header-only template: its one link-time need is
+// cv::error() behind CV_Assert, which would bring libopencv_core (and the
+// GL, X11 and LAPACK libraries it loads, some 4.5 MB resident) into the
+// daemon, which links no OpenCV. Its assertions check what cutWith()
+// guarantees by construction (vertices that exist and differ, weights >= 0,
+// at least one edge), so a failure is a bug here: abort, as assert() would.
+// (cvdef.h: its types and MIN, no code.)
+#include <opencv2/core/cvdef.h>
+#define CV_Assert(expr) \
+	do { \
+		if (!(expr)) \
+			std::abort(); \
+	} while (0)
+#include <opencv2/imgproc/detail/gcgraph.hpp>
+#undef CV_Assert
+
+namespace depthkey {
+
+struct CoarseToFineCut::Graphs {
+	cv::detail::GCGraph<int32_t> narrow;
+	cv::detail::GCGraph<int64_t> wide;
+};
+
+CoarseToFineCut::CoarseToFineCut() : graphs_(std::make_unique<Graphs>())
+{
+}
+
+CoarseToFineCut::~CoarseToFineCut() = default;
+
+void CoarseToFineCut::solve(CutGrid &fine, int levels)
+{
+	levels = std::clamp(levels, 0, kMaxLevels);
+	cellsCut_.fill(0);
+	// Coarsen while it pays: each level a quarter of the last.
+	int depth = 0;
+	for (CutGrid *finer = &fine; depth < levels; finer = &coarse_[size_t(depth)]) {
+		CutGrid &coarser = coarse_[size_t(depth) + 1];
+		if (coarsen(*finer, coarser) < kMinCoarseCells)
+			break;
+		++depth;
+	}
+	CutGrid &coarsest = depth ? coarse_[size_t(depth)] : fine;
+	int vertices = 0;
+	for (size_t c = 0, n = coarsest.cells(); c < n; ++c)
+		coarsest.node[c] = coarsest.state[c] == CutGrid::kFree ? vertices++ : -1;
+	cutActive(coarsest, vertices);
+	cellsCut_[size_t(depth)] = size_t(vertices);
+	for (int level = depth - 1; level >= 0; --level) {
+		CutGrid &finer = level ? coarse_[size_t(level)] : fine;
+		const CutGrid &coarser = coarse_[size_t(level) + 1];
+		markEdge(coarser);
+		vertices = activate(finer, coarser);
+		cutActive(finer, vertices);
+		cellsCut_[size_t(level)] = size_t(vertices);
+	}
+}
+
+size_t CoarseToFineCut::coarsen(const CutGrid &fine, CutGrid &coarse)
+{
+	const int cw = (fine.width + 1) / 2, ch = (fine.height + 1) / 2;
+	coarse.reset(cw, ch);
+	size_t freeCells = 0;
+	for (int y = 0; y < fine.height; ++y) {
+		const size_t row = size_t(y) * size_t(fine.width);
+		const size_t coarseRow = size_t(y / 2) * size_t(cw);
+		const bool crossesDown = y & 1; // the link below leaves the block
+		for (int x = 0; x < fine.width; ++x) {
+			const size_t c = row + size_t(x);
+			if (fine.state[c] != CutGrid::kFree)
+				continue;
+			const size_t b = coarseRow + size_t(x / 2);
+			if (coarse.state[b] != CutGrid::kFree) {
+				coarse.state[b] = CutGrid::kFree;
+				coarse.unary[b] = coarse.right[b] = coarse.down[b] = 0;
+				coarse.touches[b] = 0;
+				++freeCells;
+			}
+			coarse.unary[b] += fine.unary[c];
+			coarse.touches[b] |= fine.touches[c];
+			// Links inside the block cost nothing: its pixels share a label.
+			if (x & 1)
+				coarse.right[b] += fine.right[c];
+			if (crossesDown)
+				coarse.down[b] += fine.down[c];
+		}
+	}
+	return freeCells;
+}
+
+void CoarseToFineCut::markEdge(const CutGrid &coarse)
+{
+	const int w = coarse.width, h = coarse.height;
+	const size_t n = coarse.cells();
+	if (edge_.size() < n) {
+		edge_.resize(n);
+		marks_.resize(n);
+	}
+	// A cell on the decided edge: a free neighbour or a fixed one on the
+	// other side.
+	for (int y = 0; y < h; ++y)
+		for (int x = 0; x < w; ++x) {
+			const size_t c = size_t(y) * size_t(w) + size_t(x);
+			if (coarse.state[c] != CutGrid::kFree) {
+				edge_[c] = 0;
+				continue;
+			}
+			const uint8_t l = coarse.label[c];
+			const uint8_t otherSide = l ? CutGrid::kTouchesBoard : CutGrid::kTouchesLecturer;
+			auto differs = [&](size_t q) { return coarse.state[q] == CutGrid::kFree && coarse.label[q] != l; };
+			edge_[c] = (coarse.touches[c] & otherSide) || (x > 0 && differs(c - 1)) ||
+				   (x + 1 < w && differs(c + 1)) || (y > 0 && differs(c - size_t(w))) ||
+				   (y + 1 < h && differs(c + size_t(w)));
+		}
+	// Grown by margin_ cells (a square): rows first into marks_, then
+	// columns back into edge_, then copied (coarse grids are small).
+	const int m = margin_;
+	for (int y = 0; y < h; ++y) {
+		const uint8_t *e = edge_.data() + size_t(y) * size_t(w);
+		uint8_t *out = marks_.data() + size_t(y) * size_t(w);
+		for (int x = 0; x < w; ++x) {
+			uint8_t any = 0;
+			for (int i = std::max(0, x - m), end = std::min(w - 1, x + m); i <= end && !any; ++i)
+				any = e[i];
+			out[x] = any;
+		}
+	}
+	for (int y = 0; y < h; ++y)
+		for (int x = 0; x < w; ++x) {
+			uint8_t any = 0;
+			for (int j = std::max(0, y - m), end = std::min(h - 1, y + m); j <= end && !any; ++j)
+				any = marks_[size_t(j) * size_t(w) + size_t(x)];
+			edge_[size_t(y) * size_t(w) + size_t(x)] = any;
+		}
+}
+
+int CoarseToFineCut::activate(CutGrid &fine, const CutGrid &coarse) const
+{
+	int vertices = 0;
+	for (int y = 0; y < fine.height; ++y) {
+		const size_t row = size_t(y) * size_t(fine.width);
+		const size_t coarseRow = size_t(y / 2) * size_t(coarse.width);
+		for (int x = 0; x < fine.width; ++x) {
+			const size_t c = row + size_t(x);
+			if (fine.state[c] != CutGrid::kFree)
+				continue;
+			const size_t b = coarseRow + size_t(x / 2);
+			if (edge_[b]) {
+				fine.node[c] = vertices++;
+			} else {
+				fine.node[c] = -1;
+				fine.label[c] = coarse.label[b];
+			}
+		}
+	}
+	return vertices;
+}
+
+void CoarseToFineCut::cutActive(CutGrid &grid, int vertices)
+{
+	if (!vertices)
+		return;
+	// A free neighbour decided at a coarser level pulls as a fixed one does;
+	// folded into the unary term first, so that the flow's bound is known
+	// before the graph's weight type is chosen.
+	const int w = grid.width, h = grid.height;
+	int64_t sourceSum = 0, sinkSum = 0;
+	for (int y = 0; y < h; ++y)
+		for (int x = 0; x < w; ++x) {
+			const size_t c = size_t(y) * size_t(w) + size_t(x);
+			if (grid.node[c] < 0 || grid.state[c] != CutGrid::kFree)
+				continue;
+			int32_t u = grid.unary[c];
+			auto pull = [&](size_t q, int32_t link) {
+				if (link && grid.state[q] == CutGrid::kFree && grid.node[q] < 0)
+					u += grid.label[q] ? link : -link;
+			};
+			if (x > 0)
+				pull(c - 1, grid.right[c - 1]);
+			if (x + 1 < w)
+				pull(c + 1, grid.right[c]);
+			if (y > 0)
+				pull(c - size_t(w), grid.down[c - size_t(w)]);
+			if (y + 1 < h)
+				pull(c + size_t(w), grid.down[c]);
+			grid.unary[c] = u;
+			(u > 0 ? sourceSum : sinkSum) += u > 0 ? u : -u;
+		}
+	// The flow is at most the smaller of the terminals' capacities; a
+	// residual link holds its weight plus what flowed back through it.
+	if (std::min(sourceSum, sinkSum) <= INT32_MAX / 2)
+		cutWith<int32_t>(graphs_->narrow, grid, vertices);
+	else
+		cutWith<int64_t>(graphs_->wide, grid, vertices);
+}
+
+template<typename Weight, typename Graph>
+void CoarseToFineCut::cutWith(Graph &graph, CutGrid &grid, int vertices)
+{
+	static const Graph empty;
+	graph = empty; // copy-assigned: keeps the vectors' capacity
+	graph.create(unsigned(vertices), unsigned(4 * vertices));
+	for (int v = 0; v < vertices; ++v)
+		graph.addVtx();
+	const int w = grid.width, h = grid.height;
+	int edges = 0;
+	for (int y = 0; y < h; ++y)
+		for (int x = 0; x < w; ++x) {
+			const size_t c = size_t(y) * size_t(w) + size_t(x);
+			const int v = grid.node[c];
+			if (v < 0 || grid.state[c] != CutGrid::kFree)
+				continue;
+			const int32_t u = grid.unary[c];
+			graph.addTermWeights(v, Weight(std::max(u, 0)), Weight(std::max(-u, 0)));
+			// A zero link carries no flow (the search skips it): left out.
+			if (x + 1 < w && grid.right[c] && grid.node[c + 1] >= 0) {
+				graph.addEdges(v, grid.node[c + 1], Weight(grid.right[c]), Weight(grid.right[c]));
+				++edges;
+			}
+			if (y + 1 < h && grid.down[c] && grid.node[c + size_t(w)] >= 0) {
+				graph.addEdges(v, grid.node[c + size_t(w)], Weight(grid.down[c]), Weight(grid.down[c]));
+				++edges;
+			}
+		}
+	if (edges)
+		graph.maxFlow(); // GCGraph refuses a graph without edges
+	for (size_t c = 0, n = grid.cells(); c < n; ++c) {
+		const int v = grid.node[c];
+		if (v >= 0 && grid.state[c] == CutGrid::kFree)
+			grid.label[c] = edges ? uint8_t(graph.inSourceSegment(v)) : uint8_t(grid.unary[c] > 0);
+	}
+}
+
+} // namespace depthkey

@@ -1,0 +1,52 @@
+// One level of the band's cut energy on a grid (algo/coarse_to_fine_cut.hpp).
+// A cell is free (the cut decides it) or fixed (a seed, or outside the band).
+// Fixed neighbours are already folded into a free cell's unary term, and
+// flagged in `touches`, so a level holds only free cells and the links
+// between them:
+//   E = sum_free unary(label) + sum_{free p~q, cut} link(p, q)
+// with unary[c] = cost(board) - cost(lecturer) (> 0 leans lecturer) and
+// right[c], down[c] the weights of the links to the free cell right of and
+// below c (0 where there is none). Only `state` says which cells are free:
+// every other array is valid at free cells only, so a frame clears one byte
+// a cell, not seventeen.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace depthkey {
+
+struct CutGrid {
+	static constexpr uint8_t kFixed = 0, kFree = 1;
+	static constexpr uint8_t kTouchesLecturer = 1, kTouchesBoard = 2;
+
+	int width = 0, height = 0;
+	std::vector<uint8_t> state;    // kFixed / kFree
+	std::vector<int32_t> unary;    // toLecturer - toBoard, fixed neighbours included
+	std::vector<int32_t> right;    // link to the free cell at +1, else 0
+	std::vector<int32_t> down;     // link to the free cell at +width, else 0
+	std::vector<uint8_t> touches;  // kTouchesLecturer | kTouchesBoard: fixed neighbours' sides
+	std::vector<uint8_t> label;    // after solving: 1 lecturer, 0 board
+	std::vector<int32_t> node;     // graph vertex while being solved, else -1
+
+	// Sizes the level; the vectors only ever grow (no allocation in a steady
+	// state), and every cell is left fixed.
+	void reset(int w, int h)
+	{
+		width = w;
+		height = h;
+		const size_t n = size_t(w) * size_t(h);
+		for (auto *v : { &state, &touches, &label })
+			if (v->size() < n)
+				v->resize(n);
+		for (auto *v : { &unary, &right, &down, &node })
+			if (v->size() < n)
+				v->resize(n);
+		std::fill(state.begin(), state.begin() + std::ptrdiff_t(n), kFixed);
+	}
+	size_t cells() const { return size_t(width) * size_t(height); }
+};
+
+} // namespace depthkey
