@@ -12,6 +12,7 @@
 #include "config/frame_limits.hpp"
 #include "config/text_file.hpp"
 #include "config/toml_binder.hpp"
+#include "hal/shm_name.hpp"
 
 namespace depthkey {
 
@@ -80,15 +81,11 @@ std::string checkOptionalAbsolutePath(std::string_view path)
 	return path.empty() ? "" : checkAbsolutePath(path);
 }
 
-// POSIX shared memory names are "/name": one leading slash and no other.
+// The rule ShmRingWriter::open() applies (hal/shm_name.hpp): a name that
+// passes here is one the daemon can create.
 std::string checkShmName(std::string_view name)
 {
-	if (name.size() < 2 || name[0] != '/' ||
-	    name.find('/', 1) != std::string_view::npos || hasNul(name))
-		return "must be \"/name\": a leading '/' and no other '/'";
-	if (name.size() > 255)
-		return "is longer than 255 characters";
-	return "";
+	return shmNameProblem(name);
 }
 
 // "" (the daemon's own group) or a plain group name, as useradd accepts,

@@ -1,6 +1,7 @@
 #include "hal/shm_ring_writer.hpp"
 
 #include "hal/depthkey_shm.h"
+#include "hal/shm_name.hpp"
 
 #include <cerrno>
 #include <cstdlib>
@@ -33,13 +34,6 @@ uint64_t pageAlign()
 {
 	long page = sysconf(_SC_PAGESIZE);
 	return page > static_cast<long>(DK_SHM_DATA_ALIGN) ? static_cast<uint64_t>(page) : DK_SHM_DATA_ALIGN;
-}
-
-bool validName(const std::string &name)
-{
-	// POSIX leaves names without a single leading slash implementation-defined.
-	return name.size() >= 2 && name.size() < 255 && name[0] == '/' &&
-	       name.find('/', 1) == std::string::npos;
 }
 
 // Wall-clock time differs across restarts, even of a process that gets the
@@ -201,8 +195,8 @@ int ShmRingWriter::open(const std::string &name, int width, int height, uint32_t
 	detail_.clear();
 
 	const uint32_t bpp = dk_shm_bytes_per_pixel(fourcc);
-	if (!validName(name))
-		return fail(-EINVAL, "invalid object name", "must be \"/name\" without further '/'");
+	if (const char *problem = shmNameProblem(name); *problem)
+		return fail(-EINVAL, "invalid object name", problem);
 	if (width < 1 || height < 1 || width > static_cast<int>(DK_SHM_MAX_DIMENSION) ||
 	    height > static_cast<int>(DK_SHM_MAX_DIMENSION))
 		return fail(-EINVAL, "invalid frame size");
