@@ -8,6 +8,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "config/file_format.hpp"
 #include "config/listen_address.hpp"
 #include "config/frame_limits.hpp"
 #include "config/text_file.hpp"
@@ -410,11 +411,15 @@ void bindReplay(TomlSection &sec, ReplaySettings &s, bool used)
 			    "must name the recorded folder when colour.backend or depth.backend is \"replay\"");
 }
 
-} // namespace
-
-void bindSettings(TomlSection &root, Settings &s)
+// What bindSettings() binds, and whether a file that says it ends with
+// [end] (daemon.end_marker = true) lacks it: then it was cut short.
+bool bindSettingsFindingCut(TomlSection &root, Settings &s)
 {
-	root.table("daemon", [&](TomlSection &sec) { bindDaemon(sec, s.daemon); });
+	bool endMarker = false;
+	root.table("daemon", [&](TomlSection &sec) {
+		bindDaemon(sec, s.daemon);
+		sec.boolean("end_marker", endMarker);
+	});
 	root.table("colour", [&](TomlSection &sec) { bindColour(sec, s.colour); });
 	root.table("depth", [&](TomlSection &sec) { bindDepth(sec, s.depth); });
 	root.table("pairing", [&](TomlSection &sec) { bindPairing(sec, s.pairing); });
@@ -434,6 +439,19 @@ void bindSettings(TomlSection &root, Settings &s)
 	root.table("sim", [&](TomlSection &sec) { bindSim(sec, s.sim); });
 	bool replayUsed = s.colour.backend == "replay" || s.depth.backend == "replay";
 	root.table("replay", [&](TomlSection &sec) { bindReplay(sec, s.replay, replayUsed); });
+	root.table("end", [](TomlSection &) {}); // a marker: no keys
+	return endMarker && !root.has("end");
+}
+
+constexpr const char *kCutShort = "missing section [end]: the file is cut short (daemon.end_marker = true "
+				  "says it ends with [end])";
+
+} // namespace
+
+void bindSettings(TomlSection &root, Settings &s)
+{
+	if (bindSettingsFindingCut(root, s))
+		root.require(false, "end", kCutShort);
 }
 
 std::string findDefaultConfig()
@@ -458,10 +476,15 @@ std::string findDefaultConfig()
 ConfigResult parseConfig(std::string_view text, const std::string &sourceName)
 {
 	ConfigResult result;
+	bool cut = false;
 	TomlBindResult bound = bindToml(text, sourceName, [&](TomlSection &root) {
-		bindSettings(root, result.settings);
+		cut = bindSettingsFindingCut(root, result.settings);
 	});
 	result.errors = std::move(bound.errors);
+	// At the last line, where a file cut short stops (as the calibration
+	// files report their missing [end]).
+	if (cut)
+		result.errors.push_back({ sourceName, lastLineOf(text), 1, "end", kCutShort });
 	return result;
 }
 
