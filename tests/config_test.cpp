@@ -4,12 +4,9 @@
 
 #include <fstream>
 #include <sstream>
-#include <unistd.h>
 
 #include "config/config_loader.hpp"
 #include "config/toml_binder.hpp"
-#include "hal/depthkey_shm.h"
-#include "hal/shm_ring_writer.hpp"
 #include "tests/test_paths.hpp"
 
 namespace depthkey {
@@ -371,34 +368,6 @@ TEST(ConfigLoader, SharedMemoryNames)
 				"composite_name and lecturer_name must differ" }));
 	EXPECT_EQ(onlyError("[output]\ngroup = \"video staff\"\n").message,
 		  "\"video staff\" is not a group name");
-}
-
-// Issue 31: every name --check-config passes is one the daemon can create,
-// and the names the red team found are refused with the key and the line.
-TEST(ConfigLoader, SharedMemoryNamesTheDaemonCannotCreateAreRefused)
-{
-	const std::string longest = "/" + std::string(253, 'a');
-	for (const std::string &bad : { std::string("/."), std::string("/.."), "/" + std::string(254, 'a'),
-					std::string("/a\\nb"), std::string("/a\\\\b"), std::string("/caf\u00e9"),
-					std::string("/a b"), std::string("/a:b") }) {
-		const ConfigError e = onlyError("[output]\ncomposite_name = \"" + bad + "\"\n");
-		EXPECT_EQ(e.key, "output.composite_name") << bad;
-		EXPECT_EQ(e.line, 2) << bad;
-	}
-	EXPECT_NE(onlyError("[output]\nlecturer_name = \"/" + std::string(254, 'a') + "\"\n").message.find("254"),
-		  std::string::npos);
-	// And every accepted name is created by the writer, then removed.
-	const std::string tag = std::to_string(getpid());
-	for (const std::string &good : { longest.substr(0, 254 - tag.size()) + tag, "/dk_" + tag + ".room-12",
-					 "/." + tag }) {
-		ConfigResult r = parseConfig("[output]\ncomposite_name = \"" + good + "\"\n", kFile);
-		ASSERT_TRUE(r.ok()) << good;
-		ShmRingWriter writer;
-		ASSERT_EQ(writer.open(good, 16, 16, DK_SHM_FORMAT_RGB24, 2, ""), 0) << writer.describeError();
-		EXPECT_EQ(writer.unlink(), 0);
-	}
-	ShmRingWriter writer;
-	EXPECT_EQ(writer.open("/..", 16, 16, DK_SHM_FORMAT_RGB24, 2, ""), -EINVAL);
 }
 
 TEST(ConfigLoader, V4l2OutputIsADeviceNodeThatNoCameraUses)
