@@ -20,6 +20,9 @@ int FrameOutputs::openSink()
 	int ret = sink_->open(settings_, geometry_.width, geometry_.height, geometry_.boardWidth,
 			      geometry_.boardHeight);
 	sinkOpen_ = ret >= 0;
+	everOpen_ = everOpen_ || sinkOpen_;
+	if (ret == -EBUSY && !everOpen_)
+		return ret; // the daemon exits with this (Daemon::start)
 	if (ret < 0)
 		logger().errorOnce("output", "cannot open shared-memory output: " + sink_->describeError(),
 				   { { "DEVICE", "shm" }, { "ERROR", errnoText(ret) } });
@@ -60,6 +63,12 @@ void FrameOutputs::close()
 {
 	if (sink_)
 		sink_->close();
+}
+
+void FrameOutputs::remove()
+{
+	if (sink_)
+		sink_->remove();
 }
 
 int FrameOutputs::publish(const OutputFrame &frame)
