@@ -437,7 +437,7 @@ void Daemon::updateRecording()
 		logger().errorOnce("record", "cannot record: " + error,
 				   { { "DEVICE", "recorder" }, { "ERROR", errnoText(ret) } });
 	else
-		logger().info("recording camera frames to " + dir, { { "RECORD_DIR", dir } });
+		logger().info("recording camera frames to " + recorder_.dir(), { { "RECORD_DIR", recorder_.dir() } });
 }
 
 // On the status tick: the worker's write errors and dropped frames.

@@ -127,3 +127,38 @@ TEST(RecordingRestart, ThreeRestartsKeepEveryFrameOnce)
 	}
 	std::filesystem::remove_all(dir);
 }
+
+// After a reboot CLOCK_MONOTONIC starts again: a folder whose frames are
+// stamped later than now was recorded in an earlier boot. Appending would
+// make its index go back in time, which the reader refuses; the session
+// goes into DIR/boot-2 instead, and the next run of the same boot appends
+// there. Both folders read back whole.
+TEST(RecordingRestart, AFolderOfAnEarlierBootIsKeptAndTheSessionGoesBeside)
+{
+	const std::filesystem::path dir =
+		std::filesystem::temp_directory_path() / ("depthkey-reboot-" + std::to_string(getpid()));
+	std::filesystem::remove_all(dir);
+	timespec now{};
+	clock_gettime(CLOCK_MONOTONIC, &now);
+	const uint64_t nowNs = static_cast<uint64_t>(now.tv_sec) * 1000000000u + static_cast<uint64_t>(now.tv_nsec);
+	const uint64_t earlierBootNs = nowNs + 86'400'000'000'000u; // a day of uptime before the reboot
+
+	uint8_t id = 0;
+	for (int run = 0; run < 3; run++) {
+		FrameRecorder recorder;
+		std::string error;
+		ASSERT_EQ(recorder.start(dir.string(), 0, error), 0) << error;
+		EXPECT_EQ(recorder.dir(), run == 0 ? dir.string() : (dir / "boot-2").string()) << run;
+		for (int i = 1; i <= 4; i++)
+			recordPair(recorder, ++id, i, (run == 0 ? earlierBootNs : nowNs - 10'000'000'000u) + (run * 4 + i) * 40'000'000u);
+		recorder.stop();
+	}
+	for (const auto &[folder, frames] : { std::pair{ dir, 4u }, std::pair{ dir / "boot-2", 8u } }) {
+		SequenceReader reader;
+		ASSERT_EQ(reader.open(folder.string()), 0) << reader.describeError();
+		EXPECT_EQ(reader.colour().size(), frames) << folder;
+		EXPECT_EQ(reader.depth().size(), frames) << folder;
+	}
+	EXPECT_FALSE(std::filesystem::exists(dir / "boot-3"));
+	std::filesystem::remove_all(dir);
+}

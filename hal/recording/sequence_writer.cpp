@@ -1,11 +1,13 @@
 #include "hal/recording/sequence_writer.hpp"
 
 #include "hal/image_file.hpp"
+#include "hal/recording/session_folder.hpp"
 
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <dirent.h>
+#include <ctime>
 #include <sys/stat.h>
 #include <vector>
 
@@ -49,8 +51,15 @@ int SequenceWriter::open(const std::string &dir)
 		error_ = dir + ": cannot create folder: " + std::strerror(-ret);
 		return ret;
 	}
+	timespec now{};
+	clock_gettime(CLOCK_MONOTONIC, &now);
+	dir_ = sessionFolder(dir, static_cast<uint64_t>(now.tv_sec) * 1000000000u + static_cast<uint64_t>(now.tv_nsec));
+	if (dir_ != dir && (ret = makeDir(dir_)) < 0) {
+		error_ = dir_ + ": cannot create folder: " + std::strerror(-ret);
+		return ret;
+	}
 	for (int s = 0; s < StreamCount; ++s) {
-		std::string sub = dir + "/" + kStreams[s];
+		std::string sub = dir_ + "/" + kStreams[s];
 		if ((ret = makeDir(sub)) < 0) {
 			error_ = sub + ": cannot create folder: " + std::strerror(-ret);
 			return ret;

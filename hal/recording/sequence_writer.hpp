@@ -25,8 +25,11 @@ public:
 	// Creates dir and its stream folders; an existing recording there is
 	// appended to, never overwritten: frames are numbered on from the
 	// highest file number already in each stream's folder (fileNumber()).
-	// Negative errno, with describeError() naming the path.
+	// A folder holding frames of an earlier boot is left as it is: the
+	// session goes into dir/boot-N (hal/recording/session_folder.hpp), which
+	// folder() names. Negative errno, with describeError() naming the path.
 	int open(const std::string &dir);
+	const std::string &folder() const { return dir_; }
 	void close();
 
 	int writeColour(const ColourFrame &frame);
