@@ -80,7 +80,7 @@ private:
 	SinkFactory makeSink_;
 	std::unique_ptr<FrameSink> sink_;
 	bool sinkOpen_ = false;
-	bool everOpen_ = false;     // false until the first open succeeds
+	bool attempted_ = false;    // an open was tried: -EBUSY is no longer the start's
 	OutputSettings settings_;   // what open() was given, for the retry in publish()
 	OutputGeometry geometry_;
 	ReaderCounts readers_;      // recorders reading the shared memory

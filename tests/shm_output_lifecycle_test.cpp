@@ -110,3 +110,19 @@ TEST(ShmOutputLifecycle, ANameAnotherWriterHoldsIsBusyAndSaysSo)
 	EXPECT_EQ(openStatus(names.composite.c_str()), 0);
 	EXPECT_EQ(openStatus(names.lecturer.c_str()), 0);
 }
+
+// A second daemon that created its composite before finding the lecturer
+// name busy removes that composite as it exits (FrameOutputs::open).
+TEST(ShmOutputLifecycle, AnOpenThatFindsANameBusyRemovesWhatItCreated)
+{
+	OutputNames names;
+	ShmRingWriter squatter;
+	ASSERT_EQ(squatter.open(names.lecturer.str(), 8, 8, DK_SHM_FORMAT_RGBA32, 2, ""), 0);
+	ShmFrameSink sink;
+	ASSERT_EQ(sink.open(names.settings(), 16, 16), -EBUSY);
+	EXPECT_EQ(openStatus(names.composite.c_str()), 0); // created, then closed
+	sink.remove();
+	EXPECT_EQ(openStatus(names.composite.c_str()), -ENOENT);
+	EXPECT_EQ(openStatus(names.lecturer.c_str()), 0) << "the squatter's object is not ours to remove";
+	EXPECT_EQ(squatter.unlink(), 0);
+}
