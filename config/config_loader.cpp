@@ -8,10 +8,12 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "config/file_format.hpp"
 #include "config/listen_address.hpp"
 #include "config/frame_limits.hpp"
 #include "config/text_file.hpp"
 #include "config/toml_binder.hpp"
+#include "hal/shm_name.hpp"
 
 namespace depthkey {
 
@@ -80,15 +82,11 @@ std::string checkOptionalAbsolutePath(std::string_view path)
 	return path.empty() ? "" : checkAbsolutePath(path);
 }
 
-// POSIX shared memory names are "/name": one leading slash and no other.
+// The rule ShmRingWriter::open() applies (hal/shm_name.hpp): a name that
+// passes here is one the daemon can create.
 std::string checkShmName(std::string_view name)
 {
-	if (name.size() < 2 || name[0] != '/' ||
-	    name.find('/', 1) != std::string_view::npos || hasNul(name))
-		return "must be \"/name\": a leading '/' and no other '/'";
-	if (name.size() > 255)
-		return "is longer than 255 characters";
-	return "";
+	return shmNameProblem(name);
 }
 
 // "" (the daemon's own group) or a plain group name, as useradd accepts,
@@ -415,11 +413,15 @@ void bindReplay(TomlSection &sec, ReplaySettings &s, bool used)
 			    "must name the recorded folder when colour.backend or depth.backend is \"replay\"");
 }
 
-} // namespace
-
-void bindSettings(TomlSection &root, Settings &s)
+// What bindSettings() binds, and whether a file that says it ends with
+// [end] (daemon.end_marker = true) lacks it: then it was cut short.
+bool bindSettingsFindingCut(TomlSection &root, Settings &s)
 {
-	root.table("daemon", [&](TomlSection &sec) { bindDaemon(sec, s.daemon); });
+	bool endMarker = false;
+	root.table("daemon", [&](TomlSection &sec) {
+		bindDaemon(sec, s.daemon);
+		sec.boolean("end_marker", endMarker);
+	});
 	root.table("colour", [&](TomlSection &sec) { bindColour(sec, s.colour); });
 	root.table("depth", [&](TomlSection &sec) { bindDepth(sec, s.depth); });
 	root.table("pairing", [&](TomlSection &sec) { bindPairing(sec, s.pairing); });
@@ -439,6 +441,19 @@ void bindSettings(TomlSection &root, Settings &s)
 	root.table("sim", [&](TomlSection &sec) { bindSim(sec, s.sim); });
 	bool replayUsed = s.colour.backend == "replay" || s.depth.backend == "replay";
 	root.table("replay", [&](TomlSection &sec) { bindReplay(sec, s.replay, replayUsed); });
+	root.table("end", [](TomlSection &) {}); // a marker: no keys
+	return endMarker && !root.has("end");
+}
+
+constexpr const char *kCutShort = "missing section [end]: the file is cut short (daemon.end_marker = true "
+				  "says it ends with [end])";
+
+} // namespace
+
+void bindSettings(TomlSection &root, Settings &s)
+{
+	if (bindSettingsFindingCut(root, s))
+		root.require(false, "end", kCutShort);
 }
 
 std::string findDefaultConfig()
@@ -463,10 +478,15 @@ std::string findDefaultConfig()
 ConfigResult parseConfig(std::string_view text, const std::string &sourceName)
 {
 	ConfigResult result;
+	bool cut = false;
 	TomlBindResult bound = bindToml(text, sourceName, [&](TomlSection &root) {
-		bindSettings(root, result.settings);
+		cut = bindSettingsFindingCut(root, result.settings);
 	});
 	result.errors = std::move(bound.errors);
+	// At the last line, where a file cut short stops (as the calibration
+	// files report their missing [end]).
+	if (cut)
+		result.errors.push_back({ sourceName, lastLineOf(text), 1, "end", kCutShort });
 	return result;
 }
 

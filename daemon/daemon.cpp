@@ -74,7 +74,11 @@ int Daemon::start(const Settings &settings)
 		[this] { // the composite's geometry or size changed
 			outputs_.reopen(settings_, outputGeometry());
 		});
-	openOutput();
+	// Another writer on our names (a second depthkeyd): exit, not run at 0 fps.
+	if (int ret = openOutput(); ret == -EBUSY) {
+		startError_ = outputs_.describeError();
+		return ret;
+	}
 	startWebcam();
 	updateRecording();
 	preview_.apply(settings_.preview);
@@ -96,7 +100,7 @@ int Daemon::run()
 	stopCameras();
 	board_.stop();
 	recorder_.stop();
-	outputs_.close();
+	outputs_.remove(); // a clean stop leaves nothing in /dev/shm (docs/shared-memory.md)
 	logger().info("depthkeyd stopped");
 	return ret < 0 ? 1 : ret;
 }
@@ -433,7 +437,7 @@ void Daemon::updateRecording()
 		logger().errorOnce("record", "cannot record: " + error,
 				   { { "DEVICE", "recorder" }, { "ERROR", errnoText(ret) } });
 	else
-		logger().info("recording camera frames to " + dir, { { "RECORD_DIR", dir } });
+		logger().info("recording camera frames to " + recorder_.dir(), { { "RECORD_DIR", recorder_.dir() } });
 }
 
 // On the status tick: the worker's write errors and dropped frames.

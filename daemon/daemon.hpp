@@ -42,9 +42,12 @@ public:
 	~Daemon();
 
 	// Sets up the loop, signals, devices and output. A negative errno means
-	// the daemon cannot run at all (no event loop); missing cameras do not
-	// fail here, they are reported and retried.
+	// the daemon cannot run at all (no event loop, or -EBUSY: another writer
+	// holds its shared memory); missing cameras do not fail here, they are
+	// reported and retried.
 	int start(const Settings &settings);
+	// Why start() failed, naming what, when it knows more than the errno.
+	const std::string &startError() const { return startError_; }
 	int run(); // until SIGTERM/SIGINT; returns the exit status
 
 	// For tests that drive the daemon from its own loop.
@@ -109,6 +112,7 @@ private:
 
 	FrameRecorder recorder_;
 	uint64_t recorderDropsLogged_ = 0;
+	std::string startError_;
 	StageDumps stageDumps_; // SIGUSR1 snapshots, --preview stage images
 
 	Pipeline pipeline_;

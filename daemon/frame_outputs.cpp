@@ -20,6 +20,12 @@ int FrameOutputs::openSink()
 	int ret = sink_->open(settings_, geometry_.width, geometry_.height, geometry_.boardWidth,
 			      geometry_.boardHeight);
 	sinkOpen_ = ret >= 0;
+	const bool first = !attempted_;
+	attempted_ = true;
+	if (ret == -EBUSY && first) {
+		sink_->remove(); // what this open created before the busy one, e.g. the composite
+		return ret;      // the daemon exits with this (Daemon::start)
+	}
 	if (ret < 0)
 		logger().errorOnce("output", "cannot open shared-memory output: " + sink_->describeError(),
 				   { { "DEVICE", "shm" }, { "ERROR", errnoText(ret) } });
@@ -60,6 +66,12 @@ void FrameOutputs::close()
 {
 	if (sink_)
 		sink_->close();
+}
+
+void FrameOutputs::remove()
+{
+	if (sink_)
+		sink_->remove();
 }
 
 int FrameOutputs::publish(const OutputFrame &frame)

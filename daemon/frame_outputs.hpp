@@ -45,6 +45,9 @@ public:
 	explicit FrameOutputs(SinkFactory makeSink) : makeSink_(std::move(makeSink)) {}
 
 	// Opens (the first time, creates) the outputs; 0 or a negative errno.
+	// -EBUSY from the first open, another writer holding an object (a
+	// second depthkeyd on the same names), is not logged: the daemon exits
+	// with describeError() as its one line rather than run at 0 fps.
 	int open(const Settings &settings, const OutputGeometry &geometry);
 	// Marks them offline and opens them again, e.g. at a new geometry; a
 	// no-op before the first open().
@@ -57,6 +60,10 @@ public:
 	void apply(const Settings &previous, Settings &next, const OutputGeometry &geometry,
 		   const std::string &configPath);
 	void close();
+	// A clean stop: the objects are retired and removed (FrameSink::remove).
+	void remove();
+	// What failed last, naming the object ("" if nothing).
+	std::string describeError() const { return sink_ ? sink_->describeError() : std::string(); }
 
 	// Opens again first when the last open failed. The result of the first
 	// output that failed, else 0.
@@ -73,6 +80,7 @@ private:
 	SinkFactory makeSink_;
 	std::unique_ptr<FrameSink> sink_;
 	bool sinkOpen_ = false;
+	bool attempted_ = false;    // an open was tried: -EBUSY is no longer the start's
 	OutputSettings settings_;   // what open() was given, for the retry in publish()
 	OutputGeometry geometry_;
 	ReaderCounts readers_;      // recorders reading the shared memory

@@ -11,7 +11,7 @@ int FrameRecorder::start(const std::string &dir, int pngCompression, std::string
 		error = writer_.describeError();
 		return ret;
 	}
-	dir_ = dir;
+	dir_ = writer_.folder(); // dir, or dir/boot-N after a reboot
 	stopping_ = false;
 	colourBusy_.fill(false);
 	depthBusy_.fill(false);

@@ -32,6 +32,8 @@ public:
 	// Writes what is queued, then stops the worker.
 	void stop();
 	bool running() const { return worker_.joinable(); }
+	// The folder frames go to: the one start() was given, or a session
+	// folder inside it (SequenceWriter::open).
 	const std::string &dir() const { return dir_; }
 
 	void recordColour(const ColourFrame &frame);

@@ -98,7 +98,7 @@ int main(int argc, char **argv)
 	Daemon daemon(configPath, overrides);
 	int ret = daemon.start(config.settings);
 	if (ret < 0) {
-		logger().error("cannot start: " + errnoText(ret));
+		logger().error("cannot start: " + (daemon.startError().empty() ? errnoText(ret) : daemon.startError()));
 		return 1;
 	}
 	return daemon.run();

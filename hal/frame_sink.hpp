@@ -57,6 +57,9 @@ public:
 
 	// Marks the streams offline; consumers keep the last frames.
 	virtual void close() = 0;
+	// A clean stop: closes and removes what open() created, telling its
+	// readers first (docs/shared-memory.md, "When the daemon stops").
+	virtual void remove() { close(); }
 
 	// What failed last, naming the object, for the journal; "" if nothing.
 	virtual std::string describeError() const = 0;

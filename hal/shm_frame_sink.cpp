@@ -32,7 +32,11 @@ int ShmFrameSink::open(const OutputSettings &settings, int width, int height, in
 	// In camera geometry the board layer's stream is marked offline: a
 	// reader sees it is not being fed rather than a frozen old frame.
 	if (!board) {
-		boardLecturer_.close();
+		// Renamed meanwhile: the old name would never be opened again.
+		if (boardLecturer_.name() != settings.boardLecturerName)
+			boardLecturer_.remove();
+		else
+			boardLecturer_.close();
 		return 0;
 	}
 	ret = boardLecturer_.open(settings.boardLecturerName, boardWidth, boardHeight, DK_SHM_FORMAT_RGBA32,
@@ -140,6 +144,13 @@ void ShmFrameSink::close()
 	composite_.close();
 	lecturer_.close();
 	boardLecturer_.close();
+}
+
+void ShmFrameSink::remove()
+{
+	composite_.remove();
+	lecturer_.remove();
+	boardLecturer_.remove();
 }
 
 std::string ShmFrameSink::describeError() const

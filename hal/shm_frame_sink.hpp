@@ -21,6 +21,7 @@ public:
 	int publishBoardLecturer(const RgbaImage &image, uint64_t captureNs, uint32_t flags) override;
 	ReaderCounts countReaders(uint64_t nowNs) override;
 	void close() override;
+	void remove() override;
 	std::string describeError() const override;
 
 	// For tests and status reports.

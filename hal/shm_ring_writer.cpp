@@ -1,6 +1,7 @@
 #include "hal/shm_ring_writer.hpp"
 
 #include "hal/depthkey_shm.h"
+#include "hal/shm_name.hpp"
 
 #include <cerrno>
 #include <cstdlib>
@@ -33,13 +34,6 @@ uint64_t pageAlign()
 {
 	long page = sysconf(_SC_PAGESIZE);
 	return page > static_cast<long>(DK_SHM_DATA_ALIGN) ? static_cast<uint64_t>(page) : DK_SHM_DATA_ALIGN;
-}
-
-bool validName(const std::string &name)
-{
-	// POSIX leaves names without a single leading slash implementation-defined.
-	return name.size() >= 2 && name.size() < 255 && name[0] == '/' &&
-	       name.find('/', 1) == std::string::npos;
 }
 
 // Wall-clock time differs across restarts, even of a process that gets the
@@ -142,7 +136,9 @@ int ShmRingWriter::retireStale(const std::string &name)
 	// A running writer (another depthkeyd) holds the lock; a crash frees it.
 	if (flock(fd.get(), LOCK_EX | LOCK_NB) < 0) {
 		int err = errno == EWOULDBLOCK ? -EBUSY : -errno;
-		return fail(err, "lock", err == -EBUSY ? "another writer has it open" : nullptr);
+		return fail(err, "lock",
+			    err == -EBUSY ? "another writer has it open (a second depthkeyd with the same [output] names?)"
+					  : nullptr);
 	}
 	if (static_cast<uint64_t>(st.st_size) >= sizeof(dk_shm_header)) {
 		void *map = mmap(nullptr, sizeof(dk_shm_header), PROT_READ | PROT_WRITE, MAP_SHARED, fd.get(), 0);
@@ -195,14 +191,16 @@ int ShmRingWriter::createFresh(const std::string &name, unsigned int gid, const 
 int ShmRingWriter::open(const std::string &name, int width, int height, uint32_t fourcc,
 			int slots, const std::string &group)
 {
+	// Renamed: the old object would stay in /dev/shm (RAM) for good.
+	const std::string renamedFrom = created_ != name ? created_ : std::string();
 	close();
 	name_ = name;
 	error_ = 0;
 	detail_.clear();
 
 	const uint32_t bpp = dk_shm_bytes_per_pixel(fourcc);
-	if (!validName(name))
-		return fail(-EINVAL, "invalid object name", "must be \"/name\" without further '/'");
+	if (const char *problem = shmNameProblem(name); *problem)
+		return fail(-EINVAL, "invalid object name", problem);
 	if (width < 1 || height < 1 || width > static_cast<int>(DK_SHM_MAX_DIMENSION) ||
 	    height > static_cast<int>(DK_SHM_MAX_DIMENSION))
 		return fail(-EINVAL, "invalid frame size");
@@ -247,6 +245,7 @@ int ShmRingWriter::open(const std::string &name, int width, int height, uint32_t
 	}
 
 	fd_ = std::move(fd);
+	created_ = name;
 	header_ = static_cast<dk_shm_header *>(map);
 	data_ = static_cast<uint8_t *>(map) + dataOffset;
 	readers_ = reinterpret_cast<dk_shm_reader_table *>(static_cast<uint8_t *>(map) + readerOffset);
@@ -259,6 +258,8 @@ int ShmRingWriter::open(const std::string &name, int width, int height, uint32_t
 	slotSize_ = slotSize;
 	frame_ = 0;
 	writeHeader(slotSize, readerOffset, dataOffset);
+	if (!renamedFrom.empty())
+		retireName(renamedFrom);
 	return 0;
 }
 
@@ -414,6 +415,8 @@ void ShmRingWriter::close()
 int ShmRingWriter::unlink()
 {
 	close();
+	if (created_ == name_)
+		created_.clear();
 	if (name_.empty())
 		return fail(-EINVAL, "unlink an unnamed ring");
 	if (shm_unlink(name_.c_str()) < 0)

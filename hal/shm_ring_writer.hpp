@@ -63,8 +63,18 @@ public:
 
 	// Marks the stream offline and unmaps. The object stays, holding the last
 	// frames, until the next open() (this process or a restarted one)
-	// replaces it.
+	// replaces it, or remove() or an open() under another name retires it.
 	void close();
+
+	// Closes, then retires the object this writer created (generation 0,
+	// offline: readers mapping it get -ESTALE, and -ENOENT when they open
+	// the name again) and removes its name, unless another writer has taken
+	// the name over meanwhile. open() under a new name does this to the old
+	// one once the new one is there (a failed open keeps the old one, for
+	// the daemon to go back to), so a rename leaves nothing behind in
+	// /dev/shm; the daemon does it on a clean stop. Nothing to do when this
+	// writer created none.
+	void remove();
 
 	// Closes, then removes the object's name (clean shutdown, tests).
 	// Returns 0 or a negative errno (-ENOENT if already gone).
@@ -96,6 +106,8 @@ private:
 	int fail(int error, const char *step, const char *reason = nullptr);
 	int resolveGroup(const std::string &group, unsigned int *gid);
 	int retireStale(const std::string &name);
+	// retireStale() on an object we created, leaving error() as it was.
+	void retireName(const std::string &name);
 	// 0 with out holding the new object, or a negative errno.
 	int createFresh(const std::string &name, unsigned int gid, const std::string &group, UniqueFd &out);
 	void writeHeader(uint64_t slotSize, uint64_t readerOffset, uint64_t dataOffset);
@@ -107,6 +119,7 @@ private:
 	void clearReaders();
 
 	std::string name_;
+	std::string created_; // the object we created and have not removed, "" none
 	UniqueFd fd_; // held for the writer lock
 	dk_shm_header *header_ = nullptr;
 	uint8_t *data_ = nullptr;

@@ -354,13 +354,14 @@ TEST(ConfigLoader, NearMustBeLessThanFar)
 
 TEST(ConfigLoader, SharedMemoryNames)
 {
-	const char *expected = "must be \"/name\": a leading '/' and no other '/'";
+	const char *expected = "must be \"/name\": a leading '/', then letters, digits, '.', '_' or '-'";
+	const char *charset = "may hold only letters, digits, '.', '_' and '-' after its leading '/'";
 	EXPECT_EQ(onlyError("[output]\ncomposite_name = \"depthkey\"\n"),
 		  (ConfigError{ kFile, 2, 18, "output.composite_name",
 				"\"depthkey\" " + std::string(expected) }));
 	EXPECT_EQ(onlyError("[output]\nlecturer_name = \"/dk/lecturer\"\n"),
 		  (ConfigError{ kFile, 2, 17, "output.lecturer_name",
-				"\"/dk/lecturer\" " + std::string(expected) }));
+				"\"/dk/lecturer\" " + std::string(charset) }));
 	EXPECT_EQ(onlyError("[output]\nlecturer_name = \"/\"\n").key, "output.lecturer_name");
 	EXPECT_EQ(onlyError("[output]\nlecturer_name = \"/depthkey.composite\"\n"),
 		  (ConfigError{ kFile, 2, 17, "output.lecturer_name",

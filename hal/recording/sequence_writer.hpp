@@ -23,8 +23,13 @@ public:
 	void setCompression(int pngCompression) { compression_ = pngCompression; }
 
 	// Creates dir and its stream folders; an existing recording there is
-	// appended to. Negative errno, with describeError() naming the path.
+	// appended to, never overwritten: frames are numbered on from the
+	// highest file number already in each stream's folder (fileNumber()).
+	// A folder holding frames of an earlier boot is left as it is: the
+	// session goes into dir/boot-N (hal/recording/session_folder.hpp), which
+	// folder() names. Negative errno, with describeError() naming the path.
 	int open(const std::string &dir);
+	const std::string &folder() const { return dir_; }
 	void close();
 
 	int writeColour(const ColourFrame &frame);
@@ -38,8 +43,21 @@ private:
 	template<typename Pixel>
 	int writeImage(recording::Stream stream, const Image<Pixel> &image, uint64_t timestampNs, uint64_t sequence);
 
+	// The number a frame's file gets: the camera's sequence, shifted past
+	// every file of its camera's streams on disk or written since open(). A
+	// restart (of the daemon, or of a camera by a reload or a re-open)
+	// starts sequences at 1 again, and its frames would otherwise overwrite
+	// the first ones while the index listed both (issue 31). Gaps in the
+	// sequence (dropped frames) stay gaps. A stream after its camera's
+	// first (mask after rgb; amplitude, intensity after depth) gets the
+	// number its frame got there.
+	uint64_t fileNumber(recording::Stream stream, uint64_t sequence);
+	int findHighestNumbers();
+
 	int compression_;
 	std::string dir_;
+	uint64_t highest_[recording::StreamCount] = {}; // highest file number on disk or written
+	uint64_t shift_[2] = {};                        // per camera: colour, depth
 	std::FILE *index_[recording::StreamCount] = {};
 	std::string error_;
 };

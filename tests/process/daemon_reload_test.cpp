@@ -298,3 +298,20 @@ TEST_F(DaemonReload, V4l2OutputIsAppliedWithoutReopeningTheSharedMemory)
 	EXPECT_EQ(dk_shm_latest(&reader, &frame), 0);
 	dk_shm_close(&reader);
 }
+
+// Issue 31: a config that says it ends with [end] and was cut short (here
+// before a new [output], whose names would then revert) is refused on
+// reload, at its last line, and the running configuration is kept.
+TEST_F(DaemonReload, AConfigCutShortIsRefusedAndThePreviousKept)
+{
+	const std::string marked = "[daemon]\nend_marker = true\n";
+	daemon_.writeFile("depthkey.toml", marked + configText(prefix_) + "[end]\n");
+	startDaemon();
+	daemon_.writeFile("depthkey.toml", marked + "[colour]\nwidth = 160\nheight = 120\nfps = 25\n");
+	reloadAndExpectFrames("cut before [output]");
+	const std::string log = daemon_.log();
+	EXPECT_NE(log.find("config reload refused: " + daemon_.dir() + "/depthkey.toml:"), std::string::npos) << log;
+	EXPECT_NE(log.find(":1: end: missing section [end]: the file is cut short"), std::string::npos) << log;
+	EXPECT_NE(log.find("keeping the previous configuration"), std::string::npos) << log;
+	// (reloadAndExpectFrames saw the composite under the kept name go on.)
+}

@@ -1,0 +1,103 @@
+// Issue 31, with the real depthkeyd: a second daemon on the same
+// shared-memory names exits with status 1 and one line instead of running
+// at 0 fps; a reload that renames the outputs removes the old objects; a
+// clean stop removes what the daemon created.
+#include "tests/process/daemon_process.hpp"
+#include "tests/shm_test_util.hpp"
+#include "tests/wait_until.hpp"
+
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <sys/mman.h>
+#include <sys/wait.h>
+
+using namespace std::chrono_literals;
+using depthkey::test::DaemonProcess;
+using depthkey::test::openStatus;
+
+namespace {
+
+std::string outputConfig(const std::string &prefix)
+{
+	return "[colour]\nwidth = 160\nheight = 120\n[output]\ncomposite_name = \"" + prefix +
+	       ".composite\"\nlecturer_name = \"" + prefix + ".lecturer\"\n";
+}
+
+void unlinkAll(const std::string &prefix)
+{
+	shm_unlink((prefix + ".composite").c_str());
+	shm_unlink((prefix + ".lecturer").c_str());
+}
+
+// The lines of the log that say something went wrong.
+int countLines(const std::string &log, const std::string &text)
+{
+	int n = 0;
+	for (size_t at = log.find(text); at != std::string::npos; at = log.find(text, at + 1))
+		n++;
+	return n;
+}
+
+} // namespace
+
+TEST(DaemonShmLifecycle, ASecondDaemonOnTheSameNamesExitsWithOneLine)
+{
+	const std::string prefix = "/depthkey-two-" + std::to_string(getpid());
+	DaemonProcess first, second;
+	ASSERT_TRUE(first.start({ "--config", first.writeFile("depthkey.toml", outputConfig(prefix)) }));
+	ASSERT_TRUE(first.waitForNotify("READY=1", 10s)) << first.log();
+
+	ASSERT_TRUE(second.start({ "--config", second.writeFile("depthkey.toml", outputConfig(prefix)) }));
+	const int status = second.waitExit(10s);
+	ASSERT_NE(status, -1) << "the second daemon runs on: " << second.log();
+	ASSERT_TRUE(WIFEXITED(status)) << second.log();
+	EXPECT_EQ(WEXITSTATUS(status), 1) << second.log();
+	EXPECT_EQ(second.countNotify("READY=1"), 0);
+	const std::string log = second.log();
+	EXPECT_EQ(countLines(log, "cannot start: " + prefix + ".composite: lock: another writer has it open"), 1)
+		<< log;
+	EXPECT_EQ(countLines(log, "another writer"), 1) << "one line, not two: " << log;
+
+	// The first keeps publishing under its names, untouched.
+	EXPECT_TRUE(first.running());
+	EXPECT_EQ(openStatus((prefix + ".composite").c_str()), 0);
+	EXPECT_EQ(openStatus((prefix + ".lecturer").c_str()), 0);
+	ASSERT_EQ(first.signal(SIGTERM), 0);
+	EXPECT_NE(first.waitExit(5s), -1);
+	unlinkAll(prefix);
+}
+
+TEST(DaemonShmLifecycle, RenamesAndACleanStopLeaveNothingInDevShm)
+{
+	const std::string prefix = "/depthkey-mv-" + std::to_string(getpid());
+	const std::string renamed = prefix + "-b";
+	DaemonProcess daemon;
+	const std::string config = daemon.writeFile("depthkey.toml", outputConfig(prefix));
+	ASSERT_TRUE(daemon.start({ "--config", config }));
+	ASSERT_TRUE(daemon.waitForNotify("READY=1", 10s)) << daemon.log();
+	ASSERT_EQ(openStatus((prefix + ".composite").c_str()), 0);
+
+	daemon.writeFile("depthkey.toml", outputConfig(renamed));
+	ASSERT_EQ(daemon.signal(SIGHUP), 0);
+	ASSERT_TRUE(depthkey::test::waitUntil(
+		[&] {
+			daemon.pollNotify();
+			return daemon.countNotify("READY=1") >= 2;
+		},
+		10s))
+		<< daemon.log();
+	EXPECT_NE(daemon.log().find("configuration reloaded"), std::string::npos) << daemon.log();
+	EXPECT_TRUE(depthkey::test::waitUntil([&] { return openStatus((renamed + ".composite").c_str()) == 0; }, 5s));
+	EXPECT_EQ(openStatus((prefix + ".composite").c_str()), -ENOENT);
+	EXPECT_EQ(openStatus((prefix + ".lecturer").c_str()), -ENOENT);
+
+	ASSERT_EQ(daemon.signal(SIGTERM), 0);
+	const int status = daemon.waitExit(5s);
+	ASSERT_NE(status, -1);
+	EXPECT_EQ(WEXITSTATUS(status), 0);
+	EXPECT_EQ(openStatus((renamed + ".composite").c_str()), -ENOENT);
+	EXPECT_EQ(openStatus((renamed + ".lecturer").c_str()), -ENOENT);
+	unlinkAll(prefix);
+	unlinkAll(renamed);
+}
