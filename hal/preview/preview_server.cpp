@@ -1,5 +1,7 @@
 #include "hal/preview/preview_server.hpp"
 
+#include "hal/preview/mjpeg_stream.hpp"
+#include "hal/preview/preview_listener.hpp"
 #include "hal/preview/preview_page.hpp"
 #include "hal/unique_fd.hpp"
 
@@ -18,11 +20,8 @@ namespace depthkey {
 
 namespace {
 
-constexpr const char *kBoundary = "boundarydonotcross"; // uStreamer's
-constexpr auto kStreamWait = std::chrono::milliseconds(500);
 constexpr auto kSnapshotWait = std::chrono::milliseconds(3000);
 constexpr unsigned kIdleTimeoutS = 10;
-constexpr int kListenBacklog = 16;
 // Connections beyond the streams (the page, status, metrics, snapshots, and
 // closed ones whose threads have not yet been reaped): libmicrohttpd closes
 // any connection over its limit without a word. The connections waiting in
@@ -33,63 +32,6 @@ constexpr int kExtraConnections = kListenBacklog;
 constexpr size_t kMaxVerified = 16;
 constexpr const char *kSecurityPolicy =
 	"default-src 'self'; script-src 'self' 'unsafe-inline'; style-src 'unsafe-inline'; img-src 'self'";
-
-// One MJPEG stream: the frame being sent and how far.
-struct Stream {
-	PreviewEncoder *encoder = nullptr;
-	std::atomic<int> *streams = nullptr;
-	PreviewStage stage = PreviewStage::Composite;
-	uint64_t lastSequence = 0;
-	std::shared_ptr<const EncodedFrame> frame;
-	std::string head; // part headers before the JPEG
-	size_t offset = 0; // into head + jpeg + "\r\n"
-};
-
-ssize_t readStream(void *cls, uint64_t, char *buf, size_t max)
-{
-	auto *s = static_cast<Stream *>(cls);
-	const size_t total = s->frame ? s->head.size() + s->frame->jpeg.size() + 2 : 0;
-	if (!s->frame || s->offset >= total) {
-		// The newest frame when the socket takes more: a slow client skips.
-		auto next = s->encoder->waitNewer(s->stage, s->lastSequence, kStreamWait);
-		if (!next)
-			return s->encoder->running() ? 0 : MHD_CONTENT_READER_END_OF_STREAM;
-		s->frame = std::move(next);
-		s->lastSequence = s->frame->sequence;
-		s->head = std::string("--") + kBoundary + "\r\nContent-Type: image/jpeg\r\nContent-Length: " +
-			  std::to_string(s->frame->jpeg.size()) + "\r\nX-Timestamp: " +
-			  std::to_string(s->frame->captureNs / 1000) + "\r\n\r\n";
-		s->offset = 0;
-	}
-	const std::vector<uint8_t> &jpeg = s->frame->jpeg;
-	size_t done = 0;
-	while (done < max) {
-		size_t at = s->offset;
-		if (at < s->head.size()) {
-			size_t n = std::min(max - done, s->head.size() - at);
-			std::memcpy(buf + done, s->head.data() + at, n);
-			done += n, s->offset += n;
-		} else if (at < s->head.size() + jpeg.size()) {
-			size_t from = at - s->head.size(), n = std::min(max - done, jpeg.size() - from);
-			std::memcpy(buf + done, jpeg.data() + from, n);
-			done += n, s->offset += n;
-		} else if (at < s->head.size() + jpeg.size() + 2) {
-			buf[done++] = "\r\n"[at - s->head.size() - jpeg.size()];
-			s->offset++;
-		} else {
-			break;
-		}
-	}
-	return static_cast<ssize_t>(done);
-}
-
-void freeStream(void *cls)
-{
-	auto *s = static_cast<Stream *>(cls);
-	s->encoder->unwatch(s->stage);
-	(*s->streams)--;
-	delete s;
-}
 
 MHD_Result queue(const MicroHttpd &mhd, MHD_Connection *connection, unsigned status, const std::string &body,
 		 const char *type)
@@ -131,75 +73,6 @@ bool stageUrl(std::string_view url, std::string_view prefix, std::string_view su
 	    url.substr(url.size() - suffix.size()) != suffix)
 		return false;
 	return previewStageFromName(url.substr(prefix.size(), url.size() - prefix.size() - suffix.size()), stage);
-}
-
-// The listening socket is ours, so that a bind failure has its own errno.
-int listenOn(const ListenAddress &address, UniqueFd &fd, std::string &error)
-{
-	sockaddr_storage storage{};
-	socklen_t length;
-	if (address.ipv6) {
-		auto *a = reinterpret_cast<sockaddr_in6 *>(&storage);
-		a->sin6_family = AF_INET6;
-		a->sin6_port = htons(static_cast<uint16_t>(address.port));
-		inet_pton(AF_INET6, address.ip.c_str(), &a->sin6_addr);
-		length = sizeof(*a);
-	} else {
-		auto *a = reinterpret_cast<sockaddr_in *>(&storage);
-		a->sin_family = AF_INET;
-		a->sin_port = htons(static_cast<uint16_t>(address.port));
-		inet_pton(AF_INET, address.ip.c_str(), &a->sin_addr);
-		length = sizeof(*a);
-	}
-	const std::string where = (address.ipv6 ? "[" + address.ip + "]" : address.ip) + ":" +
-				  std::to_string(address.port);
-	fd = UniqueFd(socket(storage.ss_family, SOCK_STREAM | SOCK_CLOEXEC, 0));
-	int one = 1;
-	const char *step = nullptr;
-	if (!fd.isValid())
-		step = "socket";
-	else if (setsockopt(fd.get(), SOL_SOCKET, SO_REUSEADDR, &one, sizeof(one)) < 0)
-		step = "SO_REUSEADDR";
-	else if (address.ipv6 && setsockopt(fd.get(), IPPROTO_IPV6, IPV6_V6ONLY, &one, sizeof(one)) < 0)
-		step = "IPV6_V6ONLY";
-	else if (bind(fd.get(), reinterpret_cast<sockaddr *>(&storage), length) < 0)
-		step = "bind";
-	else if (listen(fd.get(), kListenBacklog) < 0)
-		step = "listen";
-	if (!step)
-		return 0;
-	int ret = -errno;
-	error = "cannot listen on " + where + ": " + step + ": " + std::strerror(errno);
-	fd.reset();
-	return ret;
-}
-
-int boundPort(int fd)
-{
-	sockaddr_storage storage{};
-	socklen_t length = sizeof(storage);
-	if (getsockname(fd, reinterpret_cast<sockaddr *>(&storage), &length) < 0)
-		return 0;
-	if (storage.ss_family == AF_INET6)
-		return ntohs(reinterpret_cast<sockaddr_in6 *>(&storage)->sin6_port);
-	return ntohs(reinterpret_cast<sockaddr_in *>(&storage)->sin_port);
-}
-
-// Answers the connection waiting on listenFd with 503 and why, then closes
-// it: the server could not be started for it, and a client must not hang
-// on a connection nobody will read.
-void refuse(int listenFd, const std::string &why)
-{
-	UniqueFd client(accept4(listenFd, nullptr, nullptr, SOCK_CLOEXEC | SOCK_NONBLOCK));
-	if (!client.isValid())
-		return;
-	const std::string body = why + "\n";
-	const std::string reply = "HTTP/1.1 503 Service Unavailable\r\nContent-Type: text/plain; charset=utf-8\r\n"
-				  "Connection: close\r\nContent-Length: " +
-				  std::to_string(body.size()) + "\r\n\r\n" + body;
-	if (send(client.get(), reply.data(), reply.size(), MSG_NOSIGNAL | MSG_DONTWAIT) < 0) {
-		// the client left already: nothing to tell it
-	}
 }
 
 } // namespace
@@ -261,7 +134,7 @@ void PreviewServer::waitForFirstClient()
 		if (startServing(error) == 0)
 			return;
 		noteError("preview server not serving: " + error);
-		refuse(listen_.get(), "preview unavailable: " + error);
+		refuseWaitingClient(listen_.get(), "preview unavailable: " + error);
 		// A client that cannot even be accepted (no fds left) keeps the
 		// socket readable: wait a little before trying again, awake for stop().
 		if (poll(&fds[1], 1, 100) > 0)
@@ -313,7 +186,7 @@ void PreviewServer::stop()
 	}
 	doorman_.join();
 	// Closes the listening socket too (libmicrohttpd owns it once serving);
-	// waits for the connection threads, each back within kStreamWait.
+	// waits for the connection threads, each back within kMjpegStreamWait.
 	if (MHD_Daemon *daemon = daemon_.exchange(nullptr))
 		mhd_->stopDaemon(daemon);
 	listen_.reset();
@@ -418,17 +291,17 @@ int PreviewServer::handle(MHD_Connection *connection, const char *urlText, const
 						 std::to_string(maxClients_) + ")") == MHD_YES;
 		}
 		encoder_->watch(stage);
-		auto *s = new Stream;
+		auto *s = new MjpegStream;
 		s->encoder = encoder_;
 		s->streams = &streams_;
 		s->stage = stage;
 		MHD_Response *response =
-			mhd_->createResponseFromCallback(MHD_SIZE_UNKNOWN, 64 * 1024, &readStream, s, &freeStream);
+			mhd_->createResponseFromCallback(MHD_SIZE_UNKNOWN, 64 * 1024, &readMjpegStream, s, &freeMjpegStream);
 		if (!response) {
-			freeStream(s);
+			freeMjpegStream(s);
 			return false;
 		}
-		const std::string type = std::string("multipart/x-mixed-replace;boundary=") + kBoundary;
+		const std::string type = std::string("multipart/x-mixed-replace;boundary=") + kMjpegBoundary;
 		mhd_->addResponseHeader(response, "Content-Type", type.c_str());
 		mhd_->addResponseHeader(response, "Cache-Control", "no-store, no-cache, must-revalidate, max-age=0");
 		mhd_->addResponseHeader(response, "Pragma", "no-cache");
