@@ -11,8 +11,10 @@
 #include <utility>
 #include <microhttpd.h>
 #include <netinet/in.h>
+#include <time.h>
 #include <poll.h>
 #include <sys/eventfd.h>
+#include <sys/resource.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -29,9 +31,25 @@ constexpr unsigned kIdleTimeoutS = 10;
 // once, so the limit leaves room for a backlog of them (with 4, ten clients
 // reconnecting together lost one reply in seven runs of the unit test).
 constexpr int kExtraConnections = kListenBacklog;
-constexpr size_t kMaxVerified = 16;
+// All connections, as many as kClientAddresses addresses may hold each: a
+// client trickling requests from one address holds at most its own share
+// (40 such connections took every slot of 24 before, issue 31).
+constexpr int kClientAddresses = 4;
+// The server's threads' nice value: libmicrohttpd's threads inherit it from
+// the thread that starts the library. Weight 110 against the keyer's 1024:
+// a flood of requests takes the keyer's core only when the keyer leaves it.
+constexpr int kServerNice = 10;
+// What a client backing off is told to wait (FailureLimits::backOffNs).
+constexpr const char *kRetryAfterS = "60";
 constexpr const char *kSecurityPolicy =
 	"default-src 'self'; script-src 'self' 'unsafe-inline'; style-src 'unsafe-inline'; img-src 'self'";
+
+uint64_t monotonicNs()
+{
+	timespec ts;
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return static_cast<uint64_t>(ts.tv_sec) * 1000000000u + static_cast<uint64_t>(ts.tv_nsec);
+}
 
 MHD_Result queue(const MicroHttpd &mhd, MHD_Connection *connection, unsigned status, const std::string &body,
 		 const char *type)
@@ -85,14 +103,12 @@ int PreviewServer::start(const PreviewServerOptions &options, PreviewEncoder &en
 		error = "'" + options.address.ip + "' is reachable from the network: a password_file is required";
 		return -EPERM;
 	}
+	passwordFile_ = options.passwordFile;
+	auth_ = std::make_unique<PreviewAuth>(options.authLimits); // no thread uses it: stopped above
 	if (needAuth_) {
-		int ret = passwords_.load(options.passwordFile, error);
+		int ret = auth_->load(passwordFile_, error);
 		if (ret < 0)
 			return ret;
-	}
-	{
-		std::lock_guard lock(authMutex_);
-		verified_.clear();
 	}
 	int ret = listenOn(options.address, listen_, error);
 	if (ret < 0)
@@ -118,6 +134,10 @@ int PreviewServer::start(const PreviewServerOptions &options, PreviewEncoder &en
 // loaded then, and the connection waiting in the backlog is its first.
 void PreviewServer::waitForFirstClient()
 {
+	// This thread only (Linux's nice is per thread), and so the library's.
+	if (setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), kServerNice) < 0) {
+		// not allowed to: the server runs at the daemon's priority
+	}
 	pollfd fds[2] = { { listen_.get(), POLLIN, 0 }, { wake_.get(), POLLIN, 0 } };
 	for (;;) {
 		if (poll(fds, 2, -1) < 0) {
@@ -150,9 +170,10 @@ int PreviewServer::startServing(std::string &error)
 	mhd_ = mhd; // before the first request can reach handle()
 	const unsigned flags =
 		MHD_USE_THREAD_PER_CONNECTION | MHD_USE_INTERNAL_POLLING_THREAD | (ipv6_ ? MHD_USE_IPv6 : 0);
+	const unsigned perClient = static_cast<unsigned>(maxClients_ + kExtraConnections);
 	MHD_Daemon *daemon = mhd->startDaemon(flags, 0, nullptr, nullptr, &onRequest, this, MHD_OPTION_LISTEN_SOCKET,
-					      listen_.get(), MHD_OPTION_CONNECTION_LIMIT,
-					      static_cast<unsigned>(maxClients_ + kExtraConnections),
+					      listen_.get(), MHD_OPTION_CONNECTION_LIMIT, perClient * kClientAddresses,
+					      MHD_OPTION_PER_IP_CONNECTION_LIMIT, perClient,
 					      MHD_OPTION_CONNECTION_TIMEOUT, kIdleTimeoutS, MHD_OPTION_END);
 	if (!daemon) {
 		int ret = errno ? -errno : -EIO;
@@ -211,47 +232,67 @@ PreviewStatus PreviewServer::status()
 	s.previewEncoded = e.encoded;
 	s.previewSkipped = e.skipped;
 	s.previewEncodeMs = e.encoded ? e.encodeNs / 1e6 / e.encoded : 0;
+	const PreviewAuthStats a = auth_->stats();
+	s.previewAuthFailures = a.failures;
+	s.previewAuthLimited = a.limited;
+	s.previewAuthBlocks = a.blocks;
 	return s;
 }
 
-bool PreviewServer::authorised(MHD_Connection *connection)
+int PreviewServer::reloadPasswords(std::string &error)
+{
+	return needAuth_ ? auth_->load(passwordFile_, error) : 0;
+}
+
+AuthVerdict PreviewServer::authorise(MHD_Connection *connection)
 {
 	if (!needAuth_)
-		return true;
+		return AuthVerdict::Allowed;
+	const MHD_ConnectionInfo *info = mhd_->getConnectionInfo(connection, MHD_CONNECTION_INFO_CLIENT_ADDRESS);
+	const std::string address = clientAddressKey(info ? info->client_addr : nullptr);
 	char *password = nullptr;
 	char *user = mhd_->basicAuthGetUsernamePassword(connection, &password);
-	bool ok = false;
-	if (user && password) {
-		std::string key = std::string(user) + '\0' + password;
-		{
-			std::lock_guard lock(authMutex_);
-			ok = verified_.count(key) > 0;
-		}
-		if (!ok && passwords_.verify(user, password)) {
-			ok = true;
-			std::lock_guard lock(authMutex_);
-			if (verified_.size() >= kMaxVerified)
-				verified_.clear();
-			verified_.insert(std::move(key));
-		}
-	}
+	const AuthVerdict verdict = auth_->check(address, user, password, monotonicNs());
 	if (user)
 		mhd_->free(user);
 	if (password)
 		mhd_->free(password);
-	return ok;
+	return verdict;
+}
+
+// The answer to a request that may not see the page, none of them hashed.
+bool PreviewServer::refuse(MHD_Connection *connection, AuthVerdict verdict)
+{
+	if (verdict == AuthVerdict::Closed)
+		return queueText(*mhd_, connection, MHD_HTTP_SERVICE_UNAVAILABLE,
+				 "preview closed: its password file was refused at the last reload (see the journal)") ==
+		       MHD_YES;
+	if (verdict == AuthVerdict::Limited) {
+		const std::string body = "too many wrong passwords from this address; try again in a minute\n";
+		MHD_Response *response = mhd_->createResponseFromBuffer(
+			body.size(), const_cast<char *>(body.data()), MHD_RESPMEM_MUST_COPY);
+		if (!response)
+			return false;
+		mhd_->addResponseHeader(response, "Content-Type", "text/plain; charset=utf-8");
+		mhd_->addResponseHeader(response, "Retry-After", kRetryAfterS);
+		MHD_Result ret = mhd_->queueResponse(connection, MHD_HTTP_TOO_MANY_REQUESTS, response);
+		mhd_->destroyResponse(response);
+		return ret == MHD_YES;
+	}
+	const std::string body = "authentication required\n";
+	MHD_Response *response =
+		mhd_->createResponseFromBuffer(body.size(), const_cast<char *>(body.data()), MHD_RESPMEM_MUST_COPY);
+	if (!response)
+		return false;
+	MHD_Result ret = mhd_->queueBasicAuthFailResponse(connection, "depthkey preview", response);
+	mhd_->destroyResponse(response);
+	return ret == MHD_YES;
 }
 
 int PreviewServer::handle(MHD_Connection *connection, const char *urlText, const char *method)
 {
-	if (!authorised(connection)) {
-		const std::string body = "authentication required\n";
-		MHD_Response *response = mhd_->createResponseFromBuffer(
-			body.size(), const_cast<char *>(body.data()), MHD_RESPMEM_MUST_COPY);
-		MHD_Result ret = mhd_->queueBasicAuthFailResponse(connection, "depthkey preview", response);
-		mhd_->destroyResponse(response);
-		return ret == MHD_YES;
-	}
+	if (const AuthVerdict verdict = authorise(connection); verdict != AuthVerdict::Allowed)
+		return refuse(connection, verdict);
 	if (std::strcmp(method, "GET") != 0 && std::strcmp(method, "HEAD") != 0)
 		return queueText(*mhd_, connection, MHD_HTTP_METHOD_NOT_ALLOWED, "only GET") == MHD_YES;
 
