@@ -77,11 +77,17 @@ MHD_Result onRequest(void *cls, MHD_Connection *connection, const char *url, con
 	static int marker;
 	if (*state == nullptr) { // headers only: answer on the next call
 		*state = &marker;
+		static_cast<PreviewServer *>(cls)->requestArrived(connection);
 		return MHD_YES;
 	}
 	if (*uploadSize != 0) // no request bodies here
 		return MHD_NO;
 	return static_cast<PreviewServer *>(cls)->handle(connection, url, method) ? MHD_YES : MHD_NO;
+}
+
+void onConnection(void *cls, MHD_Connection *connection, void **, MHD_ConnectionNotificationCode code)
+{
+	static_cast<PreviewServer *>(cls)->connectionEvent(connection, code == MHD_CONNECTION_NOTIFY_STARTED);
 }
 
 // Strips prefix and suffix from url into name; false when it does not fit.
@@ -105,6 +111,7 @@ int PreviewServer::start(const PreviewServerOptions &options, PreviewEncoder &en
 	}
 	passwordFile_ = options.passwordFile;
 	auth_ = std::make_unique<PreviewAuth>(options.authLimits); // no thread uses it: stopped above
+	deadlines_.clear();
 	if (needAuth_) {
 		int ret = auth_->load(passwordFile_, error);
 		if (ret < 0)
@@ -152,7 +159,7 @@ void PreviewServer::waitForFirstClient()
 			continue;
 		std::string error;
 		if (startServing(error) == 0)
-			return;
+			return expireSlowRequests();
 		noteError("preview server not serving: " + error);
 		refuseWaitingClient(listen_.get(), "preview unavailable: " + error);
 		// A client that cannot even be accepted (no fds left) keeps the
@@ -174,7 +181,8 @@ int PreviewServer::startServing(std::string &error)
 	MHD_Daemon *daemon = mhd->startDaemon(flags, 0, nullptr, nullptr, &onRequest, this, MHD_OPTION_LISTEN_SOCKET,
 					      listen_.get(), MHD_OPTION_CONNECTION_LIMIT, perClient * kClientAddresses,
 					      MHD_OPTION_PER_IP_CONNECTION_LIMIT, perClient,
-					      MHD_OPTION_CONNECTION_TIMEOUT, kIdleTimeoutS, MHD_OPTION_END);
+					      MHD_OPTION_CONNECTION_TIMEOUT, kIdleTimeoutS, MHD_OPTION_NOTIFY_CONNECTION,
+					      &onConnection, this, MHD_OPTION_END);
 	if (!daemon) {
 		int ret = errno ? -errno : -EIO;
 		error = std::string(kMicroHttpdSoname) + " did not start" + (errno ? std::string(": ") + std::strerror(errno) : "");
@@ -183,6 +191,35 @@ int PreviewServer::startServing(std::string &error)
 	listen_.release(); // libmicrohttpd owns it now: MHD_stop_daemon closes it
 	daemon_ = daemon;
 	return 0;
+}
+
+// Once serving, this thread cuts the connections whose request head is
+// late, once a second, until stop().
+void PreviewServer::expireSlowRequests()
+{
+	pollfd wake = { wake_.get(), POLLIN, 0 };
+	for (;;) {
+		const int n = poll(&wake, 1, 1000);
+		if (n > 0 || (n < 0 && errno != EINTR))
+			return;
+		deadlines_.expire(monotonicNs());
+	}
+}
+
+void PreviewServer::connectionEvent(MHD_Connection *connection, bool started)
+{
+	if (!started) {
+		deadlines_.closed(connection);
+		return;
+	}
+	const MHD_ConnectionInfo *info = mhd_->getConnectionInfo(connection, MHD_CONNECTION_INFO_CONNECTION_FD);
+	if (info)
+		deadlines_.opened(connection, info->connect_fd, monotonicNs());
+}
+
+void PreviewServer::requestArrived(MHD_Connection *connection)
+{
+	deadlines_.arrived(connection);
 }
 
 void PreviewServer::noteError(std::string error)
@@ -236,6 +273,7 @@ PreviewStatus PreviewServer::status()
 	s.previewAuthFailures = a.failures;
 	s.previewAuthLimited = a.limited;
 	s.previewAuthBlocks = a.blocks;
+	s.previewSlowRequestsCut = deadlines_.expired();
 	return s;
 }
 

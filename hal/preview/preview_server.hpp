@@ -22,12 +22,15 @@
 // client trickling its requests a byte at a time cannot take every slot
 // from the technician. The server's threads run at nice 10 (inherited
 // from the thread that starts libmicrohttpd): on a busy box the keyer,
-// at nice 0 on the event loop, comes first.
+// at nice 0 on the event loop, comes first. A request head not whole within
+// 5 s is cut (hal/preview/request_deadlines.hpp), so slow clients from the
+// technician's own address (127.0.0.1 through ssh -L) free their slots.
 #pragma once
 
 #include "config/listen_address.hpp"
 #include "hal/preview/microhttpd_library.hpp"
 #include "hal/preview/preview_auth.hpp"
+#include "hal/preview/request_deadlines.hpp"
 #include "hal/unique_fd.hpp"
 #include "hal/preview/preview_encoder.hpp"
 #include "hal/preview/preview_status.hpp"
@@ -87,18 +90,21 @@ public:
 
 	// Used by the C callbacks of libmicrohttpd.
 	int handle(MHD_Connection *connection, const char *url, const char *method);
+	void connectionEvent(MHD_Connection *connection, bool started); // started, or closed
+	void requestArrived(MHD_Connection *connection);                  // its head is whole
 
 private:
 	AuthVerdict authorise(MHD_Connection *connection);
 	bool refuse(MHD_Connection *connection, AuthVerdict verdict);
 	PreviewStatus status();
 	void waitForFirstClient();
+	void expireSlowRequests();
 	int startServing(std::string &error);
 	void noteError(std::string error);
 
 	UniqueFd listen_;          // ours until libmicrohttpd takes it
 	UniqueFd wake_;            // eventfd: stop() wakes the waiting thread
-	std::thread doorman_;      // waits for the first client; joined by stop()
+	std::thread doorman_;      // waits for the first client, then cuts late requests; joined by stop()
 	const MicroHttpd *(*load_)(std::string &error) = nullptr;
 	const MicroHttpd *mhd_ = nullptr;
 	std::atomic<MHD_Daemon *> daemon_{ nullptr };
@@ -108,6 +114,7 @@ private:
 	PreviewEncoder *encoder_ = nullptr;
 	std::unique_ptr<PreviewAuth> auth_ = std::make_unique<PreviewAuth>(); // replaced by start()
 	std::string passwordFile_;
+	RequestDeadlines deadlines_{ kRequestHeadDeadlineNs };
 	bool needAuth_ = false;
 	int port_ = 0;
 	int maxClients_ = 8;

@@ -46,7 +46,8 @@ std::string previewStatusJson(const PreviewStatus &s)
 		    { "encode_ms", s.previewEncodeMs },
 		    { "auth_failures", s.previewAuthFailures },
 		    { "auth_limited", s.previewAuthLimited },
-		    { "auth_blocks", s.previewAuthBlocks } } },
+		    { "auth_blocks", s.previewAuthBlocks },
+		    { "slow_requests_cut", s.previewSlowRequestsCut } } },
 	};
 	// Names come from config and devices: replace anything not UTF-8.
 	return j.dump(1, '\t', false, nlohmann::json::error_handler_t::replace) + "\n";
@@ -163,6 +164,9 @@ std::string previewStatusMetrics(const PreviewStatus &s)
 	e.family("depthkey_preview_auth_blocks_total", "counter",
 		 "Back-offs begun: a client address reached its limit of wrong passwords.");
 	e.sample("depthkey_preview_auth_blocks_total", "", static_cast<double>(s.previewAuthBlocks));
+	e.family("depthkey_preview_slow_requests_cut_total", "counter",
+		 "Preview connections cut because their request head was not whole within 5 s.");
+	e.sample("depthkey_preview_slow_requests_cut_total", "", static_cast<double>(s.previewSlowRequestsCut));
 	e.family("depthkey_uptime_seconds", "gauge", "Seconds since depthkeyd started.");
 	e.sample("depthkey_uptime_seconds", "", s.uptimeS);
 	return e.text_;

@@ -57,6 +57,7 @@ struct PreviewStatus {
 	// away unchecked (an address backing off, the hashing budget spent),
 	// back-offs begun.
 	uint64_t previewAuthFailures = 0, previewAuthLimited = 0, previewAuthBlocks = 0;
+	uint64_t previewSlowRequestsCut = 0; // connections whose request head was late
 };
 
 std::string previewStatusJson(const PreviewStatus &status);

@@ -178,7 +178,8 @@ TEST_F(PreviewLimits, AFloodOfWrongPasswordsIsCountedAndLeavesTheFrameRate)
 }
 
 // 40 connections sending a byte at a time: 0 of 12 ordinary requests were
-// answered. From another address they now hold their own share only.
+// answered. From another address they now hold their own share only, and
+// are cut when their request head is 5 s late.
 TEST_F(PreviewLimits, SlowClientsLeaveOrdinaryRequestsAnswered)
 {
 	const std::string url = start(writePasswords({ { "tech", "chalk" } }));
@@ -201,6 +202,16 @@ TEST_F(PreviewLimits, SlowClientsLeaveOrdinaryRequestsAnswered)
 	int answered = 0;
 	for (int i = 0; i < 12; i++)
 		answered += curlGet(url + "/status.json", "-u tech:chalk --max-time 3").code == 200;
+	// Their request heads are late after 5 s: cut, and counted.
+	double cut = 0;
+	depthkey::test::waitUntil(
+		[&] {
+			cut = depthkey::test::previewMetric(curlGet(url + "/metrics", "-u tech:chalk").body,
+							   "depthkey_preview_slow_requests_cut_total");
+			return cut > 0;
+		},
+		10s, 500ms);
+	EXPECT_GT(cut, 0);
 	trickling = false;
 	trickler.join();
 	for (int fd : slow)
