@@ -14,8 +14,12 @@ constexpr int kPreviewMaxFps = 15;
 
 void PreviewFeed::apply(const PreviewSettings &settings)
 {
-	if (applied_ && settings == settings_)
+	// The same settings: a server that runs re-reads its password file; one
+	// that did not start (a bad password file, a port in use) tries again.
+	if (applied_ && settings == settings_ && (server_.running() || settings.listen.empty())) {
+		rereadPasswords();
 		return;
+	}
 	stop();
 	settings_ = settings;
 	applied_ = true;
@@ -44,6 +48,22 @@ void PreviewFeed::apply(const PreviewSettings &settings)
 	const std::string text = "preview page at " + url + (options.passwordFile.empty() ? "" : " (basic authentication)");
 	logger().clearError("preview", "preview server started", { { "DEVICE", "preview" } });
 	logger().info(text, { { "DEVICE", "preview" }, { "PREVIEW_URL", url } });
+}
+
+// A reload that keeps [preview] as it was still re-reads the password file:
+// the path is the same, the accounts in it may not be (issue 31).
+void PreviewFeed::rereadPasswords()
+{
+	if (!server_.running() || settings_.passwordFile.empty())
+		return;
+	std::string error;
+	if (int ret = server_.reloadPasswords(error); ret < 0) {
+		logger().errorOnce("preview-passwords", "preview closed until the password file is fixed: " + error,
+				   { { "DEVICE", "preview" }, { "ERROR", errnoText(ret) } });
+		return;
+	}
+	logger().clearError("preview-passwords", "preview password file accepted again", { { "DEVICE", "preview" } });
+	logger().info("preview password file read again: " + settings_.passwordFile, { { "DEVICE", "preview" } });
 }
 
 // The encoder first: its waiters (streams, snapshots) return at once, so

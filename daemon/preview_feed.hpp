@@ -1,7 +1,9 @@
 // The daemon's side of the live preview: starts the JPEG worker and the HTTP
 // server from [preview] (restarting them when a reload changes it), hands
 // them the stages somebody watches, and the status once a second. A preview
-// that cannot start is logged (DEVICE=preview) and the daemon runs on.
+// that cannot start is logged (DEVICE=preview) and the daemon runs on. Every
+// reload re-reads the password file; one that is refused then closes the
+// page (hal/preview/preview_auth.hpp says why) and is logged once.
 #pragma once
 
 #include "algo/frames.hpp"
@@ -35,6 +37,8 @@ public:
 	}
 
 private:
+	void rereadPasswords();
+
 	PreviewSettings settings_;
 	bool applied_ = false;
 	PreviewEncoder encoder_;

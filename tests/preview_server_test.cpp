@@ -168,7 +168,7 @@ TEST_F(PreviewServerTest, ServesConcurrentClientsWhileTheStatusChanges)
 		{ "/nothing", kAuth, 404, "no such page" },
 	};
 	// Ten threads at once, each its client three times over: within the
-	// server's connection limit (max_clients + 16 = 24), which closes more.
+	// server's limit per client address (max_clients + 16 = 24), which closes more.
 	std::vector<std::string> replies(clients.size() * 3);
 	std::vector<std::thread> threads;
 	for (size_t c = 0; c < clients.size(); ++c)

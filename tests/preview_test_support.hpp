@@ -10,6 +10,7 @@
 
 #include <arpa/inet.h>
 #include <chrono>
+#include <cstdlib>
 #include <netinet/in.h>
 #include <poll.h>
 #include <string>
@@ -37,12 +38,23 @@ struct PreviewTestPictures {
 	PreviewTestPictures &operator=(const PreviewTestPictures &) = delete;
 };
 
-// A connection to the server on 127.0.0.1:port, or -1.
-inline int connectToPreview(int port)
+// A connection to the server on 127.0.0.1:port, or -1; from the loopback
+// address `from` when given (any of 127.0.0.0/8 is this host: a second
+// client address for tests of per-address limits).
+inline int connectToPreview(int port, const char *from = nullptr)
 {
 	const int fd = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
 	if (fd < 0)
 		return -1;
+	if (from) {
+		sockaddr_in source{};
+		source.sin_family = AF_INET;
+		inet_pton(AF_INET, from, &source.sin_addr);
+		if (bind(fd, reinterpret_cast<sockaddr *>(&source), sizeof(source)) != 0) {
+			close(fd);
+			return -1;
+		}
+	}
 	sockaddr_in address{};
 	address.sin_family = AF_INET;
 	address.sin_port = htons(uint16_t(port));
@@ -77,6 +89,13 @@ inline std::string readPreviewReply(int fd, std::chrono::milliseconds timeout)
 			break;
 	}
 	return reply;
+}
+
+// The value of a metric without labels in /metrics text, -1 if absent.
+inline double previewMetric(const std::string &text, const std::string &name)
+{
+	const size_t at = text.find("\n" + name + " ");
+	return at == std::string::npos ? -1 : std::atof(text.c_str() + at + name.size() + 2);
 }
 
 } // namespace depthkey::test

@@ -31,6 +31,7 @@ struct MicroHttpd {
 	decltype(&::MHD_basic_auth_get_username_password) basicAuthGetUsernamePassword;
 	decltype(&::MHD_queue_basic_auth_fail_response) queueBasicAuthFailResponse;
 	decltype(&::MHD_free) free;
+	decltype(&::MHD_get_connection_info) getConnectionInfo;
 };
 
 // The library's soname, as Debian's libmicrohttpd12 installs it.

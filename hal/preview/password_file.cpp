@@ -1,5 +1,6 @@
 #include "hal/preview/password_file.hpp"
 
+#include "hal/preview/constant_time.hpp"
 #include "hal/unique_fd.hpp"
 
 #include <cerrno>
@@ -14,16 +15,6 @@
 namespace depthkey {
 
 namespace {
-
-bool equalConstantTime(const std::string &a, const std::string &b)
-{
-	if (a.size() != b.size())
-		return false;
-	unsigned char diff = 0;
-	for (size_t i = 0; i < a.size(); i++)
-		diff |= static_cast<unsigned char>(a[i] ^ b[i]);
-	return diff == 0;
-}
 
 std::string modeText(mode_t mode)
 {

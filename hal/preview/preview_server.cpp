@@ -1,5 +1,7 @@
 #include "hal/preview/preview_server.hpp"
 
+#include "hal/preview/mjpeg_stream.hpp"
+#include "hal/preview/preview_listener.hpp"
 #include "hal/preview/preview_page.hpp"
 #include "hal/unique_fd.hpp"
 
@@ -9,8 +11,10 @@
 #include <utility>
 #include <microhttpd.h>
 #include <netinet/in.h>
+#include <time.h>
 #include <poll.h>
 #include <sys/eventfd.h>
+#include <sys/resource.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -18,11 +22,8 @@ namespace depthkey {
 
 namespace {
 
-constexpr const char *kBoundary = "boundarydonotcross"; // uStreamer's
-constexpr auto kStreamWait = std::chrono::milliseconds(500);
 constexpr auto kSnapshotWait = std::chrono::milliseconds(3000);
 constexpr unsigned kIdleTimeoutS = 10;
-constexpr int kListenBacklog = 16;
 // Connections beyond the streams (the page, status, metrics, snapshots, and
 // closed ones whose threads have not yet been reaped): libmicrohttpd closes
 // any connection over its limit without a word. The connections waiting in
@@ -30,65 +31,24 @@ constexpr int kListenBacklog = 16;
 // once, so the limit leaves room for a backlog of them (with 4, ten clients
 // reconnecting together lost one reply in seven runs of the unit test).
 constexpr int kExtraConnections = kListenBacklog;
-constexpr size_t kMaxVerified = 16;
+// All connections, as many as kClientAddresses addresses may hold each: a
+// client trickling requests from one address holds at most its own share
+// (40 such connections took every slot of 24 before, issue 31).
+constexpr int kClientAddresses = 4;
+// The server's threads' nice value: libmicrohttpd's threads inherit it from
+// the thread that starts the library. Weight 110 against the keyer's 1024:
+// a flood of requests takes the keyer's core only when the keyer leaves it.
+constexpr int kServerNice = 10;
+// What a client backing off is told to wait (FailureLimits::backOffNs).
+constexpr const char *kRetryAfterS = "60";
 constexpr const char *kSecurityPolicy =
 	"default-src 'self'; script-src 'self' 'unsafe-inline'; style-src 'unsafe-inline'; img-src 'self'";
 
-// One MJPEG stream: the frame being sent and how far.
-struct Stream {
-	PreviewEncoder *encoder = nullptr;
-	std::atomic<int> *streams = nullptr;
-	PreviewStage stage = PreviewStage::Composite;
-	uint64_t lastSequence = 0;
-	std::shared_ptr<const EncodedFrame> frame;
-	std::string head; // part headers before the JPEG
-	size_t offset = 0; // into head + jpeg + "\r\n"
-};
-
-ssize_t readStream(void *cls, uint64_t, char *buf, size_t max)
+uint64_t monotonicNs()
 {
-	auto *s = static_cast<Stream *>(cls);
-	const size_t total = s->frame ? s->head.size() + s->frame->jpeg.size() + 2 : 0;
-	if (!s->frame || s->offset >= total) {
-		// The newest frame when the socket takes more: a slow client skips.
-		auto next = s->encoder->waitNewer(s->stage, s->lastSequence, kStreamWait);
-		if (!next)
-			return s->encoder->running() ? 0 : MHD_CONTENT_READER_END_OF_STREAM;
-		s->frame = std::move(next);
-		s->lastSequence = s->frame->sequence;
-		s->head = std::string("--") + kBoundary + "\r\nContent-Type: image/jpeg\r\nContent-Length: " +
-			  std::to_string(s->frame->jpeg.size()) + "\r\nX-Timestamp: " +
-			  std::to_string(s->frame->captureNs / 1000) + "\r\n\r\n";
-		s->offset = 0;
-	}
-	const std::vector<uint8_t> &jpeg = s->frame->jpeg;
-	size_t done = 0;
-	while (done < max) {
-		size_t at = s->offset;
-		if (at < s->head.size()) {
-			size_t n = std::min(max - done, s->head.size() - at);
-			std::memcpy(buf + done, s->head.data() + at, n);
-			done += n, s->offset += n;
-		} else if (at < s->head.size() + jpeg.size()) {
-			size_t from = at - s->head.size(), n = std::min(max - done, jpeg.size() - from);
-			std::memcpy(buf + done, jpeg.data() + from, n);
-			done += n, s->offset += n;
-		} else if (at < s->head.size() + jpeg.size() + 2) {
-			buf[done++] = "\r\n"[at - s->head.size() - jpeg.size()];
-			s->offset++;
-		} else {
-			break;
-		}
-	}
-	return static_cast<ssize_t>(done);
-}
-
-void freeStream(void *cls)
-{
-	auto *s = static_cast<Stream *>(cls);
-	s->encoder->unwatch(s->stage);
-	(*s->streams)--;
-	delete s;
+	timespec ts;
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return static_cast<uint64_t>(ts.tv_sec) * 1000000000u + static_cast<uint64_t>(ts.tv_nsec);
 }
 
 MHD_Result queue(const MicroHttpd &mhd, MHD_Connection *connection, unsigned status, const std::string &body,
@@ -117,11 +77,17 @@ MHD_Result onRequest(void *cls, MHD_Connection *connection, const char *url, con
 	static int marker;
 	if (*state == nullptr) { // headers only: answer on the next call
 		*state = &marker;
+		static_cast<PreviewServer *>(cls)->requestArrived(connection);
 		return MHD_YES;
 	}
 	if (*uploadSize != 0) // no request bodies here
 		return MHD_NO;
 	return static_cast<PreviewServer *>(cls)->handle(connection, url, method) ? MHD_YES : MHD_NO;
+}
+
+void onConnection(void *cls, MHD_Connection *connection, void **, MHD_ConnectionNotificationCode code)
+{
+	static_cast<PreviewServer *>(cls)->connectionEvent(connection, code == MHD_CONNECTION_NOTIFY_STARTED);
 }
 
 // Strips prefix and suffix from url into name; false when it does not fit.
@@ -131,75 +97,6 @@ bool stageUrl(std::string_view url, std::string_view prefix, std::string_view su
 	    url.substr(url.size() - suffix.size()) != suffix)
 		return false;
 	return previewStageFromName(url.substr(prefix.size(), url.size() - prefix.size() - suffix.size()), stage);
-}
-
-// The listening socket is ours, so that a bind failure has its own errno.
-int listenOn(const ListenAddress &address, UniqueFd &fd, std::string &error)
-{
-	sockaddr_storage storage{};
-	socklen_t length;
-	if (address.ipv6) {
-		auto *a = reinterpret_cast<sockaddr_in6 *>(&storage);
-		a->sin6_family = AF_INET6;
-		a->sin6_port = htons(static_cast<uint16_t>(address.port));
-		inet_pton(AF_INET6, address.ip.c_str(), &a->sin6_addr);
-		length = sizeof(*a);
-	} else {
-		auto *a = reinterpret_cast<sockaddr_in *>(&storage);
-		a->sin_family = AF_INET;
-		a->sin_port = htons(static_cast<uint16_t>(address.port));
-		inet_pton(AF_INET, address.ip.c_str(), &a->sin_addr);
-		length = sizeof(*a);
-	}
-	const std::string where = (address.ipv6 ? "[" + address.ip + "]" : address.ip) + ":" +
-				  std::to_string(address.port);
-	fd = UniqueFd(socket(storage.ss_family, SOCK_STREAM | SOCK_CLOEXEC, 0));
-	int one = 1;
-	const char *step = nullptr;
-	if (!fd.isValid())
-		step = "socket";
-	else if (setsockopt(fd.get(), SOL_SOCKET, SO_REUSEADDR, &one, sizeof(one)) < 0)
-		step = "SO_REUSEADDR";
-	else if (address.ipv6 && setsockopt(fd.get(), IPPROTO_IPV6, IPV6_V6ONLY, &one, sizeof(one)) < 0)
-		step = "IPV6_V6ONLY";
-	else if (bind(fd.get(), reinterpret_cast<sockaddr *>(&storage), length) < 0)
-		step = "bind";
-	else if (listen(fd.get(), kListenBacklog) < 0)
-		step = "listen";
-	if (!step)
-		return 0;
-	int ret = -errno;
-	error = "cannot listen on " + where + ": " + step + ": " + std::strerror(errno);
-	fd.reset();
-	return ret;
-}
-
-int boundPort(int fd)
-{
-	sockaddr_storage storage{};
-	socklen_t length = sizeof(storage);
-	if (getsockname(fd, reinterpret_cast<sockaddr *>(&storage), &length) < 0)
-		return 0;
-	if (storage.ss_family == AF_INET6)
-		return ntohs(reinterpret_cast<sockaddr_in6 *>(&storage)->sin6_port);
-	return ntohs(reinterpret_cast<sockaddr_in *>(&storage)->sin_port);
-}
-
-// Answers the connection waiting on listenFd with 503 and why, then closes
-// it: the server could not be started for it, and a client must not hang
-// on a connection nobody will read.
-void refuse(int listenFd, const std::string &why)
-{
-	UniqueFd client(accept4(listenFd, nullptr, nullptr, SOCK_CLOEXEC | SOCK_NONBLOCK));
-	if (!client.isValid())
-		return;
-	const std::string body = why + "\n";
-	const std::string reply = "HTTP/1.1 503 Service Unavailable\r\nContent-Type: text/plain; charset=utf-8\r\n"
-				  "Connection: close\r\nContent-Length: " +
-				  std::to_string(body.size()) + "\r\n\r\n" + body;
-	if (send(client.get(), reply.data(), reply.size(), MSG_NOSIGNAL | MSG_DONTWAIT) < 0) {
-		// the client left already: nothing to tell it
-	}
 }
 
 } // namespace
@@ -212,14 +109,13 @@ int PreviewServer::start(const PreviewServerOptions &options, PreviewEncoder &en
 		error = "'" + options.address.ip + "' is reachable from the network: a password_file is required";
 		return -EPERM;
 	}
+	passwordFile_ = options.passwordFile;
+	auth_ = std::make_unique<PreviewAuth>(options.authLimits); // no thread uses it: stopped above
+	deadlines_.clear();
 	if (needAuth_) {
-		int ret = passwords_.load(options.passwordFile, error);
+		int ret = auth_->load(passwordFile_, error);
 		if (ret < 0)
 			return ret;
-	}
-	{
-		std::lock_guard lock(authMutex_);
-		verified_.clear();
 	}
 	int ret = listenOn(options.address, listen_, error);
 	if (ret < 0)
@@ -245,6 +141,10 @@ int PreviewServer::start(const PreviewServerOptions &options, PreviewEncoder &en
 // loaded then, and the connection waiting in the backlog is its first.
 void PreviewServer::waitForFirstClient()
 {
+	// This thread only (Linux's nice is per thread), and so the library's.
+	if (setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), kServerNice) < 0) {
+		// not allowed to: the server runs at the daemon's priority
+	}
 	pollfd fds[2] = { { listen_.get(), POLLIN, 0 }, { wake_.get(), POLLIN, 0 } };
 	for (;;) {
 		if (poll(fds, 2, -1) < 0) {
@@ -259,9 +159,9 @@ void PreviewServer::waitForFirstClient()
 			continue;
 		std::string error;
 		if (startServing(error) == 0)
-			return;
+			return expireSlowRequests();
 		noteError("preview server not serving: " + error);
-		refuse(listen_.get(), "preview unavailable: " + error);
+		refuseWaitingClient(listen_.get(), "preview unavailable: " + error);
 		// A client that cannot even be accepted (no fds left) keeps the
 		// socket readable: wait a little before trying again, awake for stop().
 		if (poll(&fds[1], 1, 100) > 0)
@@ -277,10 +177,12 @@ int PreviewServer::startServing(std::string &error)
 	mhd_ = mhd; // before the first request can reach handle()
 	const unsigned flags =
 		MHD_USE_THREAD_PER_CONNECTION | MHD_USE_INTERNAL_POLLING_THREAD | (ipv6_ ? MHD_USE_IPv6 : 0);
+	const unsigned perClient = static_cast<unsigned>(maxClients_ + kExtraConnections);
 	MHD_Daemon *daemon = mhd->startDaemon(flags, 0, nullptr, nullptr, &onRequest, this, MHD_OPTION_LISTEN_SOCKET,
-					      listen_.get(), MHD_OPTION_CONNECTION_LIMIT,
-					      static_cast<unsigned>(maxClients_ + kExtraConnections),
-					      MHD_OPTION_CONNECTION_TIMEOUT, kIdleTimeoutS, MHD_OPTION_END);
+					      listen_.get(), MHD_OPTION_CONNECTION_LIMIT, perClient * kClientAddresses,
+					      MHD_OPTION_PER_IP_CONNECTION_LIMIT, perClient,
+					      MHD_OPTION_CONNECTION_TIMEOUT, kIdleTimeoutS, MHD_OPTION_NOTIFY_CONNECTION,
+					      &onConnection, this, MHD_OPTION_END);
 	if (!daemon) {
 		int ret = errno ? -errno : -EIO;
 		error = std::string(kMicroHttpdSoname) + " did not start" + (errno ? std::string(": ") + std::strerror(errno) : "");
@@ -289,6 +191,35 @@ int PreviewServer::startServing(std::string &error)
 	listen_.release(); // libmicrohttpd owns it now: MHD_stop_daemon closes it
 	daemon_ = daemon;
 	return 0;
+}
+
+// Once serving, this thread cuts the connections whose request head is
+// late, once a second, until stop().
+void PreviewServer::expireSlowRequests()
+{
+	pollfd wake = { wake_.get(), POLLIN, 0 };
+	for (;;) {
+		const int n = poll(&wake, 1, 1000);
+		if (n > 0 || (n < 0 && errno != EINTR))
+			return;
+		deadlines_.expire(monotonicNs());
+	}
+}
+
+void PreviewServer::connectionEvent(MHD_Connection *connection, bool started)
+{
+	if (!started) {
+		deadlines_.closed(connection);
+		return;
+	}
+	const MHD_ConnectionInfo *info = mhd_->getConnectionInfo(connection, MHD_CONNECTION_INFO_CONNECTION_FD);
+	if (info)
+		deadlines_.opened(connection, info->connect_fd, monotonicNs());
+}
+
+void PreviewServer::requestArrived(MHD_Connection *connection)
+{
+	deadlines_.arrived(connection);
 }
 
 void PreviewServer::noteError(std::string error)
@@ -313,7 +244,7 @@ void PreviewServer::stop()
 	}
 	doorman_.join();
 	// Closes the listening socket too (libmicrohttpd owns it once serving);
-	// waits for the connection threads, each back within kStreamWait.
+	// waits for the connection threads, each back within kMjpegStreamWait.
 	if (MHD_Daemon *daemon = daemon_.exchange(nullptr))
 		mhd_->stopDaemon(daemon);
 	listen_.reset();
@@ -338,47 +269,68 @@ PreviewStatus PreviewServer::status()
 	s.previewEncoded = e.encoded;
 	s.previewSkipped = e.skipped;
 	s.previewEncodeMs = e.encoded ? e.encodeNs / 1e6 / e.encoded : 0;
+	const PreviewAuthStats a = auth_->stats();
+	s.previewAuthFailures = a.failures;
+	s.previewAuthLimited = a.limited;
+	s.previewAuthBlocks = a.blocks;
+	s.previewSlowRequestsCut = deadlines_.expired();
 	return s;
 }
 
-bool PreviewServer::authorised(MHD_Connection *connection)
+int PreviewServer::reloadPasswords(std::string &error)
+{
+	return needAuth_ ? auth_->load(passwordFile_, error) : 0;
+}
+
+AuthVerdict PreviewServer::authorise(MHD_Connection *connection)
 {
 	if (!needAuth_)
-		return true;
+		return AuthVerdict::Allowed;
+	const MHD_ConnectionInfo *info = mhd_->getConnectionInfo(connection, MHD_CONNECTION_INFO_CLIENT_ADDRESS);
+	const std::string address = clientAddressKey(info ? info->client_addr : nullptr);
 	char *password = nullptr;
 	char *user = mhd_->basicAuthGetUsernamePassword(connection, &password);
-	bool ok = false;
-	if (user && password) {
-		std::string key = std::string(user) + '\0' + password;
-		{
-			std::lock_guard lock(authMutex_);
-			ok = verified_.count(key) > 0;
-		}
-		if (!ok && passwords_.verify(user, password)) {
-			ok = true;
-			std::lock_guard lock(authMutex_);
-			if (verified_.size() >= kMaxVerified)
-				verified_.clear();
-			verified_.insert(std::move(key));
-		}
-	}
+	const AuthVerdict verdict = auth_->check(address, user, password, monotonicNs());
 	if (user)
 		mhd_->free(user);
 	if (password)
 		mhd_->free(password);
-	return ok;
+	return verdict;
+}
+
+// The answer to a request that may not see the page, none of them hashed.
+bool PreviewServer::refuse(MHD_Connection *connection, AuthVerdict verdict)
+{
+	if (verdict == AuthVerdict::Closed)
+		return queueText(*mhd_, connection, MHD_HTTP_SERVICE_UNAVAILABLE,
+				 "preview closed: its password file was refused at the last reload (see the journal)") ==
+		       MHD_YES;
+	if (verdict == AuthVerdict::Limited) {
+		const std::string body = "too many wrong passwords from this address; try again in a minute\n";
+		MHD_Response *response = mhd_->createResponseFromBuffer(
+			body.size(), const_cast<char *>(body.data()), MHD_RESPMEM_MUST_COPY);
+		if (!response)
+			return false;
+		mhd_->addResponseHeader(response, "Content-Type", "text/plain; charset=utf-8");
+		mhd_->addResponseHeader(response, "Retry-After", kRetryAfterS);
+		MHD_Result ret = mhd_->queueResponse(connection, MHD_HTTP_TOO_MANY_REQUESTS, response);
+		mhd_->destroyResponse(response);
+		return ret == MHD_YES;
+	}
+	const std::string body = "authentication required\n";
+	MHD_Response *response =
+		mhd_->createResponseFromBuffer(body.size(), const_cast<char *>(body.data()), MHD_RESPMEM_MUST_COPY);
+	if (!response)
+		return false;
+	MHD_Result ret = mhd_->queueBasicAuthFailResponse(connection, "depthkey preview", response);
+	mhd_->destroyResponse(response);
+	return ret == MHD_YES;
 }
 
 int PreviewServer::handle(MHD_Connection *connection, const char *urlText, const char *method)
 {
-	if (!authorised(connection)) {
-		const std::string body = "authentication required\n";
-		MHD_Response *response = mhd_->createResponseFromBuffer(
-			body.size(), const_cast<char *>(body.data()), MHD_RESPMEM_MUST_COPY);
-		MHD_Result ret = mhd_->queueBasicAuthFailResponse(connection, "depthkey preview", response);
-		mhd_->destroyResponse(response);
-		return ret == MHD_YES;
-	}
+	if (const AuthVerdict verdict = authorise(connection); verdict != AuthVerdict::Allowed)
+		return refuse(connection, verdict);
 	if (std::strcmp(method, "GET") != 0 && std::strcmp(method, "HEAD") != 0)
 		return queueText(*mhd_, connection, MHD_HTTP_METHOD_NOT_ALLOWED, "only GET") == MHD_YES;
 
@@ -418,17 +370,17 @@ int PreviewServer::handle(MHD_Connection *connection, const char *urlText, const
 						 std::to_string(maxClients_) + ")") == MHD_YES;
 		}
 		encoder_->watch(stage);
-		auto *s = new Stream;
+		auto *s = new MjpegStream;
 		s->encoder = encoder_;
 		s->streams = &streams_;
 		s->stage = stage;
 		MHD_Response *response =
-			mhd_->createResponseFromCallback(MHD_SIZE_UNKNOWN, 64 * 1024, &readStream, s, &freeStream);
+			mhd_->createResponseFromCallback(MHD_SIZE_UNKNOWN, 64 * 1024, &readMjpegStream, s, &freeMjpegStream);
 		if (!response) {
-			freeStream(s);
+			freeMjpegStream(s);
 			return false;
 		}
-		const std::string type = std::string("multipart/x-mixed-replace;boundary=") + kBoundary;
+		const std::string type = std::string("multipart/x-mixed-replace;boundary=") + kMjpegBoundary;
 		mhd_->addResponseHeader(response, "Content-Type", type.c_str());
 		mhd_->addResponseHeader(response, "Cache-Control", "no-store, no-cache, must-revalidate, max-age=0");
 		mhd_->addResponseHeader(response, "Pragma", "no-cache");

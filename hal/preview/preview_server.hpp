@@ -13,12 +13,24 @@
 // A stream's thread sends the newest JPEG whenever its socket takes more,
 // so a slow client skips frames and nobody waits for it. At most maxClients
 // streams run at once (more get 503); connections idle for 10 s are closed.
-// With a password file every request needs HTTP basic authentication.
+// With a password file every request needs HTTP basic authentication
+// (hal/preview/preview_auth.hpp: re-read by reloadPasswords(), failures
+// limited per client address).
+//
+// Slow clients (issue 31): one client address may hold at most
+// maxClients + 16 connections, all together four times that, so that a
+// client trickling its requests a byte at a time cannot take every slot
+// from the technician. The server's threads run at nice 10 (inherited
+// from the thread that starts libmicrohttpd): on a busy box the keyer,
+// at nice 0 on the event loop, comes first. A request head not whole within
+// 5 s is cut (hal/preview/request_deadlines.hpp), so slow clients from the
+// technician's own address (127.0.0.1 through ssh -L) free their slots.
 #pragma once
 
 #include "config/listen_address.hpp"
 #include "hal/preview/microhttpd_library.hpp"
-#include "hal/preview/password_file.hpp"
+#include "hal/preview/preview_auth.hpp"
+#include "hal/preview/request_deadlines.hpp"
 #include "hal/unique_fd.hpp"
 #include "hal/preview/preview_encoder.hpp"
 #include "hal/preview/preview_status.hpp"
@@ -26,7 +38,6 @@
 #include <atomic>
 #include <memory>
 #include <mutex>
-#include <set>
 #include <string>
 #include <thread>
 
@@ -39,6 +50,9 @@ struct PreviewServerOptions {
 	ListenAddress address;
 	std::string passwordFile; // "" = no authentication (loopback only)
 	int maxClients = 8;
+	// What wrong passwords may cost (the fuzz harness lifts them, to reach
+	// the hashing on every input).
+	PreviewAuthLimits authLimits;
 	// What loads libmicrohttpd (tests give one that fails); null: loadMicroHttpd.
 	const MicroHttpd *(*load)(std::string &error) = nullptr;
 };
@@ -56,6 +70,11 @@ public:
 	// or a negative errno with error saying what and where.
 	int start(const PreviewServerOptions &options, PreviewEncoder &encoder, std::string &error);
 	void stop();
+	// On a reload that keeps the options: reads the password file again
+	// (nothing without one). Returns 0, or a negative errno with error
+	// naming the file and line; the page is closed then (503) until a
+	// good file is read. For the event loop: the file is small, no hashing.
+	int reloadPasswords(std::string &error);
 	bool running() const { return doorman_.joinable(); } // started, not yet stopped
 	// libmicrohttpd loaded and serving (after the first client).
 	bool serving() const { return daemon_ != nullptr; }
@@ -71,17 +90,21 @@ public:
 
 	// Used by the C callbacks of libmicrohttpd.
 	int handle(MHD_Connection *connection, const char *url, const char *method);
+	void connectionEvent(MHD_Connection *connection, bool started); // started, or closed
+	void requestArrived(MHD_Connection *connection);                  // its head is whole
 
 private:
-	bool authorised(MHD_Connection *connection);
+	AuthVerdict authorise(MHD_Connection *connection);
+	bool refuse(MHD_Connection *connection, AuthVerdict verdict);
 	PreviewStatus status();
 	void waitForFirstClient();
+	void expireSlowRequests();
 	int startServing(std::string &error);
 	void noteError(std::string error);
 
 	UniqueFd listen_;          // ours until libmicrohttpd takes it
 	UniqueFd wake_;            // eventfd: stop() wakes the waiting thread
-	std::thread doorman_;      // waits for the first client; joined by stop()
+	std::thread doorman_;      // waits for the first client, then cuts late requests; joined by stop()
 	const MicroHttpd *(*load_)(std::string &error) = nullptr;
 	const MicroHttpd *mhd_ = nullptr;
 	std::atomic<MHD_Daemon *> daemon_{ nullptr };
@@ -89,17 +112,15 @@ private:
 	std::mutex errorMutex_;
 	std::string error_;
 	PreviewEncoder *encoder_ = nullptr;
-	PasswordFile passwords_;
+	std::unique_ptr<PreviewAuth> auth_ = std::make_unique<PreviewAuth>(); // replaced by start()
+	std::string passwordFile_;
+	RequestDeadlines deadlines_{ kRequestHeadDeadlineNs };
 	bool needAuth_ = false;
 	int port_ = 0;
 	int maxClients_ = 8;
 	std::atomic<int> streams_{ 0 };
 	std::mutex statusMutex_;
 	PreviewStatus status_;
-	// "user:password" pairs verified already: a hash costs milliseconds and
-	// the page asks every second. Bounded; cleared on restart.
-	std::mutex authMutex_;
-	std::set<std::string> verified_;
 };
 
 } // namespace depthkey

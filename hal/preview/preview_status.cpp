@@ -43,7 +43,11 @@ std::string previewStatusJson(const PreviewStatus &s)
 		  { { "clients", s.previewClients },
 		    { "encoded", s.previewEncoded },
 		    { "skipped", s.previewSkipped },
-		    { "encode_ms", s.previewEncodeMs } } },
+		    { "encode_ms", s.previewEncodeMs },
+		    { "auth_failures", s.previewAuthFailures },
+		    { "auth_limited", s.previewAuthLimited },
+		    { "auth_blocks", s.previewAuthBlocks },
+		    { "slow_requests_cut", s.previewSlowRequestsCut } } },
 	};
 	// Names come from config and devices: replace anything not UTF-8.
 	return j.dump(1, '\t', false, nlohmann::json::error_handler_t::replace) + "\n";
@@ -150,6 +154,19 @@ std::string previewStatusMetrics(const PreviewStatus &s)
 	e.sample("depthkey_preview_clients", "", s.previewClients);
 	e.family("depthkey_preview_jpegs_total", "counter", "Preview JPEGs encoded.");
 	e.sample("depthkey_preview_jpegs_total", "", static_cast<double>(s.previewEncoded));
+	e.family("depthkey_preview_auth_failures_total", "counter",
+		 "Preview requests whose password was checked and wrong.");
+	e.sample("depthkey_preview_auth_failures_total", "", static_cast<double>(s.previewAuthFailures));
+	e.family("depthkey_preview_auth_limited_total", "counter",
+		 "Preview requests turned away unchecked (429): their address backing off after wrong passwords, "
+		 "or the hashing budget spent.");
+	e.sample("depthkey_preview_auth_limited_total", "", static_cast<double>(s.previewAuthLimited));
+	e.family("depthkey_preview_auth_blocks_total", "counter",
+		 "Back-offs begun: a client address reached its limit of wrong passwords.");
+	e.sample("depthkey_preview_auth_blocks_total", "", static_cast<double>(s.previewAuthBlocks));
+	e.family("depthkey_preview_slow_requests_cut_total", "counter",
+		 "Preview connections cut because their request head was not whole within 5 s.");
+	e.sample("depthkey_preview_slow_requests_cut_total", "", static_cast<double>(s.previewSlowRequestsCut));
 	e.family("depthkey_uptime_seconds", "gauge", "Seconds since depthkeyd started.");
 	e.sample("depthkey_uptime_seconds", "", s.uptimeS);
 	return e.text_;

@@ -53,6 +53,11 @@ struct PreviewStatus {
 	int previewClients = 0;
 	uint64_t previewEncoded = 0, previewSkipped = 0;
 	double previewEncodeMs = 0;      // mean thread time per JPEG
+	// hal/preview/preview_auth.hpp: wrong credentials hashed, requests turned
+	// away unchecked (an address backing off, the hashing budget spent),
+	// back-offs begun.
+	uint64_t previewAuthFailures = 0, previewAuthLimited = 0, previewAuthBlocks = 0;
+	uint64_t previewSlowRequestsCut = 0; // connections whose request head was late
 };
 
 std::string previewStatusJson(const PreviewStatus &status);

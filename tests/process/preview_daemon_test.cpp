@@ -54,16 +54,7 @@ protected:
 		return depthkey::test::previewUrlFromLog(daemon_.log());
 	}
 
-	uint64_t latestFrame()
-	{
-		dk_shm_reader r;
-		uint64_t frame = 0;
-		if (dk_shm_open((prefix_ + ".composite").c_str(), &r) == 0) {
-			dk_shm_latest(&r, &frame);
-			dk_shm_close(&r);
-		}
-		return frame;
-	}
+	uint64_t latestFrame() { return depthkey::test::latestSharedFrame(prefix_ + ".composite"); }
 
 	DaemonProcess daemon_;
 	std::string prefix_;

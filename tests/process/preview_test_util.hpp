@@ -2,6 +2,7 @@
 // parts of a multipart MJPEG stream.
 #pragma once
 
+#include "hal/depthkey_shm.h"
 #include "tests/process/shell_command.hpp"
 
 #include <atomic>
@@ -81,6 +82,19 @@ inline std::vector<std::string> mjpegParts(const std::string &stream)
 		at = body + length;
 	}
 	return parts;
+}
+
+// The newest frame number in the shared-memory output `name` (0 if it
+// cannot be opened): the daemon's published frame count, read as a reader would.
+inline uint64_t latestSharedFrame(const std::string &name)
+{
+	dk_shm_reader r;
+	uint64_t frame = 0;
+	if (dk_shm_open(name.c_str(), &r) == 0) {
+		dk_shm_latest(&r, &frame);
+		dk_shm_close(&r);
+	}
+	return frame;
 }
 
 } // namespace depthkey::test
