@@ -19,6 +19,7 @@ namespace depthkey::test {
 struct EdgeScene {
 	RgbImage colour;
 	Gray8Image matte; // 0 or 255
+	RgbImage room;    // the same view without the lecturer (the board)
 };
 
 // The lecture at timeS, w x h (any size, odd ones too), the matte's steps
@@ -30,7 +31,10 @@ inline EdgeScene lectureEdgeScene(int w, int h, double timeS, int step = 4, unsi
 	ColourFrame frame;
 	GroundTruth truth;
 	simulator.renderColour(timeS, frame, &truth);
-	EdgeScene scene{ frame.rgb, Gray8Image(w, h, 0) };
+	EdgeScene scene{ frame.rgb, Gray8Image(w, h, 0), {} };
+	simulator.setLecturerVisible(false);
+	simulator.renderColour(timeS, frame);
+	scene.room = frame.rgb;
 	std::mt19937 random(seed);
 	for (int y = 0; y < h; ++y)
 		for (int x = 0; x < w; ++x) {
