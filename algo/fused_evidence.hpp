@@ -42,6 +42,7 @@ namespace depthkey {
 class FusedEvidence final : public BandEvidence
 {
 public:
+	FusedEvidence() { configure(DecisionSettings()); }
 	// The weights' tables; boardMatch and stillColour >= 1.
 	void configure(const DecisionSettings &settings);
 
