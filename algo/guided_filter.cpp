@@ -3,6 +3,7 @@
 #include "algo/column_sums.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <climits>
 #include <cstring>
 
@@ -42,49 +43,73 @@ void GuidedFilter::configure(int radius, int eps)
 void GuidedFilter::markNearEdges(const Gray8Image &matte, const Roi &roi)
 {
 	const int w = roi.x1 - roi.x0, h = roi.y1 - roi.y0, r = radius_, rows = 4 * r + 3;
+	const int stride = (w + 7) & ~7; // whole words, the padding 0
+	constexpr uint64_t kOnes = 0x0101010101010101ull, kLow7 = 0x7f7f7f7f7f7f7f7full;
+	auto word = [](const uint8_t *p) {
+		uint64_t v;
+		std::memcpy(&v, p, sizeof v);
+		return v;
+	};
 	// An edge between a pixel (x, y) and its right or lower neighbour: a
 	// window holding both is centred within r of them (its a, b are not 0,
 	// p), and a pixel holding such a window lies within 2r, in
-	// [x - 2r, x + 2r + 1] x [y - 2r, y + 2r + 1]. So along rows a pixel X
-	// is reached from edges in [X - 2r - 1, X + 2r], and along columns Y
-	// from rows [Y - 2r - 1, Y + 2r]: counts of both slide.
+	// [x - 2r, x + 2r + 1] x [y - 2r, y + 2r + 1]. Along a row, those
+	// spans are set (edges are few: eight pixels are compared at a time);
+	// along columns, a byte per column counts the rows' spans that reach it
+	// (at most 4r + 2), eight columns a word.
 	auto alongRow = [&](int y) {
 		const uint8_t *m = matte.row(roi.y0 + y) + roi.x0;
 		const uint8_t *below = y + 1 < h ? matte.row(roi.y0 + y + 1) + roi.x0 : m;
-		uint8_t *e = edges_.data(), *out = alongRows_.data() + size_t(y % rows) * w;
-		for (int x = 0; x + 1 < w; ++x)
-			e[x] = (m[x + 1] != m[x]) | (below[x] != m[x]);
-		e[w - 1] = below[w - 1] != m[w - 1];
-		int count = 0;
-		for (int x = 0; x < std::min(w, 2 * r); ++x)
-			count += e[x];
-		for (int x = 0; x < w; ++x) {
-			if (x + 2 * r < w)
-				count += e[x + 2 * r];
-			if (x - 2 * r - 2 >= 0)
-				count -= e[x - 2 * r - 2];
-			out[x] = count != 0;
+		uint8_t *out = alongRows_.data() + size_t(y % rows) * stride;
+		std::memset(out, 0, size_t(stride));
+		int setEnd = 0;
+		auto mark = [&](int x) {
+			const int from = std::max(setEnd, x - 2 * r), to = std::min(w, x + 2 * r + 2);
+			if (from < to)
+				std::memset(out + from, 1, size_t(to - from));
+			setEnd = std::max(setEnd, to);
+		};
+		int x = 0;
+		for (; x + 9 <= w; x += 8)
+			// A byte not 0: that pixel differs from its right or lower one.
+			for (uint64_t d = (word(m + x + 1) ^ word(m + x)) | (word(below + x) ^ word(m + x)); d;) {
+				const int byte = std::countr_zero(d) / 8;
+				mark(x + byte);
+				d &= ~(uint64_t(0xff) << (8 * byte));
+			}
+		for (; x < w; ++x)
+			if ((x + 1 < w && m[x + 1] != m[x]) || below[x] != m[x])
+				mark(x);
+	};
+	auto addRow = [&](int y, bool add) {
+		const uint8_t *a = alongRows_.data() + size_t(y % rows) * stride;
+		for (int x = 0; x < stride; x += 8) {
+			// Bytes of 0..4r + 2: no carry nor borrow crosses a byte.
+			const uint64_t v = word(reach_.data() + x), d = word(a + x);
+			const uint64_t sum = add ? v + d : v - d;
+			std::memcpy(reach_.data() + x, &sum, sizeof sum);
 		}
 	};
-	auto addRow = [&](int y, int sign) {
-		const uint8_t *a = alongRows_.data() + size_t(y % rows) * w;
-		for (int x = 0; x < w; ++x)
-			reach_[x] = uint8_t(reach_[x] + sign * a[x]);
-	};
-	std::fill(reach_.begin(), reach_.begin() + w, 0);
+	std::fill(reach_.begin(), reach_.begin() + stride, 0);
 	for (int y = 0; y < std::min(h, 2 * r); ++y) {
 		alongRow(y);
-		addRow(y, 1);
+		addRow(y, true);
 	}
 	for (int y = 0; y < h; ++y) {
 		if (y + 2 * r < h) {
 			alongRow(y + 2 * r);
-			addRow(y + 2 * r, 1);
+			addRow(y + 2 * r, true);
 		}
 		if (y - 2 * r - 2 >= 0)
-			addRow(y - 2 * r - 2, -1);
+			addRow(y - 2 * r - 2, false);
 		uint8_t *nr = near_.row(roi.y0 + y) + roi.x0;
-		for (int x = 0; x < w; ++x)
+		int x = 0;
+		for (; x + 8 <= w; x += 8) {
+			// 1 in each byte that is not 0.
+			const uint64_t v = word(reach_.data() + x), any = (((v & kLow7) + kLow7) | v) >> 7 & kOnes;
+			std::memcpy(nr + x, &any, sizeof any);
+		}
+		for (; x < w; ++x)
 			nr[x] = reach_[x] != 0;
 	}
 }
@@ -181,12 +206,11 @@ void GuidedFilter::filter(const RgbImage &colour, const Gray8Image &matte, const
 			rows->resize(size_t(W));
 		std::fill(rows->begin(), rows->end(), INT_MIN); // no column holds a window
 	}
-	if (edges_.size() < size_t(W)) {
-		edges_.resize(size_t(W));
-		reach_.resize(size_t(W));
-	}
-	if (alongRows_.size() < size_t(4 * kMaxRadius + 3) * W)
-		alongRows_.resize(size_t(4 * kMaxRadius + 3) * W);
+	const size_t stride = size_t(W + 7) & ~size_t(7);
+	if (reach_.size() < stride)
+		reach_.resize(stride);
+	if (alongRows_.size() < size_t(4 * kMaxRadius + 3) * stride)
+		alongRows_.resize(size_t(4 * kMaxRadius + 3) * stride);
 	const size_t ring = size_t(2 * kMaxRadius + 2) * W;
 	if (a_.size() < ring) {
 		a_.resize(ring);

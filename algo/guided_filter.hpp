@@ -69,9 +69,10 @@ private:
 	int ringRows() const { return 2 * radius_ + 2; }
 
 	Gray8Image guide_, near_;              // luma; 1 = within 2r of an edge
-	// markNearEdges(): a row's edge pixels, a ring of their dilation along
-	// rows (4r + 3 rows), and per column how many ring rows reach it.
-	std::vector<uint8_t> edges_, alongRows_, reach_;
+	// markNearEdges(): a ring of the edges' reach along rows (4r + 3 rows,
+	// each padded to whole words), and per column how many of its rows
+	// reach the column.
+	std::vector<uint8_t> alongRows_, reach_;
 	// Per ROI column, the sums over the rows of a window of I, p, I^2 and
 	// I p, and of a and b; momentRow_ and ringRow_ say whose window (a row
 	// of the ROI) each column holds.
