@@ -29,11 +29,21 @@
 // 0.8667 -> 0.9610 / 0.8730 at minContrast2 = 100; B from the local board
 // mean alone scored lower (BF 0.870). Pure, integer, allocation-free once
 // sized; tests compare it with a double reference.
+//
+// The work follows the edge (issue 28; the output unchanged bit for bit):
+// the pixels' kinds are found over the ROI once, and after each pass again
+// only around the pixels it turned; the window sums come from column sums
+// kept only for the columns within kWindowRadius of a pixel looked at,
+// slid along runs of them (algo/column_sums.hpp).
 #pragma once
 
 #include "algo/board_model.hpp"
 #include "algo/image.hpp"
 #include "algo/trimap.hpp"
+
+#include <array>
+#include <cstdint>
+#include <vector>
 
 namespace depthkey {
 
@@ -56,13 +66,38 @@ public:
 
 private:
 	// What a pixel is before a pass: inside one side (all 4-neighbours
-	// alike), or on the edge, and on which side.
-	enum Kind : uint8_t { kBoardEdge = 0, kLecturerEdge = 1, kLecturerInside = 2, kBoardInside = 3 };
+	// alike), or on the edge, and on which side; kTurned: a board edge pixel
+	// this pass turned to lecturer (still neither side for this pass).
+	enum Kind : uint8_t {
+		kBoardEdge = 0,
+		kLecturerEdge = 1,
+		kLecturerInside = 2,
+		kBoardInside = 3,
+		kTurned = 4,
+	};
+	// A pixel's kind from the sum of its and its 4-neighbours' matte.
+	static uint8_t kindOf(int around, uint8_t m)
+	{
+		return around == 5 * 255 ? kLecturerInside : around == 0 ? kBoardInside : m ? kLecturerEdge : kBoardEdge;
+	}
+	// The same at (x, y) in roi, board beyond it.
+	static uint8_t kindAt(const Gray8Image &matte, const Roi &roi, int x, int y);
+	void findKinds(const Gray8Image &matte, const Roi &roi);
+	// After a pass: the kinds of the turned pixels and of their neighbours.
+	void updateKinds(const Gray8Image &matte, const Roi &roi);
 	int pass(const RgbImage &colour, const Gray8Image &trimap, const BoardModel &board, const Roi &roi,
 		 Gray8Image &matte);
 
 	int minContrast2_ = 0;
 	Gray8Image kind_;
+	// Per image row, the columns [turnedX0_, turnedX1_) holding the pixels
+	// the last pass turned (empty: none).
+	std::vector<int> turnedX0_, turnedX1_;
+	// Per ROI column, the sums of the lecturer's inside pixels' R, G, B and
+	// count over the window's rows, then the board's; whose window each
+	// column holds.
+	std::array<std::vector<uint32_t>, 8> columns_;
+	std::vector<int> columnRow_;
 };
 
 } // namespace depthkey

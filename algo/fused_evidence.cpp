@@ -18,30 +18,24 @@ void FusedEvidence::bind(const RgbImage &colour, const Gray8Image &depthEvidence
 	previousRoi_ = previousAlpha && previousColour ? previousRoi : Roi{};
 }
 
-uint8_t FusedEvidence::fuse(const DecisionSettings &s, int siox, int depthEvidence, int boardDistance, int previousAlpha,
-			    int colourChange)
+void FusedEvidence::configure(const DecisionSettings &s)
 {
-	// All terms in confidence units; divisions by powers of two are
-	// arithmetic shifts (floor), the others truncate towards zero, each
-	// at most one unit off the real value.
-	int sum = siox - kConfidenceLecturer;
-	if (boardDistance >= 0 && boardDistance < s.boardMatch)
-		sum -= s.boardWeight * (s.boardMatch - boardDistance) / s.boardMatch;
-	else if (boardDistance > 2 * s.boardMatch)
-		// Far from how the board looks here: something is in front of it
-		// (new ink is thin, the lecturer is not), up to half the weight.
-		sum += s.boardWeight * std::min(boardDistance - 2 * s.boardMatch, s.boardMatch) / (2 * s.boardMatch);
-	if (previousAlpha >= 0 && colourChange < s.stillColour)
-		sum += s.temporalWeight * (previousAlpha - 128) * (s.stillColour - colourChange) / (128 * s.stillColour);
-	// Colour, the board model and the previous frame all come from the
-	// colour camera and err together (a dark sleeve is dark in all three):
-	// what they say together is capped at what one confidence can say, and
-	// only then does the other camera's depth add. Measured: uncapped, a
-	// saturated colour sum drowned depth (mean IoU / BF of seeds 1-3
-	// 0.899 / 0.633 against 0.928 / 0.718 capped).
-	sum = std::clamp(sum, 1 - int(kConfidenceLecturer), 255 - int(kConfidenceLecturer));
-	sum += (s.depthWeight * (depthEvidence - s.depthPivot)) >> 6;
-	return uint8_t(std::clamp(sum + int(kConfidenceLecturer), 1, 255));
+	const int match = std::clamp(s.boardMatch, 1, 255);
+	// Near how the board looks here: board, by how near. Far from it:
+	// something is in front of it (new ink is thin, the lecturer is not), up
+	// to half the weight.
+	boardSaturates_ = 3 * match;
+	boardTerm_[0] = 0;
+	for (int d = 0; d <= boardSaturates_; ++d)
+		boardTerm_[size_t(d + 1)] =
+			int16_t(d < match	   ? -(s.boardWeight * (match - d) / match)
+				: d > 2 * match ? s.boardWeight * std::min(d - 2 * match, match) / (2 * match)
+						: 0);
+	for (int e = 0; e < 256; ++e)
+		depthTerm_[size_t(e)] = int16_t((s.depthWeight * (e - s.depthPivot)) >> 6);
+	temporalWeight_ = s.temporalWeight;
+	stillColour_ = std::max(1, s.stillColour);
+	temporalDivisor_.set(uint32_t(128 * stillColour_));
 }
 
 void FusedEvidence::confidences(int y, int x0, int x1, uint8_t *out)
@@ -61,7 +55,7 @@ void FusedEvidence::confidences(int y, int x0, int x1, uint8_t *out)
 			change = std::abs(int(colour.r) - pc[x].r) + std::abs(int(colour.g) - pc[x].g) +
 				 std::abs(int(colour.b) - pc[x].b);
 		}
-		*out++ = fuse(settings_, siox, e[x], boardDistance, previousAlpha, change);
+		*out++ = fuse(siox, e[x], boardDistance, previousAlpha, change);
 	}
 }
 

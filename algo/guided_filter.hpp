@@ -11,13 +11,17 @@
 //
 // Only pixels within 2r of the matte's edge can change: where a window's p
 // is constant, a = 0 and b = p exactly. So a, b and q are computed only
-// within 2r of an edge; the rest of the ROI is copied. Windows are
-// clipped to the ROI (the matte is 0 outside it).
+// within 2r of an edge (about a quarter of a lecture frame's ROI); the rest
+// of the ROI is copied (issue 28: the work follows the edge, and the output
+// is what the whole-ROI filter gave, bit for bit). Windows are clipped to
+// the ROI (the matte is 0 outside it).
 //
 // Box sums slide: per column, the sums of I, p, I^2 and I p over the rows
 // of the window (a row added at the bottom, one taken off the top), then
 // along the row; a and b of a row go into a ring of 2r + 2 rows, whose
-// column sums slide the same way for q, r rows behind. Memory is a few rows
+// column sums slide the same way for q, r rows behind. Column sums are kept
+// only for the columns within r of an edge pixel of the row; a column that
+// was not kept for the row above is summed afresh. Memory is a few rows
 // (O(r W)), not whole-image integrals (24 bytes a pixel, 7 MB at 640x480:
 // issue 15). Sums are kept modulo 2^32 (a box sum is below 2^32, so
 // differences of wrapped sums are exact).
@@ -53,9 +57,11 @@ public:
 private:
 	int radius_ = 3, eps_ = 400;
 	size_t changed_ = 0;
+	// near_ = 1 within 2r of an edge of the matte, from a dilation of the
+	// edge pixels along rows, then along columns.
 	void markNearEdges(const Gray8Image &matte, const Roi &roi);
-	// Row y of the ROI: the moments' column sums from the rows of y's
-	// window, then a and b into the ring.
+	// Row y of the ROI: a and b into the ring (a = 0, b = p off the edge),
+	// from the moments' column sums of y's window.
 	void coefficientsRow(const Gray8Image &matte, const Roi &roi, int y);
 	// Row y of the ROI: q from the a and b of the windows holding it.
 	void outputRow(const Gray8Image &matte, const Roi &roi, int y, Gray8Image &out);
@@ -63,10 +69,15 @@ private:
 	int ringRows() const { return 2 * radius_ + 2; }
 
 	Gray8Image guide_, near_;              // luma; 1 = within 2r of an edge
-	// Per ROI column, the sums over the rows [momentTop_, momentEnd_) of
-	// I, p, I^2 and I p, and over [ringTop_, ringEnd_) of a and b.
+	// markNearEdges(): a ring of the edges' reach along rows (4r + 3 rows,
+	// each padded to whole words), and per column how many of its rows
+	// reach the column.
+	std::vector<uint8_t> alongRows_, reach_;
+	// Per ROI column, the sums over the rows of a window of I, p, I^2 and
+	// I p, and of a and b; momentRow_ and ringRow_ say whose window (a row
+	// of the ROI) each column holds.
 	std::vector<uint32_t> colI_, colP_, colII_, colIP_, colA_, colB_;
-	int momentTop_ = 0, momentEnd_ = 0, ringTop_ = 0, ringEnd_ = 0;
+	std::vector<int> momentRow_, ringRow_;
 	std::vector<int32_t> a_, b_;            // ring of ROI rows, Q16 and Q8
 };
 

@@ -2,10 +2,14 @@
 // reference of the same projection (tolerance: none, the integer sums are
 // exact where the board model is learned and the light has not changed),
 // and its rules: it grows the edge to where the colour puts the silhouette,
-// never shrinks it, never leaves the superset, and leaves alike colours be.
+// never shrinks it, never leaves the superset, and leaves alike colours be;
+// and equal, bit for bit, to the whole-ROI unmixing it replaced (issue 28)
+// on lecture frames.
 #include <gtest/gtest.h>
 
 #include "algo/boundary_unmixing.hpp"
+#include "tests/boundary_unmixing_whole_roi.hpp"
+#include "tests/edge_scenes.hpp"
 
 #include <cmath>
 #include <random>
@@ -212,4 +216,47 @@ TEST(BoundaryUnmixing, NeverShrinksTheLecturerNorLeavesTheSuperset)
 		else
 			EXPECT_GE(e.lastLecturerColumn(y), 18) << "row " << y; // it still grows there
 	}
+}
+
+// Working only along the edge (issue 28) changes nothing: lecture frames at
+// odd and even sizes, the board model learned on part of the image (the
+// local board mean elsewhere), the superset leaving some of the board out,
+// every kind of ROI (borders, thin, empty), mattes with no edge.
+TEST(BoundaryUnmixing, EqualsTheWholeRoiUnmixingBitForBit)
+{
+	BoundaryUnmixing unmixing;
+	test::BoundaryUnmixingWholeRoi reference;
+	int changed = 0;
+	for (auto [w, h] : { std::pair{ 160, 120 }, std::pair{ 161, 97 }, std::pair{ 33, 17 } }) {
+		const test::EdgeScene scene = test::lectureEdgeScene(w, h, 9.0, w > 100 ? 4 : 3);
+		BoardModel model;
+		Gray8Image learned(w, h, kTrimapUndecided), trimap(w, h, kTrimapUndecided);
+		for (int y = 0; y < h; ++y)
+			for (int x = 0; x < w; ++x) {
+				learned.at(x, y) = x < w * 3 / 5 ? kTrimapBoard : kTrimapUndecided;
+				trimap.at(x, y) = y > h * 4 / 5 && x % 7 < 3 ? kTrimapBoard : kTrimapUndecided;
+			}
+		for (int i = 0; i < 3 * BoardModel::kRowStride; ++i)
+			model.learn(scene.room, learned);
+		for (int minContrast2 : { 100, 20 })
+			for (int matte = 0; matte < 3; ++matte)
+				for (const Roi &roi : test::edgeSceneRois(w, h)) {
+					// No edge at all: all board, all lecturer.
+					Gray8Image out = matte == 0 ? scene.matte : Gray8Image(w, h, matte == 1 ? 0 : 255);
+					Gray8Image expected = out;
+					unmixing.configure(minContrast2);
+					reference.configure(minContrast2);
+					const int n = unmixing.refine(scene.colour, trimap, model, roi, out);
+					ASSERT_EQ(n, reference.refine(scene.colour, trimap, model, roi, expected));
+					int differ = 0;
+					for (int y = 0; y < h; ++y)
+						for (int x = 0; x < w; ++x)
+							differ += out.at(x, y) != expected.at(x, y);
+					ASSERT_EQ(differ, 0) << w << "x" << h << " matte " << matte << " roi " << roi.x0 << ","
+							     << roi.y0 << "-" << roi.x1 << "," << roi.y1 << " contrast " << minContrast2;
+					changed += n;
+				}
+	}
+	EXPECT_GT(changed, 100); // the lecture's edges did grow
+	std::printf("boundary unmixing: %d pixels turned, as the whole-ROI unmixing turned them\n", changed);
 }

@@ -1,14 +1,17 @@
-// The evidence fusion kernel against a double reference (tolerance: 2
-// confidence units, one per truncating division), and the direction of each
-// term: depth, the board model and the previous frame move the decision the
-// way they should.
+// The evidence fusion kernel against the divisions it replaced (equal, for
+// every input and a spread of weights), against a double reference
+// (tolerance: 2 confidence units, one per truncating division), and the
+// direction of each term: depth, the board model and the previous frame move
+// the decision the way they should.
 #include <gtest/gtest.h>
 
+#include "algo/exact_divisor.hpp"
 #include "algo/fused_evidence.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <vector>
 
 using namespace depthkey;
 
@@ -35,11 +38,111 @@ double fuseReference(const DecisionSettings &s, int siox, int depthEvidence, int
 	return std::clamp(sum + 128.0, 1.0, 255.0);
 }
 
+// The kernel as it was before issue 28, three integer divisions a pixel:
+// the tables and the multiply must give exactly this.
+int fuseWithDivisions(const DecisionSettings &s, int siox, int depthEvidence, int boardDistance, int previousAlpha,
+		      int colourChange)
+{
+	int sum = siox - kConfidenceLecturer;
+	if (boardDistance >= 0 && boardDistance < s.boardMatch)
+		sum -= s.boardWeight * (s.boardMatch - boardDistance) / s.boardMatch;
+	else if (boardDistance > 2 * s.boardMatch)
+		sum += s.boardWeight * std::min(boardDistance - 2 * s.boardMatch, s.boardMatch) / (2 * s.boardMatch);
+	if (previousAlpha >= 0 && colourChange < s.stillColour)
+		sum += s.temporalWeight * (previousAlpha - 128) * (s.stillColour - colourChange) / (128 * s.stillColour);
+	sum = std::clamp(sum, 1 - int(kConfidenceLecturer), 255 - int(kConfidenceLecturer));
+	sum += (s.depthWeight * (depthEvidence - s.depthPivot)) >> 6;
+	return std::clamp(sum + int(kConfidenceLecturer), 1, 255);
+}
+
+FusedEvidence configured(const DecisionSettings &s)
+{
+	FusedEvidence f;
+	f.configure(s);
+	return f;
+}
+
 } // namespace
+
+TEST(ExactDivisor, EqualsTheDivisionForEveryNumeratorItIsUsedWith)
+{
+	// The temporal term's divisors 128 * (1..255), every numerator the term
+	// can have (|n| <= 255 * 128 * 255), and divisors at the limits.
+	ExactDivisor divisor;
+	for (int still = 1; still <= 255; ++still) {
+		const int d = 128 * still;
+		divisor.set(uint32_t(d));
+		for (int n = -255 * 128 * 255; n <= 255 * 128 * 255; n += 1 + still * 97)
+			ASSERT_EQ(divisor.truncate(n), n / d) << n << " / " << d;
+		for (int n : { 0, 1, d - 1, d, d + 1, -d + 1, -d, -d - 1 })
+			ASSERT_EQ(divisor.truncate(n), n / d) << n << " / " << d;
+	}
+	for (uint32_t d : { 1u, 2u, 3u, 7u, 641u, 65535u, 65537u, (1u << 31) - 1 }) {
+		divisor.set(d);
+		for (uint32_t n : { 0u, 1u, d - 1, d, (1u << 31) - 1, (1u << 31) - 2, 2147483646u / d * d })
+			ASSERT_EQ(divisor.floor(n), n / d) << n << " / " << d;
+	}
+}
+
+TEST(FusedEvidence, TablesEqualTheDivisionsTheyReplaced)
+{
+	// Every input a frame can give, under the defaults and weights at
+	// their limits (boardMatch and stillColour 1 and 255).
+	std::vector<DecisionSettings> settings(5);
+	settings[1].boardMatch = 1;
+	settings[1].stillColour = 1;
+	settings[2].boardMatch = 255;
+	settings[2].stillColour = 255;
+	settings[2].boardWeight = settings[2].temporalWeight = settings[2].depthWeight = 255;
+	settings[3].boardWeight = settings[3].temporalWeight = settings[3].depthWeight = 0;
+	settings[4].boardMatch = 37;
+	settings[4].stillColour = 7;
+	settings[4].depthPivot = 1;
+	settings[4].temporalWeight = 201;
+	for (const DecisionSettings &s : settings) {
+		const FusedEvidence f = configured(s);
+		// Distances and changes: all the small ones, both sides of each
+		// threshold, and a stride beyond.
+		std::vector<int> boards, changes;
+		const int m = s.boardMatch, still = s.stillColour;
+		for (int d = -1; d <= 60; ++d)
+			boards.push_back(d);
+		for (int d : { m - 1, m, m + 1, 2 * m - 1, 2 * m, 2 * m + 1, 3 * m - 1, 3 * m, 3 * m + 1, 765, 800 })
+			boards.push_back(d);
+		for (int d = 61; d < 765; d += 23)
+			boards.push_back(d);
+		for (int c = 0; c <= 40; ++c)
+			changes.push_back(c);
+		for (int c : { still - 1, still, still + 1, 765 })
+			changes.push_back(c);
+		for (int c = 41; c < 765; c += 17)
+			changes.push_back(c);
+		size_t compared = 0, differ = 0;
+		// Colour and depth at their ends and around neutral: they only
+		// shift the sum into and past the clamps.
+		for (int siox : { 1, 2, 40, 100, 127, 128, 129, 160, 220, 254, 255 })
+			for (int depth : { 0, 1, 60, s.depthPivot - 1, s.depthPivot, s.depthPivot + 1, 200, 254, 255 })
+				for (int board : boards)
+					for (int previous = -1; previous <= 255; previous += previous < 2 ? 1 : 51)
+						for (int change : changes) {
+							// Counted, not asserted one by one (millions).
+							const int fused = f.fuse(siox, depth, board, previous, change);
+							const int divided = fuseWithDivisions(s, siox, depth, board, previous, change);
+							if (fused != divided && differ++ == 0)
+								ADD_FAILURE() << "siox " << siox << " depth " << depth << " board " << board
+									      << " previous " << previous << " change " << change << ": "
+									      << fused << " against " << divided;
+							++compared;
+						}
+		EXPECT_EQ(differ, 0u) << "of " << compared;
+		EXPECT_GT(compared, 100000u);
+	}
+}
 
 TEST(FusedEvidence, FixedPointMatchesTheDoubleReferenceWithinTwoUnits)
 {
 	const DecisionSettings s;
+	const FusedEvidence f = configured(s);
 	std::map<int, int> histogram;
 	int worst = 0;
 	for (int siox = 1; siox <= 255; siox += 7)
@@ -47,7 +150,7 @@ TEST(FusedEvidence, FixedPointMatchesTheDoubleReferenceWithinTwoUnits)
 			for (int board = -1; board < 120; board += 9)
 				for (int previous = -1; previous <= 255; previous += 64)
 					for (int change = 0; change < 40; change += 13) {
-						const int fixed = FusedEvidence::fuse(s, siox, depth, board, previous, change);
+						const int fixed = f.fuse(siox, depth, board, previous, change);
 						const double ref = fuseReference(s, siox, depth, board, previous, change);
 						const int error = int(std::ceil(std::abs(fixed - ref) - 1e-9));
 						histogram[error]++;
@@ -63,25 +166,26 @@ TEST(FusedEvidence, FixedPointMatchesTheDoubleReferenceWithinTwoUnits)
 TEST(FusedEvidence, EachTermPullsItsWay)
 {
 	const DecisionSettings s;
+	const FusedEvidence f = configured(s);
 	const int neutralColour = 128, noModel = -1, noPrevious = -1;
 	// Colour ambiguous: clean depth decides.
-	EXPECT_GE(FusedEvidence::fuse(s, neutralColour, kDepthSaysLecturer, noModel, noPrevious, 0),
+	EXPECT_GE(f.fuse(neutralColour, kDepthSaysLecturer, noModel, noPrevious, 0),
 		  kConfidenceLecturer);
-	EXPECT_LT(FusedEvidence::fuse(s, neutralColour, kDepthSaysBoard, noModel, noPrevious, 0), kConfidenceLecturer);
+	EXPECT_LT(f.fuse(neutralColour, kDepthSaysBoard, noModel, noPrevious, 0), kConfidenceLecturer);
 	// Clean depth outweighs a clear colour either way (a dark sleeve on
 	// the dark board; a white shirt's colour on the board beside him).
-	EXPECT_GE(FusedEvidence::fuse(s, 20, kDepthSaysLecturer, noModel, noPrevious, 0), kConfidenceLecturer);
-	EXPECT_LT(FusedEvidence::fuse(s, 236, kDepthSaysBoard, noModel, noPrevious, 0), kConfidenceLecturer);
+	EXPECT_GE(f.fuse(20, kDepthSaysLecturer, noModel, noPrevious, 0), kConfidenceLecturer);
+	EXPECT_LT(f.fuse(236, kDepthSaysBoard, noModel, noPrevious, 0), kConfidenceLecturer);
 	// Colour says lecturer (white chalk like a white shirt), depth at its
 	// edge: the board model's match at this pixel says board.
-	EXPECT_GE(FusedEvidence::fuse(s, 200, kDepthAtTheEdge, noModel, noPrevious, 0), kConfidenceLecturer);
-	EXPECT_LT(FusedEvidence::fuse(s, 200, kDepthAtTheEdge, 2, noPrevious, 0), kConfidenceLecturer);
+	EXPECT_GE(f.fuse(200, kDepthAtTheEdge, noModel, noPrevious, 0), kConfidenceLecturer);
+	EXPECT_LT(f.fuse(200, kDepthAtTheEdge, 2, noPrevious, 0), kConfidenceLecturer);
 	// Colour says board (a dark vest on the dark board) but the pixel is
 	// far from how the board looks there, and in range: lecturer.
-	EXPECT_GE(FusedEvidence::fuse(s, 60, kDepthAtTheEdge, 90, noPrevious, 0), kConfidenceLecturer);
+	EXPECT_GE(f.fuse(60, kDepthAtTheEdge, 90, noPrevious, 0), kConfidenceLecturer);
 	// The previous frame counts only where the colour did not change.
-	const int still = FusedEvidence::fuse(s, neutralColour, s.depthPivot, noModel, 255, 0);
-	const int moved = FusedEvidence::fuse(s, neutralColour, s.depthPivot, noModel, 255, s.stillColour);
+	const int still = f.fuse(neutralColour, s.depthPivot, noModel, 255, 0);
+	const int moved = f.fuse(neutralColour, s.depthPivot, noModel, 255, s.stillColour);
 	EXPECT_GT(still, moved);
-	EXPECT_EQ(moved, FusedEvidence::fuse(s, neutralColour, s.depthPivot, noModel, noPrevious, 0));
+	EXPECT_EQ(moved, f.fuse(neutralColour, s.depthPivot, noModel, noPrevious, 0));
 }

@@ -1,10 +1,13 @@
 // The fixed-point guided filter against a double reference of He et al.'s
 // filter (windows clipped to the ROI, computed at every pixel): within 2
 // levels everywhere (the reference's own a, b are not rounded), and the edge
-// of a staircase matte moves onto the colour image's edge.
+// of a staircase matte moves onto the colour image's edge; and equal, bit
+// for bit, to the whole-ROI filter it replaced (issue 28) on lecture frames.
 #include <gtest/gtest.h>
 
 #include "algo/guided_filter.hpp"
+#include "tests/edge_scenes.hpp"
+#include "tests/guided_filter_whole_roi.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -153,4 +156,46 @@ TEST(GuidedFilter, SmallAndBorderRoisMatchTheReferenceOneAfterAnother)
 			EXPECT_LE(worst, 2) << "roi " << roi.x0 << "," << roi.y0 << " r " << radius;
 			EXPECT_EQ(outside, 0);
 		}
+}
+
+// Working only near the edge (issue 28) changes nothing: lecture frames at
+// odd and even sizes, every kind of ROI (borders, smaller than a window,
+// one pixel thin, empty), each radius, mattes with no edge (all board, all
+// lecturer), one filter after another as in the pipeline.
+TEST(GuidedFilter, EqualsTheWholeRoiFilterBitForBit)
+{
+	GuidedFilter filter;
+	test::GuidedFilterWholeRoi reference;
+	size_t compared = 0, changed = 0;
+	for (auto [w, h] : { std::pair{ 160, 120 }, std::pair{ 161, 97 }, std::pair{ 33, 17 } }) {
+		test::EdgeScene scene = test::lectureEdgeScene(w, h, 9.0, w > 100 ? 4 : 3);
+		const Gray8Image lecturer = scene.matte;
+		for (int matte = 0; matte < 3; ++matte) {
+			if (matte > 0) // no edge at all
+				scene.matte = Gray8Image(w, h, matte == 1 ? 0 : 255);
+			else
+				scene.matte = lecturer;
+			for (const Roi &roi : test::edgeSceneRois(w, h))
+				for (int radius = 1; radius <= GuidedFilter::kMaxRadius; ++radius)
+					for (int eps : { 10, 400 }) {
+						filter.configure(radius, eps);
+						reference.configure(radius, eps);
+						Gray8Image out(w, h, 77), expected(w, h, 77);
+						filter.filter(scene.colour, scene.matte, roi, out);
+						reference.filter(scene.colour, scene.matte, roi, expected);
+						int differ = 0;
+						for (int y = 0; y < h; ++y)
+							for (int x = 0; x < w; ++x)
+								differ += out.at(x, y) != expected.at(x, y);
+						ASSERT_EQ(differ, 0) << w << "x" << h << " matte " << matte << " roi " << roi.x0 << ","
+								     << roi.y0 << "-" << roi.x1 << "," << roi.y1 << " r " << radius
+								     << " eps " << eps;
+						ASSERT_EQ(filter.changedPixels(), reference.changedPixels());
+						compared += size_t(w) * h;
+						changed += filter.changedPixels();
+					}
+		}
+	}
+	EXPECT_GT(changed, 1000u); // the lecture's edges did move
+	std::printf("guided filter: %zu pixels compared, %zu changed by the filter\n", compared, changed);
 }
