@@ -1,6 +1,7 @@
 #include "algo/pairing_queue.hpp"
 
 #include <algorithm>
+#include <utility>
 
 namespace depthkey {
 
@@ -73,6 +74,14 @@ void PairingQueue::pop()
 		return;
 	first_ = (first_ + 1) % slotCount_;
 	count_--;
+}
+
+void PairingQueue::popInto(ColourFrame &out)
+{
+	if (!count_)
+		return;
+	std::swap(out, slots_[first_].frame);
+	pop();
 }
 
 uint64_t PairingQueue::nextDeadlineNs() const

@@ -10,11 +10,11 @@
 // the ring is full and another frame is about to come (a colour camera
 // faster than configured); it is then keyed with the depth frames around its
 // capture that have come by then. The ring holds the frames that arrive
-// within one delay and no more (4 at 150 ms, 25 fps): keying is synchronous,
-// so the frame being keyed needs no slot of its own, and the room a new
-// frame needs is made before it is added (next() with makeRoom) rather than
-// by a spare slot. A
-// constant delay, rather than leaving as soon as the later depth frame is
+// within one delay and no more (4 at 150 ms, 25 fps): a frame that leaves
+// is keyed elsewhere (the daemon's keying worker takes it by popInto()), so
+// it needs no slot here, and the room a new frame needs is made before it
+// is added (next() with makeRoom) rather than by a spare slot. A constant
+// delay, rather than leaving as soon as the later depth frame is
 // in, keeps the output as even as the input: a recorder or a virtual webcam
 // sees 25 frames a second, not a burst of three each time a depth frame
 // arrives. Frames leave in arrival order with their own capture
@@ -66,6 +66,10 @@ public:
 	};
 	bool next(uint64_t nowNs, Keying &out, bool makeRoom = false);
 	void pop();
+	// pop() that hands the oldest frame over by swap: out gets it, the ring
+	// keeps out's old storage for a later frame (no copy, and no allocation
+	// once the sizes agree). For a frame keyed on another thread (issue 28).
+	void popInto(ColourFrame &out);
 
 	size_t held() const { return count_; }
 	// When the oldest held frame falls due by time alone; 0 when none is held.

@@ -126,7 +126,7 @@ void bindDaemon(TomlSection &sec, DaemonSettings &s)
 	sec.string("snapshot_dir", s.snapshotDir, checkOptionalAbsolutePath);
 	sec.string("record_dir", s.recordDir, checkOptionalAbsolutePath);
 	sec.integer("record_compression", s.recordCompression, 0, 9);
-	sec.integer("keying_share", s.keyingShare, 10, 100);
+	sec.integer("keying_share", s.keyingShare, 10, 100); // ignored since issue 28; old configs load
 }
 
 void bindColour(TomlSection &sec, ColourCameraSettings &s)

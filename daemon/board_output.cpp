@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <utility>
 
 namespace depthkey {
 
@@ -55,6 +56,7 @@ void BoardOutput::start(EventLoop &loop, const Settings &settings, SourceFactory
 
 void BoardOutput::stop()
 {
+	waitingPicture_ = nullptr; // the source's frame goes with it
 	if (source_)
 		source_->stop();
 }
@@ -84,6 +86,23 @@ void BoardOutput::apply(const Settings &next)
 }
 
 void BoardOutput::onPicture(const ColourFrame &frame)
+{
+	// The pipeline samples picture_ while it keys: a new one waits.
+	if (pipelineBusy_ && pipelineBusy_()) {
+		waitingPicture_ = &frame;
+		return;
+	}
+	waitingPicture_ = nullptr;
+	applyPicture(frame);
+}
+
+void BoardOutput::takeWaitingPicture()
+{
+	if (const ColourFrame *frame = std::exchange(waitingPicture_, nullptr))
+		applyPicture(*frame);
+}
+
+void BoardOutput::applyPicture(const ColourFrame &frame)
 {
 	bool resized = frame.rgb.width() != pictureWidth_ || frame.rgb.height() != pictureHeight_;
 	pictureWidth_ = frame.rgb.width();

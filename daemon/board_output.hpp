@@ -37,6 +37,16 @@ public:
 	// read again (a refused file keeps the last good H).
 	void apply(const Settings &settings);
 
+	// Whether the pipeline is being keyed on the keying worker now
+	// (daemon/keying_worker.hpp): a new picture then waits, by pointer to
+	// the source's frame, until takeWaitingPicture() between frames. A
+	// source that delivers from a frame of its own (the simulator, V4L2,
+	// an image file) keeps it until its next frame or stop; one that
+	// delivers a temporary (the solid colour) does so only in start(),
+	// which runs between frames.
+	void setPipelineBusy(std::function<bool()> busy) { pipelineBusy_ = std::move(busy); }
+	void takeWaitingPicture();
+
 	// The depth calibration file's [board] section (config/calibration_file.hpp),
 	// or none: the H used while board.homography_file is empty. Takes
 	// effect at the next start() or apply().
@@ -66,6 +76,7 @@ public:
 private:
 	void startSource();
 	void onPicture(const ColourFrame &frame);
+	void applyPicture(const ColourFrame &frame);
 	void loadHomography();
 	void updateGeometry();
 	void scalePicture();
@@ -83,6 +94,8 @@ private:
 	StatusHandler onStatus_;
 	std::function<void()> onGeometry_;
 	std::unique_ptr<ColourCamera> source_;
+	std::function<bool()> pipelineBusy_;
+	const ColourFrame *waitingPicture_ = nullptr; // the source's, taken between frames
 
 	RgbImage picture_;            // last good board picture, the source's size
 	int pictureWidth_ = 0, pictureHeight_ = 0; // its size (also while a solid colour has no pixels)

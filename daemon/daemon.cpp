@@ -28,6 +28,7 @@ constexpr uint64_t kReaderTickUs = 250'000;
 
 Daemon::~Daemon()
 {
+	keyer_.stop();
 	preview_.stop();
 	recorder_.stop();
 	stopCameras();
@@ -40,7 +41,6 @@ int Daemon::start(const Settings &settings)
 {
 	settings_ = settings;
 	overrides_.applyTo(settings_);
-	keyingBudget_.setSharePercent(settings_.daemon.keyingShare);
 	LogLevel level;
 	if (parseLogLevel(settings.daemon.logLevel, level))
 		logger().setLevel(level);
@@ -59,10 +59,23 @@ int Daemon::start(const Settings &settings)
 	loop_.addSignal(SIGINT, [this] { stop(); }, sigint_);
 	loop_.addSignal(SIGHUP, [this] { reloader_.reload(); }, sighup_);
 	loop_.addSignal(
-		SIGUSR1, [this] { stageDumps_.writeSnapshot(pairing_.queue().pairer().newest(), pipelineView()); },
+		SIGUSR1,
+		[this] {
+			snapshotWanted_ = true; // the stage images are the worker's while it keys
+			if (keyer_.idle())
+				betweenFrames();
+		},
 		sigusr1_);
 
 	status_.start(loop_);
+	// One worker, one frame waiting for it: a frame more would add a
+	// keying's latency and a frame's memory (0.9 MB at 640x480) for
+	// little: the pairing ring already absorbs the cameras' jitter.
+	ret = keyer_.start(
+		loop_, 1, [this](KeyingJob &job) { keyOnWorker(job); }, [this](KeyingJob &job) { onKeyed(job); });
+	if (ret < 0)
+		return ret;
+	board_.setPipelineBusy([this] { return !inResult_ && !keyer_.idle(); });
 	stageDumps_.setFolders(settings_.daemon.snapshotDir, overrides_.previewDir);
 	applyPipelineFiles(loadPipelineFiles(settings_));
 	pairing_.configure(settings_);
@@ -96,6 +109,7 @@ int Daemon::run()
 {
 	int ret = loop_.run();
 	status_.stopping();
+	keyer_.stop(); // a frame being keyed is finished first
 	preview_.stop();
 	stopCameras();
 	board_.stop();
@@ -203,96 +217,10 @@ void Daemon::onColourFrame(const ColourFrame &frame)
 	colourHeight_ = frame.rgb.height();
 	recorder_.recordColour(frame);
 	lastColourNs_ = loop_.nowUs() * 1000u; // when it came: a late camera clock must not look stale
-	// A box that cannot key every frame keys fewer (daemon/keying_budget.hpp).
-	if (colour_ && colour_->freeRunning() && !keyingBudget_.admit(loop_.nowUs()))
-		return;
 	// A full ring keys its oldest frame first, early, rather than lose it.
 	keyDueFrames(true);
 	pairing_.addColour(frame, loop_.nowUs() * 1000u);
 	keyDueFrames();
-}
-
-void Daemon::keyDueFrames(bool makeRoom)
-{
-	const uint64_t nowNs = loop_.nowUs() * 1000u;
-	PairingQueue &queue = pairing_.queue();
-	PairingQueue::Keying keying;
-	while (queue.next(nowNs, keying, makeRoom)) {
-		makeRoom = false; // one frame's room
-		keyFrame(keying);
-		queue.pop();
-	}
-	if (!queue.held()) {
-		keyTimer_.reset();
-		return;
-	}
-	const uint64_t deadlineNs = queue.nextDeadlineNs();
-	const uint64_t waitUs = deadlineNs > nowNs ? (deadlineNs - nowNs + 999) / 1000 : 0;
-	loop_.addTimer(waitUs, [this] { keyDueFrames(); }, keyTimer_);
-}
-
-void Daemon::keyFrame(const PairingQueue::Keying &keying)
-{
-	const uint64_t startUs = loop_.nowUs();
-	noSignal_.forget();
-	const ColourFrame &frame = *keying.colour;
-	uint32_t flags = DK_SHM_FLAG_COLOUR_OK;
-	const DepthFrame *depth = keying.depth.before ? keying.depth.before : keying.depth.after;
-	// The composite for the recorder is made in its shared memory; the
-	// pipeline makes an image of it only for the readers here.
-	pipeline_.setMakeComposite(compositeReadHere(loop_.nowUs() * 1000u));
-	if (depth) {
-		pipeline_.process(frame, keying.depth, output_);
-		flags |= DK_SHM_FLAG_DEPTH_OK | DK_SHM_FLAG_ONLINE;
-	} else {
-		pipeline_.passThrough(frame, output_);
-	}
-	// Board geometry: the lecturer warped onto the board's picture. Without
-	// depth the board's picture alone goes out, marked offline: it is the
-	// lecture's content, and warping the whole colour frame would cost the
-	// CPU a slow box needs to get depth back.
-	if (depth)
-		board_.compose(frame.rgb, output_.alpha, pipeline_.roi(), opacityToQ8(settings_.composite.opacity));
-	else
-		board_.showBoardOnly();
-	stageDumps_.onKeyedFrame(frame, depth, status_.colourFrames(), pipelineView());
-	preview_.offer(&frame, depth, depth ? &pipeline_.trimap() : nullptr, output_, frame.timestampNs,
-		       loop_.nowUs() * 1000u);
-	CompositeInputs parts;
-	if (depth)
-		parts = pipeline_.compositeInputs(frame.rgb, output_.alpha);
-	publish(&frame.rgb, depth ? &parts : nullptr, frame.timestampNs, flags);
-	const uint64_t keyingUs = loop_.nowUs() - startUs;
-	status_.countKeying(keyingUs);
-	keyingBudget_.spend(keyingUs);
-}
-
-bool Daemon::compositeReadHere(uint64_t nowNs) const
-{
-	return (webcam_.enabled() && !board_.boardGeometry()) || preview_.wantsComposite(nowNs) ||
-	       stageDumps_.readsStages();
-}
-
-void Daemon::publish(const RgbImage *colour, const CompositeInputs *parts, uint64_t captureNs, uint32_t flags)
-{
-	if (framesStalled_)
-		return;
-	const bool board = board_.boardGeometry();
-	// The composite: the board's in board geometry, else the pipeline's
-	// image when it made one (NO SIGNAL's too), else made from its parts in
-	// the shared memory (null here) or, without depth, the colour frame.
-	const RgbImage *composite = &output_.composite;
-	if (board)
-		composite = &board_.composite();
-	else if (output_.composite.empty())
-		composite = parts ? nullptr : colour;
-	// Never waits; a full or lost device is its own status (hal/v4l2/v4l2_output.hpp).
-	if (composite)
-		webcam_.write(*composite);
-	if (outputs_.publish({ composite, parts, colour, output_.alpha,
-			       board ? &board_.lecturer() : nullptr, captureNs, flags }) < 0)
-		return;
-	status_.countPublished(flags & DK_SHM_FLAG_ONLINE);
 }
 
 // Runs at the colour frame rate: when colour frames stop (camera lost or
@@ -308,6 +236,10 @@ void Daemon::onFrameTick()
 	if (lastFrameTickNs_ != 0 && nowNs - lastFrameTickNs_ > staleNs / 2)
 		loopResumedNs_ = nowNs;
 	lastFrameTickNs_ = nowNs;
+	// A frame with the keying worker is on its way out too, and the
+	// pipeline's output, where NO SIGNAL is drawn, is the worker's.
+	if (!keyer_.idle())
+		return;
 	// Frames still held for pairing (pairing.delay_ms) are on their way out:
 	// a NO SIGNAL frame now would come between them, out of order.
 	if (haveColour_ &&
@@ -330,7 +262,7 @@ StatusSummary Daemon::summary() const
 	StatusSummary s;
 	s.colourOk = colour_ && colour_->status().state == DeviceState::Streaming;
 	s.depthOk = depth_ && depth_->status().state == DeviceState::Streaming;
-	s.calibrated = calibrated_ && pipeline_.status().mappingFits;
+	s.calibrated = calibrated_ && pipelineStatus_.mappingFits;
 	s.error = logger().activeErrorCount() > 0;
 	s.boardOk = board_.sourceOk();
 	s.boardCalibrated = board_.boardGeometry();
@@ -367,7 +299,7 @@ StatusSnapshot Daemon::statusSnapshot() const
 	s.calibrationFile = settings_.mapping.calibrationFile;
 	s.board = board_.statusText();
 	s.webcam = { webcam_.path(), webcam_.status(), webcam_.framesWritten() };
-	s.shed = keyingBudget_.shed();
+	s.shed = keyer_.dropped();
 	return s;
 }
 
@@ -385,9 +317,19 @@ void Daemon::onStatusTick()
 
 void Daemon::apply(const Settings &next, const PipelineFiles &files)
 {
+	// The pipeline is reconfigured between frames, never under the worker.
+	if (!keyer_.idle()) {
+		pendingReload_.emplace(next, files);
+		return;
+	}
+	applyNow(next, files);
+}
+
+void Daemon::applyNow(const Settings &next, const PipelineFiles &files)
+{
+	pendingReload_.reset();
 	Settings previous = settings_;
 	settings_ = next;
-	keyingBudget_.setSharePercent(next.daemon.keyingShare);
 	LogLevel level;
 	if (parseLogLevel(next.daemon.logLevel, level))
 		logger().setLevel(level);
@@ -417,7 +359,7 @@ void Daemon::injectTestFault()
 	if (testFault_ == TestFault::Stall) {
 		logger().warning("TEST FAULT: frames stalled, the watchdog is no longer fed",
 				 { { "TEST_FAULT", "stall" } });
-		framesStalled_ = true;
+		keyingStalled_ = true; // the worker wedges at its next frame; the loop goes on
 	} else if (testFault_ == TestFault::Hang) {
 		logger().warning("TEST FAULT: event loop hanging, the watchdog is no longer fed",
 				 { { "TEST_FAULT", "hang" } });

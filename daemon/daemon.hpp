@@ -1,6 +1,8 @@
 // depthkeyd's wiring: one event loop, the devices behind hal/ interfaces, the
-// pipeline, shared-memory output, status for systemd and the LEDs. It holds
-// no algorithm; it decides what to run when, and degrades instead of dying.
+// pipeline (keyed on a worker thread of its own: daemon/keying_worker.hpp,
+// daemon_keying.cpp), shared-memory output, status for systemd and the LEDs.
+// It holds no algorithm; it decides what to run when, and degrades instead
+// of dying.
 #pragma once
 
 #include "algo/pipeline.hpp"
@@ -11,7 +13,7 @@
 #include "daemon/frame_outputs.hpp"
 #include "daemon/frame_pairing.hpp"
 #include "daemon/frame_recorder.hpp"
-#include "daemon/keying_budget.hpp"
+#include "daemon/keying_worker.hpp"
 #include "daemon/no_signal_picture.hpp"
 #include "daemon/preview_feed.hpp"
 #include "daemon/stage_dumps.hpp"
@@ -24,9 +26,11 @@
 #include "settings/settings.hpp"
 #include "wiring/pipeline_setup.hpp"
 
+#include <atomic>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 
 namespace depthkey {
 
@@ -56,10 +60,17 @@ public:
 private:
 	void onColourFrame(const ColourFrame &frame);
 	void onDepthFrame(const DepthFrame &frame);
-	// Keys and publishes every held colour frame that is due, then arms a
-	// timer for the next one (pairing.delay_ms).
+	// Hands every held colour frame that is due to the keying worker, then
+	// arms a timer for the next one (pairing.delay_ms).
 	void keyDueFrames(bool makeRoom = false);
-	void keyFrame(const PairingQueue::Keying &keying);
+	// On the keying worker (daemon_keying.cpp): the pipeline alone.
+	void keyOnWorker(KeyingJob &job);
+	// On the loop: a keyed frame's board warp, previews and publication.
+	void onKeyed(KeyingJob &job);
+	// On the loop, while the pipeline is its own (the worker idle or
+	// waiting for onKeyed to return): what waited for it.
+	void betweenFrames();
+	void applyNow(const Settings &settings, const PipelineFiles &files);
 	void onDeviceStatus(const std::string &device, const DeviceStatus &status);
 	void onFrameTick();
 	void onStatusTick();
@@ -122,7 +133,12 @@ private:
 	int colourWidth_ = 0, colourHeight_ = 0, depthWidth_ = 0, depthHeight_ = 0; // last frames
 	PipelineOutput output_;
 	FramePairing pairing_;     // colour frames waiting for depth, the depth camera's offset
-	KeyingBudget keyingBudget_; // sheds colour frames a slow box cannot key
+	PipelineStatus pipelineStatus_; // the pipeline's, as of the last keyed frame (loop's copy)
+	// A reload that came while a frame was being keyed, applied between frames.
+	std::optional<std::pair<Settings, PipelineFiles>> pendingReload_;
+	bool snapshotWanted_ = false; // SIGUSR1 while a frame was being keyed
+	bool submitting_ = false;     // in keyDueFrames: the pairing queue is being read
+	bool inResult_ = false;       // in onKeyed: the pipeline is the loop's
 	bool haveColour_ = false;
 	uint64_t lastColourNs_ = 0;   // arrival (loop clock) of the last colour frame
 	uint64_t lastFrameTickNs_ = 0; // loop clock of the last onFrameTick
@@ -130,7 +146,11 @@ private:
 	NoSignalPicture noSignal_;
 
 	TestFault testFault_ = TestFault::None;
-	bool framesStalled_ = false; // TEST-ONLY "stall" fault injected
+	std::atomic<bool> keyingStalled_{ false }; // TEST-ONLY "stall" fault injected; read on the worker
+
+	// Last: joined (in ~Daemon, before anything it keys with goes) while
+	// the pipeline, its output and the loop are still there.
+	KeyingWorker keyer_;
 };
 
 } // namespace depthkey

@@ -44,6 +44,7 @@ void Daemon::applyPipelineFiles(const PipelineFiles &files)
 
 	// The board picture is the board source's (its errors are its own).
 	configurePipeline(pipeline_, settings_, mapping_, board_.pipelineBoard());
+	pipelineStatus_ = pipeline_.status(); // between frames: the pipeline is the loop's
 }
 
 // On the status tick, once frames of both cameras have arrived: the

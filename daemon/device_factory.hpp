@@ -27,6 +27,9 @@ struct DeviceFactory {
 	std::function<std::unique_ptr<FrameSink>(const Settings &)> frameSink = createFrameSink;
 	std::function<std::unique_ptr<StatusLeds>(const Settings &)> statusLeds = createStatusLeds;
 	std::function<std::unique_ptr<ColourCamera>(const Settings &)> boardSource = createBoardSourceFor;
+	// Tests only: runs on the keying worker before each frame is keyed (a
+	// slow box, a frame being keyed when the daemon stops). Empty by default.
+	std::function<void()> beforeKeying;
 };
 
 } // namespace depthkey

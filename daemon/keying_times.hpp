@@ -1,7 +1,9 @@
-// How long keying a colour frame takes in the daemon, from the pairing
-// queue handing it over to its publication (pipeline, board warp, preview
-// hand-off, shared memory and webcam writes): the figure that says whether
-// a box keeps up, and the soak's per-frame time (tests/soak/).
+// How long keying a colour frame takes in the daemon: its work wherever it
+// ran, the pipeline on the keying worker (timed there) and the board warp,
+// preview hand-off, shared memory and webcam writes on the loop, not the
+// time it waited for the worker (daemon/keying_worker.hpp): the figure
+// that says whether a box keeps up, and the soak's per-frame time
+// (tests/soak/).
 //
 // A fixed histogram with 16 buckets per power of two of microseconds (at
 // most 1/16 = 6 % wide), so quantiles stay exact to a bucket over any

@@ -3,8 +3,9 @@
 // on purpose. Never set it on a box in service.
 //   DEPTHKEY_TEST_FAULT=hang   SIGUSR2 blocks the event loop for ever (as a
 //                              driver call that never returns would)
-//   DEPTHKEY_TEST_FAULT=stall  SIGUSR2 stops publishing frames while the
-//                              event loop, status and LEDs go on
+//   DEPTHKEY_TEST_FAULT=stall  SIGUSR2 wedges the keying worker at its next
+//                              frame and stops publishing (NO SIGNAL too)
+//                              while the event loop, status and LEDs go on
 // Either way WATCHDOG=1 stops and systemd kills and restarts the daemon.
 #pragma once
 

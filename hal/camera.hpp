@@ -59,7 +59,7 @@ public:
 
 	// Whether frames come at the device's own rate whether or not they are
 	// taken (a live camera): a daemon too slow for them must shed some
-	// (daemon/keying_budget.hpp). False for a source that waits for the
+	// (daemon/keying_worker.hpp). False for a source that waits for the
 	// daemon (a replay not in real time), whose every frame is keyed.
 	virtual bool freeRunning() const { return true; }
 
