@@ -109,5 +109,5 @@ TEST(AccuracySizes, PipelineAt1920x1080)
 {
 	if (!asked())
 		GTEST_SKIP() << "minutes long: make accuracy-sizes (DEPTHKEY_ACCURACY_SIZES=1)";
-	gateAt({ 1920, 1080, { { 0.955, 0.766, 0.0 }, { 0.950, 0.610, 0.0 }, { 0.959, 0.563, 0.0 } } });
+	gateAt({ 1920, 1080, { { 0.966, 0.844, 0.881 }, { 0.961, 0.720, 0.837 }, { 0.960, 0.628, 0.859 } } });
 }

@@ -23,15 +23,24 @@ TEST(EvalTool, SummaryLineAndSequenceRoundTrip)
 	ASSERT_EQ(status, 0) << sim;
 	std::string summary = lastLine(sim);
 	// Exactly the documented form: parse it, print it again, compare.
-	double iou, bf, fnr, fpr;
+	double iou, bf, fnr, fpr, bfScaled;
 	long fps;
-	ASSERT_EQ(std::sscanf(summary.c_str(), "summary method=depth-only frames=12 iou=%lf bf=%lf fnr=%lf fpr=%lf fps=%ld",
-			      &iou, &bf, &fnr, &fpr, &fps), 5)
+	int scaledPx;
+	ASSERT_EQ(std::sscanf(summary.c_str(),
+			      "summary method=depth-only frames=12 iou=%lf bf=%lf fnr=%lf fpr=%lf fps=%ld bf_scaled=%lf "
+			      "bf_scaled_px=%d",
+			      &iou, &bf, &fnr, &fpr, &fps, &bfScaled, &scaledPx),
+		  7)
 		<< summary;
-	char again[160];
-	std::snprintf(again, sizeof(again), "summary method=depth-only frames=12 iou=%.3f bf=%.3f fnr=%.3f fpr=%.3f fps=%ld",
-		      iou, bf, fnr, fpr, fps);
+	char again[200];
+	std::snprintf(again, sizeof(again),
+		      "summary method=depth-only frames=12 iou=%.3f bf=%.3f fnr=%.3f fpr=%.3f fps=%ld bf_scaled=%.3f "
+		      "bf_scaled_px=%d",
+		      iou, bf, fnr, fpr, fps, bfScaled, scaledPx);
 	EXPECT_EQ(summary, again);
+	// The simulated lecture is 640x480: the scaled tolerance is the 2 px.
+	EXPECT_EQ(scaledPx, 2);
+	EXPECT_EQ(bfScaled, bf);
 	for (double v : { iou, bf, fnr, fpr }) {
 		EXPECT_GE(v, 0.0);
 		EXPECT_LE(v, 1.0);
