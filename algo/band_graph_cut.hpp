@@ -37,10 +37,9 @@ public:
 	// smoothness 0 turns the cut off; edgeSigma in 8-bit levels (RGB).
 	void configure(int smoothness, int edgeSigma);
 	// The coarse-to-fine solve: levels of 2x2 blocks (0 = one cut of the
-	// whole band) at 640 pixels wide, one more for each whole doubling of
-	// the width (so that the coarsest cell covers about the same part of
-	// the scene at every size), and the coarse cells around a coarse edge
-	// cut again.
+	// whole band) at 640 pixels wide, plus log2(width / 640) rounded (so
+	// that the coarsest cell covers about the same part of the scene at
+	// every size), and the coarse cells around a coarse edge cut again.
 	void setLevels(int levels, int margin)
 	{
 		levels_ = levels;

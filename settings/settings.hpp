@@ -127,7 +127,7 @@ struct DecisionSettings {
 	int cutSmoothness = 1000;           // 0..10000: the band's minimum cut (algo/band_graph_cut.hpp); 0 = off
 	int cutEdgeSigma = 7;               // 1..64: colour difference (8-bit RGB levels) the cut follows
 	int cutMaxBandPixels = 2500000;     // 0..8294400: a larger band is smoothed instead (a safety valve above a 1080p frame)
-	int cutLevels = 1;                  // 0..4: the cut solved coarse to fine over 2x2 blocks at 640 wide, +1 a doubling (algo/coarse_to_fine_cut.hpp)
+	int cutLevels = 1;                  // 0..4: the cut solved coarse to fine over 2x2 blocks at 640 wide, + log2(width / 640) rounded (algo/coarse_to_fine_cut.hpp)
 	int cutMargin = 0;                  // 0..8: coarse cells around a coarse edge cut again at the finer level
 	int edgeUnmixing = 100;             // 0..195075: least |F - B|^2 to unmix edge pixels (algo/boundary_unmixing.hpp); 0 = off
 	bool operator==(const DecisionSettings &) const = default;

@@ -189,7 +189,7 @@ TEST(BandGraphCut, CoarseLevelsGrowWithTheWidth)
 	EXPECT_EQ(BandGraphCut::levelsForWidth(1, 640), 1);
 	EXPECT_EQ(BandGraphCut::levelsForWidth(1, 320), 1);
 	EXPECT_EQ(BandGraphCut::levelsForWidth(1, 1280), 2);
-	EXPECT_EQ(BandGraphCut::levelsForWidth(1, 1920), 2); // log2(3) = 1.58: one whole doubling
-	EXPECT_EQ(BandGraphCut::levelsForWidth(1, 1279), 1);
-	EXPECT_EQ(BandGraphCut::levelsForWidth(2, 2560), 4);
+	EXPECT_EQ(BandGraphCut::levelsForWidth(1, 1920), 3); // log2(3) = 1.58 rounds up
+	EXPECT_EQ(BandGraphCut::levelsForWidth(2, 900), 2);  // log2(900 / 640) = 0.49 rounds down
+	EXPECT_EQ(BandGraphCut::levelsForWidth(2, 910), 3);  // 0.51 rounds up
 }
