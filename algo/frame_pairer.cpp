@@ -2,6 +2,14 @@
 
 namespace depthkey {
 
+PairableOffsets pairableOffsetsMs(int maxSkewMs, int delayMs, int colourFps, int depthFps)
+{
+	// Rates are 1..60 (config); guarded so a zero cannot divide.
+	const int colourPeriodMs = 1000 / (colourFps > 0 ? colourFps : 1);
+	const int historyMs = static_cast<int>(FramePairer::kHistory) * 1000 / (depthFps > 0 ? depthFps : 1);
+	return { -(delayMs + maxSkewMs + colourPeriodMs), historyMs + maxSkewMs };
+}
+
 void FramePairer::configure(int64_t offsetNs, uint64_t maxSkewNs)
 {
 	offsetNs_ = offsetNs;

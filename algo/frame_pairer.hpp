@@ -25,6 +25,19 @@
 
 namespace depthkey {
 
+// The pairing.offset_ms values that can ever pair (issue 31 point 7), in ms.
+// A colour frame captured at c is keyed by c + delay + one colour period
+// (its transfer) at the latest, so it needs a depth frame stamped by then:
+// corrected = depth + offset >= c - maxSkew gives offset >= -(delay + maxSkew
+// + colour period). The pairer keeps kHistory depth frames (their span at the
+// depth rate), so a depth frame older than that span before c is gone: offset
+// <= history span + maxSkew. Outside, no frame is ever paired and the daemon
+// never becomes ready.
+struct PairableOffsets {
+	int minMs = 0, maxMs = 0;
+};
+PairableOffsets pairableOffsetsMs(int maxSkewMs, int delayMs, int colourFps, int depthFps);
+
 struct PairingStats {
 	uint64_t paired = 0;
 	uint64_t unpaired = 0;

@@ -13,6 +13,7 @@
 #include "config/frame_limits.hpp"
 #include "config/text_file.hpp"
 #include "config/toml_binder.hpp"
+#include "algo/frame_pairer.hpp"
 #include "hal/shm_name.hpp"
 
 namespace depthkey {
@@ -180,11 +181,19 @@ void bindDepth(TomlSection &sec, DepthCameraSettings &s)
 	sec.number("scale_mm", s.scaleMm, 0.01, 100.0);
 }
 
-void bindPairing(TomlSection &sec, PairingSettings &s)
+// Bound after [colour] and [depth]: their rates set the offsets that can pair.
+void bindPairing(TomlSection &sec, PairingSettings &s, int colourFps, int depthFps)
 {
-	sec.integerOrWord("offset_ms", s.offsetMs, -1000, 1000, "auto", s.offsetAuto);
-	sec.integer("max_skew_ms", s.maxSkewMs, 1, 1000);
-	sec.integer("delay_ms", s.delayMs, 0, 1000);
+	bool ok = sec.integerOrWord("offset_ms", s.offsetMs, -1000, 1000, "auto", s.offsetAuto);
+	ok = sec.integer("max_skew_ms", s.maxSkewMs, 1, 1000) && ok;
+	ok = sec.integer("delay_ms", s.delayMs, 0, 1000) && ok;
+	const PairableOffsets range = pairableOffsetsMs(s.maxSkewMs, s.delayMs, colourFps, depthFps);
+	if (ok && !s.offsetAuto)
+		sec.require(s.offsetMs >= range.minMs && s.offsetMs <= range.maxMs, "offset_ms",
+			    std::to_string(s.offsetMs) + " can never pair: with delay_ms " +
+				    std::to_string(s.delayMs) + ", max_skew_ms " + std::to_string(s.maxSkewMs) +
+				    " and the cameras' fps only " + std::to_string(range.minMs) + ".." +
+				    std::to_string(range.maxMs) + " can");
 }
 
 void bindSegmentation(TomlSection &sec, SegmentationSettings &s)
@@ -424,7 +433,7 @@ bool bindSettingsFindingCut(TomlSection &root, Settings &s)
 	});
 	root.table("colour", [&](TomlSection &sec) { bindColour(sec, s.colour); });
 	root.table("depth", [&](TomlSection &sec) { bindDepth(sec, s.depth); });
-	root.table("pairing", [&](TomlSection &sec) { bindPairing(sec, s.pairing); });
+	root.table("pairing", [&](TomlSection &sec) { bindPairing(sec, s.pairing, s.colour.fps, s.depth.fps); });
 	root.table("segmentation", [&](TomlSection &sec) { bindSegmentation(sec, s.segmentation); });
 	root.table("mapping", [&](TomlSection &sec) { bindMapping(sec, s.mapping); });
 	root.table("learning", [&](TomlSection &sec) { bindLearning(sec, s.learning); });

@@ -512,6 +512,28 @@ TEST(ConfigLoader, DepthOffsetIsAnIntegerOrAuto)
 		  (ConfigError{ kFile, 2, 12, "pairing.delay_ms", "1001 is out of range: 0..1000" }));
 }
 
+// Issue 31 point 7: offsets inside -1000..1000 that can never pair (no depth
+// frame is captured in time, or none is kept that old) are refused at the key.
+TEST(ConfigLoader, DepthOffsetThatCanNeverPairIsRefused)
+{
+	// Defaults: delay 150, max skew 150, colour 25 fps, depth 10 fps: -340..750.
+	EXPECT_TRUE(parseConfig("[pairing]\noffset_ms = -340\n", kFile).ok());
+	EXPECT_TRUE(parseConfig("[pairing]\noffset_ms = 750\n", kFile).ok());
+	EXPECT_EQ(onlyError("[pairing]\noffset_ms = -1000\n"),
+		  (ConfigError{ kFile, 2, 13, "pairing.offset_ms",
+				"-1000 can never pair: with delay_ms 150, max_skew_ms 150 and the "
+				"cameras' fps only -340..750 can" }));
+	EXPECT_EQ(onlyError("[pairing]\noffset_ms = 1000\n"),
+		  (ConfigError{ kFile, 2, 13, "pairing.offset_ms",
+				"1000 can never pair: with delay_ms 150, max_skew_ms 150 and the "
+				"cameras' fps only -340..750 can" }));
+	// The range follows the rates and the window: 30 fps depth keeps 200 ms.
+	EXPECT_FALSE(parseConfig("[depth]\nfps = 30\n[pairing]\noffset_ms = 400\n", kFile).ok());
+	EXPECT_TRUE(parseConfig("[pairing]\noffset_ms = -900\ndelay_ms = 700\nmax_skew_ms = 200\n", kFile).ok());
+	// "auto" is measured within its own window.
+	EXPECT_TRUE(parseConfig("[pairing]\noffset_ms = \"auto\"\ndelay_ms = 0\n", kFile).ok());
+}
+
 } // namespace
 
 } // namespace depthkey

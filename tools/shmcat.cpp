@@ -1,5 +1,5 @@
 // depthkey-shmcat: dumps a depthkeyd shared-memory stream as YUV4MPEG2 on
-// stdout, e.g.  depthkey-shmcat --frames 100 | ffmpeg -i - out.mp4
+// stdout, e.g.  depthkey-shmcat --frames 250 --yuv420 | ffmpeg -y -i - -pix_fmt yuv420p out.mp4
 //
 // It is also the reference consumer of hal/depthkey_shm.h: it uses nothing but
 // the C reader, re-opens when the writer restarts and writes nothing to the
@@ -8,13 +8,23 @@
 // reads, uncounted, and says so once.
 //
 // Output: RGB24 streams as "C444 XCOLORRANGE=FULL" (yuv444p, full-range
-// BT.601 / JFIF, no chroma subsampling so colour edges of the key survive),
-// RGBA32 streams as "C444alpha XCOLORRANGE=FULL" (yuva444p, straight alpha).
-// The format follows the object's fourcc; --stream only picks the default
-// name. Each frame number is emitted at most once; when the writer is faster
-// than the consumer, intermediate frames are skipped.
+// BT.601 / JFIF, no chroma subsampling so colour edges of the key survive) or,
+// with --yuv420, "C420jpeg XCOLORRANGE=FULL" (yuv420p, what H.264 players and
+// phones accept); RGBA32 streams as "C444alpha XCOLORRANGE=FULL" (yuva444p,
+// straight alpha). The format follows the object's fourcc; --stream only
+// picks the default name. Each frame number is emitted at most once; when the
+// writer is faster than the consumer, intermediate frames are skipped.
+//
+// The header's rate is the rate the stream really delivers (issue 29): the
+// published frame numbers over the capture timestamps of the first second,
+// so skipped frames do not lower it and a busy daemon's 14 fps is not
+// written as 25. --fps overrides.
+#include "algo/y4m_rows.hpp"
 #include "hal/depthkey_shm.h"
+#include "hal/shm_header_fault.hpp"
+#include "tools/shmcat_options.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
@@ -24,109 +34,19 @@
 #include <thread>
 #include <vector>
 
-namespace {
+using namespace depthkey;
+using namespace shmcat;
 
-struct Options {
-	std::string stream = "composite";
-	std::string name;          // "" = /depthkey.<stream>
-	unsigned long frames = 0;  // 0 = until interrupted
-	double timeoutSec = 5.0;
-	int fps = 25;
-};
+namespace {
 
 using Clock = std::chrono::steady_clock;
 constexpr auto kPollInterval = std::chrono::milliseconds(2);
-
-void usage(FILE *out)
-{
-	std::fprintf(out,
-		     "usage: depthkey-shmcat [--stream composite|lecturer] [--name /obj]\n"
-		     "                       [--frames N] [--timeout SEC] [--fps N]\n"
-		     "Writes YUV4MPEG2 (C444 or C444alpha, full-range BT.601) to stdout.\n"
-		     "  --frames N     stop after N frames (default 0: run until killed)\n"
-		     "  --timeout SEC  fail when no new frame arrives for SEC s (default 5)\n"
-		     "  --fps N        frame rate written to the y4m header (default 25)\n");
-}
-
-// Returns 0, or 2 for a usage error (message printed).
-int parseOptions(int argc, char **argv, Options *opts)
-{
-	for (int i = 1; i < argc; i++) {
-		std::string arg = argv[i];
-		std::string value;
-		size_t eq = arg.find('=');
-		if (arg == "--help" || arg == "-h") {
-			usage(stdout);
-			std::exit(0);
-		}
-		if (eq != std::string::npos) {
-			value = arg.substr(eq + 1);
-			arg.resize(eq);
-		} else if (i + 1 < argc) {
-			value = argv[++i];
-		} else {
-			std::fprintf(stderr, "depthkey-shmcat: %s needs a value\n", arg.c_str());
-			return 2;
-		}
-
-		char *end = nullptr;
-		if (arg == "--stream" && (value == "composite" || value == "lecturer")) {
-			opts->stream = value;
-		} else if (arg == "--name" && !value.empty() && value[0] == '/') {
-			opts->name = value;
-		} else if (arg == "--frames") {
-			opts->frames = std::strtoul(value.c_str(), &end, 10);
-		} else if (arg == "--timeout") {
-			opts->timeoutSec = std::strtod(value.c_str(), &end);
-			if (!(opts->timeoutSec > 0))
-				end = nullptr;
-		} else if (arg == "--fps") {
-			opts->fps = static_cast<int>(std::strtol(value.c_str(), &end, 10));
-			if (opts->fps < 1 || opts->fps > 1000)
-				end = nullptr;
-		} else {
-			std::fprintf(stderr, "depthkey-shmcat: bad option %s %s\n", arg.c_str(),
-				     value.c_str());
-			usage(stderr);
-			return 2;
-		}
-		if ((arg == "--frames" || arg == "--timeout" || arg == "--fps") &&
-		    (!end || *end != '\0' || value.empty())) {
-			std::fprintf(stderr, "depthkey-shmcat: bad value for %s: '%s'\n",
-				     arg.c_str(), value.c_str());
-			return 2;
-		}
-	}
-	if (opts->name.empty())
-		opts->name = "/depthkey." + opts->stream;
-	return 0;
-}
-
-// Full-range BT.601 (JFIF), coefficients scaled by 2^16 and rounded so that
-// each row sums exactly: Y = 0.299 R + 0.587 G + 0.114 B -> 19595, 38470,
-// 7471 (sum 65536, so white is exactly 255); Cb = -0.168736 R - 0.331264 G +
-// 0.5 B -> -11058, -21710, 32768 (sum 0, so greys have Cb = 128 exactly);
-// Cr = 0.5 R - 0.418688 G - 0.081312 B -> 32768, -27439, -5329 (sum 0).
-// The +32768 rounds to nearest; Cb/Cr can reach 256 for pure blue/red.
-inline uint8_t clampByte(int v)
-{
-	return static_cast<uint8_t>(v > 255 ? 255 : v);
-}
-
-void convertRow(const uint8_t *src, int width, int bpp, uint8_t *y, uint8_t *u, uint8_t *v,
-		uint8_t *a)
-{
-	constexpr int kHalf = 1 << 15;
-	constexpr int kChromaOffset = 128 << 16;
-	for (int x = 0; x < width; x++, src += bpp) {
-		const int r = src[0], g = src[1], b = src[2];
-		y[x] = static_cast<uint8_t>((19595 * r + 38470 * g + 7471 * b + kHalf) >> 16);
-		u[x] = clampByte((-11058 * r - 21710 * g + 32768 * b + kChromaOffset + kHalf) >> 16);
-		v[x] = clampByte((32768 * r - 27439 * g - 5329 * b + kChromaOffset + kHalf) >> 16);
-		if (a)
-			a[x] = src[3];
-	}
-}
+// The rate is measured over this much capture time or this many frame
+// intervals, whichever comes first, and given up after kMeasureWall of wall
+// time (a stalled stream then gets the fallback).
+constexpr uint64_t kMeasureSpanNs = 1000000000ull;
+constexpr uint64_t kMeasureFrames = 25;
+constexpr auto kMeasureWall = std::chrono::milliseconds(1500);
 
 class ShmCat
 {
@@ -137,13 +57,21 @@ public:
 
 private:
 	int openReader(bool first, Clock::time_point deadline);
-	int emit(const dk_shm_frame_info &info);
+	int takeGeometry();
+	bool writeHeader(FrameRate rate);
+	FrameRate measuredRate() const;
+	int emit();
 
 	const Options &opts_;
 	dk_shm_reader reader_{};
-	uint32_t width_ = 0, height_ = 0, fourcc_ = 0;
+	uint32_t width_ = 0, height_ = 0, stride_ = 0, fourcc_ = 0;
+	int bpp_ = 0;
+	bool yuv420_ = false;
 	std::vector<uint8_t> frame_;
 	std::vector<uint8_t> out_;
+	std::vector<uint8_t> chromaRows_; // 4:2:0: two full-width rows of Cb and of Cr
+	// Rate measurement: the first frame seen and the newest.
+	dk_shm_frame_info first_{}, newest_{};
 };
 
 // Retries while the writer is (re)creating the object. A missing object is
@@ -162,8 +90,10 @@ int ShmCat::openReader(bool first, Clock::time_point deadline)
 			return ret;
 		}
 		if (ret == -EPROTO) {
+			const std::string fault = shmObjectFault(name);
 			std::fprintf(stderr, "depthkey-shmcat: %s is not a depthkey frame ring of "
-				     "version %u (or is truncated)\n", name, DK_SHM_VERSION);
+				     "version %u: header %s\n", name, DK_SHM_VERSION,
+				     fault.empty() ? "changed while read" : fault.c_str());
 			return ret;
 		}
 		if (ret != -EAGAIN && ret != -ENOENT) {
@@ -180,21 +110,106 @@ int ShmCat::openReader(bool first, Clock::time_point deadline)
 	}
 }
 
-int ShmCat::emit(const dk_shm_frame_info &info)
+// The reader validated the geometry; it is checked again here against what
+// this tool narrows it to (int widths, size_t buffers), so a change in the
+// reader's rules cannot turn into an overrun here.
+int ShmCat::takeGeometry()
 {
-	const int bpp = static_cast<int>(dk_shm_bytes_per_pixel(fourcc_));
+	const uint32_t bpp = dk_shm_bytes_per_pixel(reader_.fourcc);
+	if (bpp == 0 || reader_.width == 0 || reader_.width > DK_SHM_MAX_DIMENSION ||
+	    reader_.height == 0 || reader_.height > DK_SHM_MAX_DIMENSION ||
+	    reader_.stride < static_cast<uint64_t>(reader_.width) * bpp ||
+	    reader_.frame_bytes != static_cast<uint64_t>(reader_.stride) * reader_.height ||
+	    reader_.frame_bytes > SIZE_MAX / 2) {
+		std::fprintf(stderr, "depthkey-shmcat: %s: header geometry out of range: width %u "
+			     "height %u stride %u fourcc 0x%08x\n", opts_.name.c_str(), reader_.width,
+			     reader_.height, reader_.stride, reader_.fourcc);
+		return -EPROTO;
+	}
+	width_ = reader_.width;
+	height_ = reader_.height;
+	stride_ = reader_.stride;
+	fourcc_ = reader_.fourcc;
+	bpp_ = static_cast<int>(bpp);
+	// Alpha has no 4:2:0 form in y4m: the lecturer layer stays 4:4:4.
+	yuv420_ = opts_.yuv420 && bpp == 3;
+	if (opts_.yuv420 && !yuv420_)
+		std::fprintf(stderr, "depthkey-shmcat: %s has alpha: written as C444alpha, "
+			     "--yuv420 applies to the composite only\n", opts_.name.c_str());
+	frame_.resize(static_cast<size_t>(reader_.frame_bytes));
 	const size_t plane = static_cast<size_t>(width_) * height_;
-	const size_t planes = bpp == 4 ? 4 : 3;
+	const size_t chroma = yuv420_ ? static_cast<size_t>((width_ + 1) / 2) * ((height_ + 1) / 2)
+				      : plane;
 	static const char kFrame[] = "FRAME\n";
-
-	out_.resize(sizeof(kFrame) - 1 + planes * plane);
+	out_.resize(sizeof(kFrame) - 1 + plane + 2 * chroma + (bpp == 4 ? plane : 0));
 	std::memcpy(out_.data(), kFrame, sizeof(kFrame) - 1);
-	uint8_t *y = out_.data() + sizeof(kFrame) - 1;
-	for (uint32_t row = 0; row < height_; row++) {
-		const size_t off = static_cast<size_t>(row) * width_;
-		convertRow(frame_.data() + static_cast<size_t>(row) * info.stride,
-			   static_cast<int>(width_), bpp, y + off, y + plane + off,
-			   y + 2 * plane + off, bpp == 4 ? y + 3 * plane + off : nullptr);
+	chromaRows_.resize(yuv420_ ? 4 * static_cast<size_t>(width_) : 0);
+	return 0;
+}
+
+bool ShmCat::writeHeader(FrameRate rate)
+{
+	const char *colour = fourcc_ == DK_SHM_FORMAT_RGBA32 ? "C444alpha"
+			     : yuv420_			     ? "C420jpeg"
+							     : "C444";
+	return std::printf("YUV4MPEG2 W%u H%u F%u:%u Ip A1:1 %s XCOLORRANGE=FULL\n", width_,
+			   height_, rate.num, rate.den, colour) > 0;
+}
+
+// Published frames per second of capture time between the first and the
+// newest frame seen: frame numbers count what the writer published, so
+// frames this reader skipped still count, and a one-off late frame only
+// shifts the end point.
+FrameRate ShmCat::measuredRate() const
+{
+	const uint64_t frames = newest_.frame - first_.frame;
+	const uint64_t spanNs = newest_.timestamp_ns - first_.timestamp_ns;
+	if (first_.frame == 0 || frames == 0 || newest_.frame < first_.frame ||
+	    newest_.timestamp_ns <= first_.timestamp_ns) {
+		std::fprintf(stderr, "depthkey-shmcat: %s: too few frames to measure the rate, "
+			     "writing %u fps (--fps sets it)\n", opts_.name.c_str(), kFallbackFps);
+		return { kFallbackFps, 1 };
+	}
+	const double fps = static_cast<double>(frames) * 1e9 / static_cast<double>(spanNs);
+	if (!(fps >= kMinFrameRate && fps <= kMaxFrameRate)) {
+		std::fprintf(stderr, "depthkey-shmcat: %s: measured %.3g fps from the capture "
+			     "timestamps, not believed: writing %u fps (--fps sets it)\n",
+			     opts_.name.c_str(), fps, kFallbackFps);
+		return { kFallbackFps, 1 };
+	}
+	return y4mFrameRate(fps);
+}
+
+int ShmCat::emit()
+{
+	const size_t plane = static_cast<size_t>(width_) * height_;
+	uint8_t *y = out_.data() + 6; // after "FRAME\n"
+	const int width = static_cast<int>(width_); // <= DK_SHM_MAX_DIMENSION
+	if (!yuv420_) {
+		for (uint32_t row = 0; row < height_; row++) {
+			const size_t off = static_cast<size_t>(row) * width_;
+			rgbToYuv444Row_C(frame_.data() + static_cast<size_t>(row) * stride_, width,
+					 bpp_, y + off, y + plane + off, y + 2 * plane + off,
+					 bpp_ == 4 ? y + 3 * plane + off : nullptr);
+		}
+	} else {
+		const size_t chromaWidth = (width_ + 1) / 2;
+		uint8_t *u = y + plane;
+		uint8_t *v = u + chromaWidth * ((height_ + 1) / 2);
+		uint8_t *u0 = chromaRows_.data(), *u1 = u0 + width_;
+		uint8_t *v0 = u1 + width_, *v1 = v0 + width_;
+		for (uint32_t row = 0; row < height_; row += 2) {
+			const uint8_t *src = frame_.data() + static_cast<size_t>(row) * stride_;
+			rgbToYuv444Row_C(src, width, 3, y + static_cast<size_t>(row) * width_, u0, v0,
+					 nullptr);
+			const bool pair = row + 1 < height_;
+			if (pair)
+				rgbToYuv444Row_C(src + stride_, width, 3,
+						 y + static_cast<size_t>(row + 1) * width_, u1, v1, nullptr);
+			const size_t off = static_cast<size_t>(row / 2) * chromaWidth;
+			subsampleChromaRow_C(u0, pair ? u1 : u0, width, u + off);
+			subsampleChromaRow_C(v0, pair ? v1 : v0, width, v + off);
+		}
 	}
 	if (std::fwrite(out_.data(), 1, out_.size(), stdout) != out_.size() ||
 	    std::fflush(stdout) != 0) {
@@ -211,21 +226,22 @@ int ShmCat::run()
 		std::chrono::duration<double>(opts_.timeoutSec));
 	auto lastNew = Clock::now();
 
-	if (openReader(true, lastNew + timeout))
+	if (openReader(true, lastNew + timeout) || takeGeometry())
 		return 1;
 	if (reader_.presence_error)
 		std::fprintf(stderr, "depthkey-shmcat: reading %s uncounted (no reader heartbeat: %s)\n",
 			     opts_.name.c_str(), std::strerror(-reader_.presence_error));
-	width_ = reader_.width;
-	height_ = reader_.height;
-	fourcc_ = reader_.fourcc;
-	frame_.resize(reader_.frame_bytes);
 
-	std::printf("YUV4MPEG2 W%u H%u F%d:1 Ip A1:1 %s XCOLORRANGE=FULL\n", width_, height_,
-		    opts_.fps, fourcc_ == DK_SHM_FORMAT_RGBA32 ? "C444alpha" : "C444");
+	// While measuring, frames are read for their timestamps; the newest is
+	// held and becomes the first frame written after the header.
+	bool measuring = opts_.fps == 0;
+	bool held = false;
+	Clock::time_point measureStart{};
+	if (!measuring && !writeHeader({ opts_.fps, 1 }))
+		return 1;
 
 	uint64_t lastFrame = 0;
-	unsigned long emitted = 0;
+	uint64_t emitted = 0;
 	while (opts_.frames == 0 || emitted < opts_.frames) {
 		uint64_t latest = 0;
 		int ret = dk_shm_latest(&reader_, &latest);
@@ -233,13 +249,35 @@ int ShmCat::run()
 			dk_shm_frame_info info{};
 			ret = dk_shm_read_latest(&reader_, frame_.data(), frame_.size(), &info);
 			if (ret == 0 && info.frame != lastFrame) {
-				if (emit(info))
-					return 1;
 				lastFrame = info.frame;
 				lastNew = Clock::now();
-				emitted++;
-				continue;
+				if (!measuring) {
+					if (emit())
+						return 1;
+					emitted++;
+					continue;
+				}
+				if (!held || info.frame <= first_.frame ||
+				    info.timestamp_ns <= first_.timestamp_ns) {
+					first_ = info; // the first, or numbers restarted: start again
+				}
+				// The wall-time limit is not restarted with the numbers: a
+				// writer that restarts every few frames still gets a header.
+				if (measureStart == Clock::time_point{})
+					measureStart = lastNew;
+				newest_ = info;
+				held = true;
 			}
+		}
+		if (measuring && held &&
+		    (newest_.frame - first_.frame >= kMeasureFrames ||
+		     newest_.timestamp_ns - first_.timestamp_ns >= kMeasureSpanNs ||
+		     Clock::now() - measureStart >= std::min<Clock::duration>(kMeasureWall, timeout))) {
+			measuring = false;
+			if (!writeHeader(measuredRate()) || emit())
+				return 1;
+			emitted++;
+			continue;
 		}
 		if (ret == -ESTALE) {
 			// The writer restarted: frame numbers start again at 1.
@@ -247,7 +285,7 @@ int ShmCat::run()
 			if (openReader(false, lastNew + timeout))
 				return 1;
 			if (reader_.width != width_ || reader_.height != height_ ||
-			    reader_.fourcc != fourcc_) {
+			    reader_.fourcc != fourcc_ || reader_.stride != stride_) {
 				std::fprintf(stderr, "depthkey-shmcat: %s changed from %ux%u to %ux%u "
 					     "or changed format; a y4m stream cannot follow, restart\n",
 					     opts_.name.c_str(), width_, height_, reader_.width,
@@ -255,6 +293,7 @@ int ShmCat::run()
 				return 1;
 			}
 			lastFrame = 0;
+			held = false; // the held frame stays in frame_, but numbers restart
 			continue;
 		}
 		if (Clock::now() - lastNew >= timeout) {

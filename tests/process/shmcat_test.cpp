@@ -3,6 +3,7 @@
 // written.
 #include "hal/depthkey_shm.h"
 #include "hal/shm_ring_writer.hpp"
+#include "tests/process/piped_command.hpp"
 #include "tests/shm_test_util.hpp"
 #include "tests/test_paths.hpp"
 
@@ -19,6 +20,8 @@
 
 using namespace depthkey;
 using depthkey::test::ShmName;
+using depthkey::test::Result;
+using depthkey::test::runPiped;
 
 namespace {
 
@@ -30,49 +33,6 @@ constexpr int kWidth = 48, kHeight = 32;
 // versions, while a range or matrix mix-up (limited vs full, BT.709) would
 // be off by 10 or more. Alpha is copied: exact.
 constexpr int kColourTolerance = 3;
-
-struct Result {
-	int status = -1; // exit status, or -1 if it did not exit normally
-	std::string out;
-	std::string err;
-};
-
-// Runs `command` under bash -o pipefail (so a failing shmcat fails the
-// pipeline), capturing stdout; stderr goes through a file so that neither
-// pipe can fill up and stall the child.
-Result run(const std::string &command)
-{
-	Result result;
-	char errPath[] = "/tmp/depthkey-shmcat-test-XXXXXX";
-	int errFd = mkstemp(errPath);
-	int pipeFds[2];
-	if (errFd < 0 || pipe(pipeFds) < 0)
-		return result;
-	pid_t child = fork();
-	if (child == 0) {
-		dup2(pipeFds[1], STDOUT_FILENO);
-		dup2(errFd, STDERR_FILENO);
-		close(pipeFds[0]);
-		execl("/bin/bash", "bash", "-o", "pipefail", "-c", command.c_str(), nullptr);
-		_exit(127);
-	}
-	close(pipeFds[1]);
-	char buffer[65536];
-	ssize_t n;
-	while ((n = read(pipeFds[0], buffer, sizeof(buffer))) > 0)
-		result.out.append(buffer, static_cast<size_t>(n));
-	close(pipeFds[0]);
-	int status = 0;
-	waitpid(child, &status, 0);
-	result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-	std::ifstream errFile(errPath);
-	std::stringstream text;
-	text << errFile.rdbuf();
-	result.err = text.str();
-	close(errFd);
-	unlink(errPath);
-	return result;
-}
 
 std::string shmcat()
 {
@@ -117,7 +77,7 @@ public:
 				  if (restartAfter && f % restartAfter == 0)
 					  writer.open(writer.name(), writer.width(), writer.height(),
 						      writer.fourcc(), writer.slots(), "");
-				  writer.write(image.data(), writer.stride(), f * 1000u,
+				  writer.write(image.data(), writer.stride(), f * 4000000ull,
 					       DK_SHM_FLAG_ONLINE);
 				  std::this_thread::sleep_for(std::chrono::milliseconds(4));
 			  }
@@ -173,7 +133,7 @@ TEST_F(ShmCatTest, CompositeDecodesToTheWrittenColours)
 	ASSERT_EQ(writer.open(name.str(), kWidth, kHeight, DK_SHM_FORMAT_RGB24, 3, ""), 0);
 	const auto image = testImage(3);
 	Feeder feeder(writer, image);
-	Result r = run(shmcat() + " --name " + name.str() + " --frames 12 | ffmpeg -v error "
+	Result r = runPiped(shmcat() + " --name " + name.str() + " --frames 12 | ffmpeg -v error "
 		       "-f yuv4mpegpipe -i - -f rawvideo -pix_fmt rgb24 -");
 	expectFrames(r, 12, image, 3);
 }
@@ -185,9 +145,9 @@ TEST_F(ShmCatTest, LecturerKeepsStraightAlpha)
 	ASSERT_EQ(writer.open(name.str(), kWidth, kHeight, DK_SHM_FORMAT_RGBA32, 3, ""), 0);
 	const auto image = testImage(4);
 	Feeder feeder(writer, image);
-	Result header = run(shmcat() + " --name " + name.str() + " --frames 1 | head -c 100");
+	Result header = runPiped(shmcat() + " --name " + name.str() + " --frames 1 | head -c 100");
 	EXPECT_NE(header.out.find("C444alpha"), std::string::npos) << header.out;
-	Result r = run(shmcat() + " --stream lecturer --name " + name.str() + " --frames 8 | "
+	Result r = runPiped(shmcat() + " --stream lecturer --name " + name.str() + " --frames 8 | "
 		       "ffmpeg -v error -f yuv4mpegpipe -i - -f rawvideo -pix_fmt rgba -");
 	expectFrames(r, 8, image, 4);
 }
@@ -200,7 +160,7 @@ TEST_F(ShmCatTest, FfmpegProbesTheStream)
 	ASSERT_EQ(writer.open(name.str(), kWidth, kHeight, DK_SHM_FORMAT_RGB24, 3, ""), 0);
 	const auto image = testImage(3);
 	Feeder feeder(writer, image);
-	Result r = run(shmcat() + " --name " + name.str() + " --frames 5 --fps 30 | "
+	Result r = runPiped(shmcat() + " --name " + name.str() + " --frames 5 --fps 30 | "
 		       "ffmpeg -v error -i - -f rawvideo -pix_fmt rgb24 -");
 	expectFrames(r, 5, image, 3);
 }
@@ -212,7 +172,7 @@ TEST_F(ShmCatTest, FollowsAWriterRestart)
 	ASSERT_EQ(writer.open(name.str(), kWidth, kHeight, DK_SHM_FORMAT_RGB24, 3, ""), 0);
 	const auto image = testImage(3);
 	Feeder feeder(writer, image, 5); // a new generation every 5 frames
-	Result r = run(shmcat() + " --name " + name.str() + " --frames 16 | ffmpeg -v error "
+	Result r = runPiped(shmcat() + " --name " + name.str() + " --frames 16 | ffmpeg -v error "
 		       "-f yuv4mpegpipe -i - -f rawvideo -pix_fmt rgb24 -");
 	expectFrames(r, 16, image, 3);
 }
@@ -225,7 +185,7 @@ TEST_F(ShmCatTest, TimeoutWithoutNewFrames)
 	const auto image = testImage(3);
 	ASSERT_EQ(writer.write(image.data(), writer.stride(), 1, 0), 0);
 	writer.close(); // offline: the last frame stays, no new ones come
-	Result r = run(shmcat() + " --name " + name.str() + " --frames 3 --timeout 0.3");
+	Result r = runPiped(shmcat() + " --name " + name.str() + " --frames 3 --timeout 0.3");
 	EXPECT_NE(r.status, 0);
 	EXPECT_NE(r.err.find("timeout"), std::string::npos) << r.err;
 	EXPECT_NE(r.err.find(name.str()), std::string::npos) << r.err;
@@ -239,7 +199,7 @@ TEST_F(ShmCatTest, MissingObjectFailsAtOnce)
 {
 	ShmName name;
 	auto start = std::chrono::steady_clock::now();
-	Result r = run(shmcat() + " --name " + name.str() + " --timeout 10");
+	Result r = runPiped(shmcat() + " --name " + name.str() + " --timeout 10");
 	EXPECT_NE(r.status, 0);
 	EXPECT_NE(r.err.find(name.str() + " does not exist"), std::string::npos) << r.err;
 	EXPECT_TRUE(r.out.empty());
@@ -248,7 +208,7 @@ TEST_F(ShmCatTest, MissingObjectFailsAtOnce)
 
 TEST_F(ShmCatTest, BadOptionsAreUsageErrors)
 {
-	EXPECT_EQ(run(shmcat() + " --frames many").status, 2);
-	EXPECT_EQ(run(shmcat() + " --stream depth").status, 2);
-	EXPECT_EQ(run(shmcat() + " --timeout 0").status, 2);
+	EXPECT_EQ(runPiped(shmcat() + " --frames many").status, 2);
+	EXPECT_EQ(runPiped(shmcat() + " --stream depth").status, 2);
+	EXPECT_EQ(runPiped(shmcat() + " --timeout 0").status, 2);
 }

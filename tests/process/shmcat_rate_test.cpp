@@ -1,0 +1,196 @@
+// depthkey-shmcat's y4m header and numbers (issues 29 and 31): the rate it
+// writes is the one the daemon really delivers, --yuv420 gives what H.264
+// players take, and a bad number on the command line or in the shared-memory
+// header is refused by name instead of being narrowed.
+#include "hal/depthkey_shm.h"
+#include "hal/shm_ring_writer.hpp"
+#include "tests/process/daemon_process.hpp"
+#include "tests/process/piped_command.hpp"
+#include "tests/shm_test_util.hpp"
+#include "tests/test_paths.hpp"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <thread>
+#include <vector>
+
+using namespace depthkey;
+using namespace std::chrono_literals;
+using depthkey::test::DaemonProcess;
+using depthkey::test::Result;
+using depthkey::test::runPiped;
+using depthkey::test::ShmName;
+
+namespace {
+
+std::string shmcat()
+{
+	return depthkey::test::binDir() + "/depthkey-shmcat";
+}
+
+// The rate in a y4m header line ("... F30000:1001 ..."), 0 if none.
+double headerRate(const std::string &out)
+{
+	const std::string line = out.substr(0, out.find('\n'));
+	unsigned num = 0, den = 0;
+	const size_t at = line.find(" F");
+	if (at == std::string::npos || std::sscanf(line.c_str() + at, " F%u:%u", &num, &den) != 2 ||
+	    den == 0)
+		return 0;
+	return static_cast<double>(num) / den;
+}
+
+// What the writer really publishes: frame numbers over capture timestamps
+// across `span` of the test's own observation, read from the header.
+double observedRate(const std::string &name, std::chrono::milliseconds span)
+{
+	dk_shm_reader reader{};
+	if (dk_shm_open(name.c_str(), &reader) != 0)
+		return 0;
+	std::vector<uint8_t> frame(reader.frame_bytes);
+	dk_shm_frame_info first{}, last{};
+	const auto end = std::chrono::steady_clock::now() + span;
+	while (std::chrono::steady_clock::now() < end) {
+		dk_shm_frame_info info{};
+		if (dk_shm_read_latest(&reader, frame.data(), frame.size(), &info) == 0) {
+			if (first.frame == 0)
+				first = info;
+			last = info;
+		}
+		std::this_thread::sleep_for(5ms);
+	}
+	dk_shm_close(&reader);
+	if (last.frame <= first.frame || last.timestamp_ns <= first.timestamp_ns)
+		return 0;
+	return (last.frame - first.frame) * 1e9 / static_cast<double>(last.timestamp_ns - first.timestamp_ns);
+}
+
+bool haveFfmpeg()
+{
+	return system("command -v ffmpeg >/dev/null 2>&1 && command -v ffprobe >/dev/null 2>&1") == 0;
+}
+
+} // namespace
+
+// The daemon on simulated cameras at 10 fps: the header says about 10, not
+// the old fixed 25, within 5% of the rate read from the daemon's timestamps.
+TEST(ShmCatRateTest, HeaderRateIsTheDaemonsRealRate)
+{
+	DaemonProcess daemon;
+	const std::string prefix = "/depthkey-rate-" + std::to_string(getpid());
+	const std::string config = daemon.writeFile(
+		"depthkey.toml", "[colour]\nwidth = 160\nheight = 120\nfps = 10\n[depth]\nfps = 10\n"
+				 "[output]\ncomposite_name = \"" + prefix + ".composite\"\n"
+				 "lecturer_name = \"" + prefix + ".lecturer\"\n");
+	ASSERT_TRUE(daemon.start({ "--config", config }));
+	ASSERT_TRUE(daemon.waitForNotify("READY=1", 10s)) << daemon.log();
+
+	Result r = runPiped(shmcat() + " --name " + prefix + ".composite --frames 3 --timeout 10");
+	const double real = observedRate(prefix + ".composite", 3000ms);
+	ASSERT_EQ(r.status, 0) << r.err;
+	const double written = headerRate(r.out);
+	std::printf("    header %.3f fps, observed %.3f fps\n", written, real);
+	ASSERT_GT(real, 0);
+	EXPECT_NEAR(written, real, real * 0.05) << r.out.substr(0, r.out.find('\n'));
+	EXPECT_GT(std::abs(written - 25.0), 5.0);
+
+	ASSERT_EQ(daemon.signal(SIGTERM), 0);
+	EXPECT_NE(daemon.waitExit(5s), -1);
+	shm_unlink((prefix + ".composite").c_str());
+	shm_unlink((prefix + ".lecturer").c_str());
+}
+
+// --yuv420 (and --chroma 420): ffprobe reads yuv420p at the object's size,
+// and the printed recording command makes H.264 High
+// 4:2:0. The lecturer layer keeps its alpha (4:4:4).
+TEST(ShmCatRateTest, Yuv420DecodesAsYuv420p)
+{
+	if (!haveFfmpeg())
+		GTEST_SKIP() << "ffmpeg/ffprobe not installed";
+	ShmName name;
+	ShmRingWriter writer;
+	constexpr int kW = 46, kH = 30; // x264 needs even sizes; 30 / 2 is odd
+	ASSERT_EQ(writer.open(name.str(), kW, kH, DK_SHM_FORMAT_RGB24, 3, ""), 0);
+	std::vector<uint8_t> image(static_cast<size_t>(kW) * kH * 3);
+	for (size_t i = 0; i < image.size(); i++)
+		image[i] = static_cast<uint8_t>(i * 7);
+	std::atomic<bool> stop{ false };
+	std::thread feeder([&] {
+		for (uint64_t f = 1; !stop; f++) {
+			writer.write(image.data(), writer.stride(), f * 40000000ull, DK_SHM_FLAG_ONLINE);
+			std::this_thread::sleep_for(4ms);
+		}
+	});
+	// Through a file: ffprobe stops reading once it knows, which would break the pipe.
+	const std::string y4mFile = "/tmp/depthkey-shmcat-420-" + std::to_string(getpid()) + ".y4m";
+	const std::string probe = " > " + y4mFile + " && ffprobe -v error -show_entries "
+				  "stream=pix_fmt,width,height -of default=nw=1 " + y4mFile;
+	Result y4m = runPiped(shmcat() + " --name " + name.str() + " --frames 5 --yuv420" + probe);
+	Result spelt = runPiped(shmcat() + " --name " + name.str() + " --frames 5 --chroma 420" + probe);
+	unlink(y4mFile.c_str());
+	const std::string mp4 = "/tmp/depthkey-shmcat-420-" + std::to_string(getpid()) + ".mp4";
+	Result h264 = runPiped(shmcat() + " --name " + name.str() + " --frames 10 --yuv420 | ffmpeg -v error -y "
+			       "-i - -pix_fmt yuv420p " + mp4 + " && ffprobe -v error -show_entries "
+			       "stream=pix_fmt,width,height,profile -of default=nw=1 " + mp4);
+	stop = true;
+	feeder.join();
+	unlink(mp4.c_str());
+
+	for (const Result *r : { &y4m, &spelt }) {
+		ASSERT_EQ(r->status, 0) << r->err;
+		EXPECT_NE(r->out.find("pix_fmt=yuv420p"), std::string::npos) << r->out;
+		EXPECT_NE(r->out.find("width=46"), std::string::npos) << r->out;
+		EXPECT_NE(r->out.find("height=30"), std::string::npos) << r->out;
+	}
+	ASSERT_EQ(h264.status, 0) << h264.err;
+	EXPECT_NE(h264.out.find("profile=High\n"), std::string::npos) << h264.out;
+	EXPECT_NE(h264.out.find("pix_fmt=yuv"), std::string::npos) << h264.out;
+	EXPECT_NE(h264.out.find("420p"), std::string::npos) << h264.out;
+}
+
+// Issue 31 point 15: numbers are checked before they are narrowed.
+TEST(ShmCatRateTest, OutOfRangeArgumentsAreRefusedByName)
+{
+	const struct {
+		const char *args, *named;
+	} cases[] = {
+		{ "--timeout 1e10", "--timeout" },  { "--timeout nan", "--timeout" },
+		{ "--fps -4294967295", "--fps" },   { "--fps 4294967321", "--fps" },
+		{ "--fps 0", "--fps" },		    { "--frames -1", "--frames" },
+		{ "--frames 99999999999999999999", "--frames" }, { "--chroma 422", "--chroma" },
+	};
+	for (const auto &c : cases) {
+		Result r = runPiped(shmcat() + " --name /depthkey-none-" + std::to_string(getpid()) + " " +
+				    c.args);
+		EXPECT_EQ(r.status, 2) << c.args << ": " << r.err;
+		EXPECT_NE(r.err.find(c.named), std::string::npos) << c.args << ": " << r.err;
+	}
+}
+
+// A header whose width was overwritten (a reader in the group can, issue 31
+// point 1) is refused with the field, its value and the object named.
+TEST(ShmCatRateTest, BadHeaderFieldIsNamed)
+{
+	ShmName name;
+	ShmRingWriter writer;
+	ASSERT_EQ(writer.open(name.str(), 48, 32, DK_SHM_FORMAT_RGB24, 3, ""), 0);
+	int fd = shm_open(name.str().c_str(), O_RDWR, 0);
+	ASSERT_GE(fd, 0);
+	void *map = mmap(nullptr, sizeof(dk_shm_header), PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
+	close(fd);
+	ASSERT_NE(map, MAP_FAILED);
+	static_cast<dk_shm_header *>(map)->width = 0;
+	munmap(map, sizeof(dk_shm_header));
+
+	Result r = runPiped(shmcat() + " --name " + name.str() + " --frames 1 --timeout 1");
+	EXPECT_NE(r.status, 0);
+	EXPECT_NE(r.err.find(name.str()), std::string::npos) << r.err;
+	EXPECT_NE(r.err.find("width = 0"), std::string::npos) << r.err;
+	EXPECT_TRUE(r.out.empty());
+}
