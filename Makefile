@@ -382,7 +382,7 @@ FUZZ_TARGETS ?= $(FUZZ_ALL)
 # The library sources the harnesses reach, linked as objects. Folders whose
 # files call one another (config/, hal/preview/) are taken whole, so that a
 # file added there cannot be missing at link time (stop 26's CI failure).
-FUZZ_LIB_SRCS := $(wildcard config/*.cpp) algo/mapping_model.cpp algo/homography.cpp algo/radial_lens.cpp hal/sr2/sr2_frame_parser.cpp \
+FUZZ_LIB_SRCS := $(wildcard config/*.cpp) algo/frame_pairer.cpp algo/mapping_model.cpp algo/homography.cpp algo/radial_lens.cpp hal/sr2/sr2_frame_parser.cpp \
 	hal/recording/sequence_reader.cpp hal/recording/sequence_format.cpp hal/image_file.cpp hal/image_file_reader.cpp hal/png_codec.cpp \
 	hal/v4l2/yuv_to_rgb.cpp hal/v4l2/mjpeg_decoder.cpp hal/v4l2/depth16_to_frame.cpp \
 	$(wildcard hal/preview/*.cpp)
