@@ -46,7 +46,6 @@ public:
 		solver_.configure(margin);
 	}
 	static int levelsForWidth(int levels, int width);
-	const CoarseToFineCut &solver() const { return solver_; }
 	bool enabled() const { return smoothness_ > 0; }
 
 	// Decides every band pixel: decisions[k] = 255 (lecturer) or 0 for the

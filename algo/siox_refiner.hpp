@@ -59,7 +59,7 @@ public:
 	void setLecturerBeyondBorder(bool beyond) { lecturerBeyondBorder_ = beyond; }
 	// The band decided by a minimum cut instead of smoothing (smoothness 0
 	// = off), in frames whose band has at most maxBandPixels pixels.
-	void setGraphCut(int smoothness, int edgeSigma, size_t maxBandPixels, int levels = 0, int margin = 1)
+	void setGraphCut(int smoothness, int edgeSigma, size_t maxBandPixels, int levels = 0, int margin = 0)
 	{
 		cut_.configure(smoothness, edgeSigma);
 		cut_.setLevels(levels, margin);
