@@ -5,6 +5,12 @@ namespace depthkey {
 void SimColourCamera::prepare()
 {
 	simulator_.configure(sim_, settings_.width, settings_.height);
+	timing_.configure(sim_, settings_.fps, 10); // the depth rate does not matter here
+}
+
+uint64_t SimColourCamera::captureDelayUs(uint64_t n) const
+{
+	return static_cast<uint64_t>(timing_.colourCaptureDelay(n) * 1e6);
 }
 
 void SimColourCamera::render(uint64_t nowUs, ColourFrame &frame)

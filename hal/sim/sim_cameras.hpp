@@ -2,7 +2,12 @@
 // lecture (hal/sim/lecture_simulator.hpp), free-running at their own frame
 // rates like the real pair. Scene time is CLOCK_MONOTONIC, shared by both,
 // so the two views agree. The depth camera stamps each frame latency +
-// jitter after the moment it shows, as a real ToF delivers it late.
+// jitter after the moment it shows, as a real ToF delivers it late. The
+// colour camera's capture instants jitter around its period
+// (sim.colour_jitter_ms): each frame shows the scene at its jittered
+// capture instant and carries that instant as its timestamp, as a real
+// camera's frames do; jittering the delivery alone would leave the
+// timestamps (what the daemon pairs and measures by) on the period.
 #pragma once
 
 #include "hal/camera.hpp"
@@ -11,6 +16,7 @@
 #include "hal/sim/sim_timing.hpp"
 #include "settings/settings.hpp"
 
+#include <algorithm>
 #include <memory>
 
 namespace depthkey {
@@ -54,11 +60,15 @@ protected:
 	// Renders the scene for capture time nowUs; frame.sequence is the
 	// previous frame's number.
 	virtual void render(uint64_t nowUs, Frame &frame) = 0;
+	// How long before its delivery (the timer's tick) frame n (from 0) was
+	// captured: its timestamp and the scene it shows.
+	virtual uint64_t captureDelayUs(uint64_t /*n*/) const { return 0; }
 
 private:
 	void capture()
 	{
 		uint64_t now = loop_->nowUs();
+		now -= std::min(now, captureDelayUs(sequence_));
 		Frame *lent = lender_ ? lender_() : nullptr;
 		Frame &frame = lent ? *lent : frame_; // frame_ stays empty while frames are lent
 		frame.sequence = sequence_;
@@ -91,10 +101,12 @@ private:
 	int fps() const override { return settings_.fps; }
 	void prepare() override;
 	void render(uint64_t nowUs, ColourFrame &frame) override;
+	uint64_t captureDelayUs(uint64_t n) const override;
 
 	ColourCameraSettings settings_;
 	SimSettings sim_;
 	LectureSimulator simulator_;
+	sim::SimTiming timing_;
 	std::shared_ptr<const sim::SimTechnician> technician_;
 };
 

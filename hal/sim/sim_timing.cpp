@@ -29,6 +29,11 @@ double SimTiming::colourTime(uint64_t n) const
 	return colourJitter_ + n * colourPeriod_ + colourJitter_ * jitterUnit(1, n);
 }
 
+double SimTiming::colourCaptureDelay(uint64_t n) const
+{
+	return colourJitter_ - colourJitter_ * jitterUnit(1, n);
+}
+
 double SimTiming::depthCapture(uint64_t m) const
 {
 	// The ToF starts a third of its period after the colour camera.

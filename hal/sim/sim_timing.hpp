@@ -19,6 +19,12 @@ public:
 	void configure(const SimSettings &settings, int colourFps, int depthFps);
 
 	double colourTime(uint64_t n) const;    // capture time of colour frame n (= its timestamp), s
+	// The live colour camera (hal/sim/sim_cameras.hpp) delivers frame n on
+	// its timer's tick: how long before that it was captured, s, in
+	// [0, 2 * jitter]. The capture instants are colourTime's, the
+	// deliveries on the period after them, so no frame comes before it is
+	// taken.
+	double colourCaptureDelay(uint64_t n) const;
 	double depthCapture(uint64_t m) const;  // true capture time of depth frame m, s
 	double depthStamp(uint64_t m) const;    // its timestamp: capture + latency, s
 	// The newest depth frame stamped at or before timeS, or -1.
