@@ -19,7 +19,7 @@ namespace {
 // few pixels and at most the whole grid's share of the image. Circularity and
 // convexity are loosened so a pattern tilted by 45 degrees (ellipses) and a
 // noisy ToF edge still pass.
-cv::Ptr<cv::FeatureDetector> blobDetector(int width, int height, GridSize grid, double minArea)
+cv::SimpleBlobDetector::Params blobParams(int width, int height, GridSize grid, double minArea)
 {
 	cv::SimpleBlobDetector::Params p;
 	p.minThreshold = 20;
@@ -36,18 +36,77 @@ cv::Ptr<cv::FeatureDetector> blobDetector(int width, int height, GridSize grid, 
 	p.minConvexity = 0.8f;
 	p.filterByInertia = true;
 	p.minInertiaRatio = 0.2f;
-	return cv::SimpleBlobDetector::create(p);
+	return p;
+}
+
+// Bounds on the work (issue 31 point 12). OpenCV's grid search over the
+// blobs grows about as the cube of their count (520 blobs 1 s, 2120 blobs
+// 71 s on a 640x480 frame of dots), so a frame with more blobs than a
+// pattern and some clutter could give is refused before the search; and a
+// large frame is searched for blobs at most kMaxDetectionWidth wide (the
+// centres are refined at full size afterwards), so that the blob detector's
+// thresholds cost the same whatever the camera.
+constexpr int kBlobsPerCircle = 4;
+constexpr int kMaxDetectionWidth = 1024;
+
+size_t maxBlobs(GridSize grid)
+{
+	return static_cast<size_t>(kBlobsPerCircle * grid.count());
+}
+
+// The blob detector's own cost grows with the dark patches at each of its
+// thresholds (2.8 s for 1080p noise at half size), before any shape test.
+// Connected components at the same thresholds, counted by area alone, cost
+// a few ms each: a threshold with more than kCandidatesPerCircle patches of
+// a circle's size for each circle is clutter or noise, refused before the
+// detector runs. The middle thresholds go first: there such a frame shows
+// the most patches, so it is refused after one or two.
+constexpr int kCandidatesPerCircle = 16;
+
+bool tooManyPatches(const cv::Mat &gray, const cv::SimpleBlobDetector::Params &p, GridSize grid)
+{
+	const size_t limit = static_cast<size_t>(kCandidatesPerCircle * grid.count());
+	std::vector<float> thresholds;
+	for (float t = p.minThreshold; t < p.maxThreshold; t += p.thresholdStep)
+		thresholds.push_back(t);
+	const float middle = (p.minThreshold + p.maxThreshold) / 2;
+	std::sort(thresholds.begin(), thresholds.end(),
+		  [&](float a, float b) { return std::abs(a - middle) < std::abs(b - middle); });
+	cv::Mat dark, labels, stats, centroids;
+	for (float t : thresholds) {
+		cv::threshold(gray, dark, t, 255, cv::THRESH_BINARY_INV);
+		const int n = cv::connectedComponentsWithStats(dark, labels, stats, centroids, 8, CV_32S);
+		size_t patches = 0;
+		for (int i = 1; i < n; i++) {
+			const int area = stats.at<int>(i, cv::CC_STAT_AREA);
+			if (area >= p.minArea && area <= p.maxArea && ++patches > limit)
+				return true;
+		}
+	}
+	return false;
 }
 
 // A symmetric grid looks the same turned by 180 degrees, so OpenCV may
 // start from either end; the top-left circle goes first in both cameras.
+// scale: gray's pixels per pixel of the image the centres are given in.
 int findGrid(const cv::Mat &gray, GridSize grid, double minArea, double scale,
 	     std::vector<ImagePoint> &centres)
 {
-	std::vector<cv::Point2f> found;
-	auto detector = blobDetector(gray.cols, gray.rows, grid, minArea);
-	if (!cv::findCirclesGrid(gray, cv::Size(grid.cols, grid.rows), found,
-				 cv::CALIB_CB_SYMMETRIC_GRID, detector) ||
+	const cv::SimpleBlobDetector::Params params = blobParams(gray.cols, gray.rows, grid, minArea);
+	if (tooManyPatches(gray, params, grid))
+		return -E2BIG;
+	std::vector<cv::KeyPoint> blobs;
+	cv::SimpleBlobDetector::create(params)->detect(gray, blobs);
+	if (blobs.size() > maxBlobs(grid))
+		return -E2BIG;
+	if (blobs.size() < static_cast<size_t>(grid.count()))
+		return -ENOENT;
+	std::vector<cv::Point2f> points, found;
+	for (const cv::KeyPoint &blob : blobs)
+		points.push_back(blob.pt);
+	// No detector: findCirclesGrid takes the blobs' centres as they are.
+	if (!cv::findCirclesGrid(points, cv::Size(grid.cols, grid.rows), found, cv::CALIB_CB_SYMMETRIC_GRID,
+				 cv::Ptr<cv::FeatureDetector>()) ||
 	    found.size() != static_cast<size_t>(grid.count()))
 		return -ENOENT;
 
@@ -194,7 +253,15 @@ int findColourGrid(const RgbImage &rgb, GridSize grid, std::vector<ImagePoint> &
 	cv::Mat src(rgb.height(), rgb.width(), CV_8UC3, const_cast<Rgb8 *>(rgb.data()));
 	cv::Mat gray;
 	cv::cvtColor(src, gray, cv::COLOR_RGB2GRAY);
-	if (int ret = findGrid(gray, grid, 12.0, 1.0, centres); ret < 0)
+	// A 1080p frame is searched at half size: a circle of the smallest
+	// area (12 px) keeps 3 px there, and the refinement below works on
+	// every pixel.
+	const int shrink = (gray.cols + kMaxDetectionWidth - 1) / kMaxDetectionWidth;
+	cv::Mat small = gray;
+	if (shrink > 1)
+		cv::resize(gray, small, cv::Size(gray.cols / shrink, gray.rows / shrink), 0, 0, cv::INTER_AREA);
+	const double scale = static_cast<double>(small.cols) / gray.cols;
+	if (int ret = findGrid(small, grid, 12.0 * scale * scale, scale, centres); ret < 0)
 		return ret;
 	refineCentres<uint8_t>(gray, grid, centres);
 	return 0;
@@ -250,12 +317,18 @@ int pairView(const ColourFrame &colour, const DepthFrame &depth, GridSize grid,
 	     CalibrationView &view, std::string &error)
 {
 	std::vector<ImagePoint> inColour, inTof;
-	bool colourSees = findColourGrid(colour.rgb, grid, inColour) == 0;
-	bool tofSees = findAmplitudeGrid(depth.amplitude, grid, inTof) == 0;
+	const int colourRet = findColourGrid(colour.rgb, grid, inColour);
+	const int tofRet = findAmplitudeGrid(depth.amplitude, grid, inTof);
 	std::string pattern = std::to_string(grid.cols) + "x" + std::to_string(grid.rows) + " grid";
-	if (!colourSees || !tofSees) {
-		error = !colourSees && !tofSees ? "neither camera sees the whole " + pattern
-			: !colourSees ? "the colour camera does not see the whole " + pattern
+	if (colourRet == -E2BIG || tofRet == -E2BIG) {
+		error = std::string(colourRet == -E2BIG ? "the colour camera" : "the ToF camera") + " sees more than " +
+			std::to_string(maxBlobs(grid)) + " circle-like blobs (" + std::to_string(kBlobsPerCircle) +
+			" for each circle of the " + pattern + "): clutter or noise, not searched for the pattern";
+		return -E2BIG;
+	}
+	if (colourRet < 0 || tofRet < 0) {
+		error = colourRet < 0 && tofRet < 0 ? "neither camera sees the whole " + pattern
+			: colourRet < 0 ? "the colour camera does not see the whole " + pattern
 				      : "the ToF camera does not see the whole " + pattern +
 						" in its amplitude image";
 		return -ENOENT;

@@ -33,7 +33,12 @@ Gray8Image amplitudeForDetection(const Gray16Image &amplitude);
 
 // Circle centres, row by row from the top-left circle, or -ENOENT when the
 // whole grid is not in the image. Both cameras see the pattern upright, so
-// the order is the same in both images.
+// the order is the same in both images. -E2BIG when the image holds more
+// than 4 circle-like blobs for each circle of the grid (clutter or noise):
+// the search for the grid among them would grow as the cube of their
+// count, so it is not made. The work is bounded whatever the image shows:
+// a frame wider than 1024 px is searched for blobs at a fraction of its
+// size (the centres refined at full size).
 int findColourGrid(const RgbImage &rgb, GridSize grid, std::vector<ImagePoint> &centres);
 int findAmplitudeGrid(const Gray16Image &amplitude, GridSize grid, std::vector<ImagePoint> &centres);
 
@@ -44,7 +49,8 @@ double depthAround(const DepthFrame &depth, ImagePoint centre, double radiusPx);
 
 // Both cameras' view of the pattern as point pairs, labelled with depthM.
 // Returns -ENOENT with error naming the camera that did not see the whole
-// grid, or -EINVAL when the depth image has no depth at the circles.
+// grid, -E2BIG naming the camera that sees too many blobs, or -EINVAL when
+// the depth image has no depth at the circles.
 int pairView(const ColourFrame &colour, const DepthFrame &depth, GridSize grid,
 	     CalibrationView &view, std::string &error);
 
