@@ -1,5 +1,5 @@
 // SIGHUP: the config read again, then the calibration and board image it
-// names. Reading and parsing run on a worker thread (daemon/
+// names. Reading and parsing run on a worker thread (hal/
 // background_job.hpp): a hostile 1 MiB file takes longer to parse than
 // several frame periods. The loop thread only applies the result; a config
 // that is refused is logged with its file and line and the previous one
@@ -8,7 +8,7 @@
 #pragma once
 
 #include "config/config_loader.hpp"
-#include "daemon/background_job.hpp"
+#include "hal/background_job.hpp"
 #include "daemon/command_line_overrides.hpp"
 #include "daemon/status_reporter.hpp"
 #include "hal/event_loop.hpp"

@@ -1,6 +1,6 @@
 // BackgroundJob: the work runs on another thread, its completion on the
 // loop's; one job at a time.
-#include "daemon/background_job.hpp"
+#include "hal/background_job.hpp"
 
 #include <gtest/gtest.h>
 

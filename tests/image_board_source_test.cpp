@@ -164,3 +164,56 @@ TEST(ImageBoardSource, AMissingFileIsLostUntilItAppears)
 	EXPECT_EQ(h.pictures[0], (Rgb8{ 1, 2, 3 }));
 	EXPECT_EQ(source.status().state, DeviceState::Streaming);
 }
+
+// Issue 31 point 9: the picture is decoded off the event loop, so the loop
+// goes on handing frames on while a large one decodes. A 5 ms timer ticks
+// through the replacement: on the loop, the longest gap between its ticks
+// is far shorter than the time from the replacement to the picture's
+// delivery (the decode). Decoding on the loop made that gap the whole decode.
+TEST(ImageBoardSource, DecodesOffTheEventLoop)
+{
+	SKIP_WITHOUT_IMAGE_CODECS();
+	Harness h;
+	replaceByRename(h.path, encodePng({ 1, 2, 3 }));
+	cv::Mat noise(2048, 2048, CV_8UC3);
+	cv::randu(noise, cv::Scalar::all(0), cv::Scalar::all(256));
+	noise.at<cv::Vec3b>(0, 0) = cv::Vec3b(30, 20, 10);
+	std::vector<uchar> large;
+	cv::imencode(".png", noise, large);
+	BoardSettings settings;
+	settings.image = h.path;
+	ImageBoardSource source(settings);
+
+	uint64_t replacedUs = 0, deliveredUs = 0, lastTickUs = 0, longestGapUs = 0;
+	EventSource ticker, replace, timeout;
+	ASSERT_EQ(source.start(
+			  h.loop,
+			  [&](const ColourFrame &f) {
+				  h.pictures.push_back(f.rgb.at(0, 0));
+				  if (h.pictures.size() == 2) {
+					  deliveredUs = h.loop.nowUs();
+					  longestGapUs = std::max(longestGapUs, deliveredUs - lastTickUs);
+					  h.loop.exit(0);
+				  }
+			  },
+			  [](const DeviceStatus &) {}),
+		  0);
+	h.loop.addPeriodic(5000, [&] {
+		uint64_t now = h.loop.nowUs();
+		if (replacedUs && lastTickUs)
+			longestGapUs = std::max(longestGapUs, now - lastTickUs);
+		lastTickUs = now;
+	}, ticker);
+	h.loop.addTimer(100000, [&] {
+		replaceByRename(h.path, large);
+		replacedUs = lastTickUs = h.loop.nowUs();
+	}, replace);
+	h.loop.addTimer(20'000'000, [&] { h.loop.exit(1); }, timeout);
+	ASSERT_EQ(h.loop.run(), 0);
+	ASSERT_EQ(h.pictures.size(), 2u);
+	EXPECT_EQ(h.pictures[1], (Rgb8{ 10, 20, 30 }));
+	const uint64_t decodeUs = deliveredUs - replacedUs;
+	std::printf("replacement to delivery %.1f ms, longest gap between 5 ms ticks %.1f ms\n", decodeUs / 1e3,
+		    longestGapUs / 1e3);
+	EXPECT_LT(longestGapUs * 2, decodeUs);
+}

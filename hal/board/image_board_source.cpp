@@ -8,6 +8,7 @@
 #include <sys/epoll.h>
 #include <sys/inotify.h>
 #include <unistd.h>
+#include <utility>
 
 namespace depthkey {
 
@@ -61,6 +62,8 @@ int ImageBoardSource::start(EventLoop &loop, FrameHandler onFrame, StatusHandler
 
 void ImageBoardSource::stop()
 {
+	generation_++;
+	reloadAgain_ = false;
 	io_.reset();
 	retry_.reset();
 	inotify_.reset();
@@ -121,18 +124,47 @@ void ImageBoardSource::onInotify()
 
 void ImageBoardSource::reload()
 {
-	reads_++;
-	std::string error = jpegCutShort(path_);
-	int ret = error.empty() ? readRgbImage(path_, frame_.rgb, error) : -EINVAL;
-	if (ret < 0) {
-		status_.droppedFrames++;
-		setStatus(DeviceState::Lost, ret, "board picture refused, keeping the last good one: " + error);
+	if (job_.running()) {
+		reloadAgain_ = true;
 		return;
 	}
-	frame_.timestampNs = loop_ ? loop_->nowUs() * 1000u : 0;
-	frame_.sequence++;
-	setStatus(DeviceState::Streaming, 0, "");
-	onFrame_(frame_);
+	reads_++;
+	const uint64_t generation = generation_;
+	int ret = job_.start(
+		*loop_,
+		[this, path = path_] {
+			decodeError_ = jpegCutShort(path);
+			decodeResult_ = decodeError_.empty() ? readRgbImage(path, decoded_, decodeError_) : -EINVAL;
+		},
+		[this, generation] {
+			if (generation == generation_)
+				onDecoded();
+			if (std::exchange(reloadAgain_, false))
+				reload(); // the newest file, once
+		});
+	if (ret < 0) {
+		status_.droppedFrames++;
+		setStatus(DeviceState::Lost, ret,
+			  "cannot start reading the board picture, keeping the last good one: " + std::string(std::strerror(-ret)));
+	}
+}
+
+void ImageBoardSource::onDecoded()
+{
+	if (decodeResult_ < 0) {
+		status_.droppedFrames++;
+		setStatus(DeviceState::Lost, decodeResult_,
+			  "board picture refused, keeping the last good one: " + decodeError_);
+	} else {
+		// The frame handed on is the source's own (the daemon may hold it
+		// until between frames): swapped in here, on the loop, and the
+		// previous pixels reused by the next decode.
+		std::swap(frame_.rgb, decoded_);
+		frame_.timestampNs = loop_->nowUs() * 1000u;
+		frame_.sequence++;
+		setStatus(DeviceState::Streaming, 0, "");
+		onFrame_(frame_);
+	}
 }
 
 } // namespace depthkey

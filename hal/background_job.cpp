@@ -1,4 +1,4 @@
-#include "daemon/background_job.hpp"
+#include "hal/background_job.hpp"
 
 #include <cerrno>
 #include <sys/epoll.h>
