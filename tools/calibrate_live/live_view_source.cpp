@@ -139,29 +139,43 @@ int LiveViewSource::read(size_t i, ColourFrame &colour, DepthFrame &depth, std::
 		technician_->holdAt(plan_[i], static_cast<int>(i), startUs / 1e6);
 	const uint64_t deadlineUs = startUs + static_cast<uint64_t>(options_.viewTimeoutS * 1e6);
 	Stillness colourGrid, tofGrid;
+	ColourFrame searchedColour;
+	DepthFrame searchedDepth;
 	while (loop_.nowUs() < deadlineUs) {
-		int ret = sd_event_run(loop_.handle(), 100'000);
+		// Short waits: a search's end is seen within 10 ms.
+		int ret = sd_event_run(loop_.handle(), 10'000);
 		if (ret < 0) {
 			error = "event loop failed";
 			return ret;
 		}
 		// A frame that came while the technician was told to move on is
-		// not this view's: only frames after the instruction count.
-		if (newColour_) {
+		// not this view's: only frames after the instruction count (a
+		// search of an earlier view's frame still running is one).
+		const GridSize grid = options_.grid;
+		if (newColour_ && !colourSearch_.busy()) {
 			newColour_ = false;
-			bool found = lastColour_.timestampNs >= startUs * 1000u &&
-				     findColourGrid(lastColour_.rgb, options_.grid, colourGrid.centres) == 0;
-			colourGrid.update(found, lastColour_.timestampNs, kColourStillPx);
+			colourSearch_.start([grid, rgb = lastColour_.rgb](std::vector<ImagePoint> &centres) {
+				return findColourGrid(rgb, grid, centres);
+			}, lastColour_.timestampNs);
+			searchedColour = lastColour_;
 		}
-		if (newDepth_) {
+		if (newDepth_ && !tofSearch_.busy()) {
 			newDepth_ = false;
-			bool found = lastDepth_.timestampNs >= startUs * 1000u &&
-				     findAmplitudeGrid(lastDepth_.amplitude, options_.grid, tofGrid.centres) == 0;
-			tofGrid.update(found, lastDepth_.timestampNs, kTofStillPx); // ToF pixels
+			tofSearch_.start([grid, amplitude = lastDepth_.amplitude](std::vector<ImagePoint> &centres) {
+				return findAmplitudeGrid(amplitude, grid, centres);
+			}, lastDepth_.timestampNs);
+			searchedDepth = lastDepth_;
 		}
+		bool found;
+		uint64_t timeNs;
+		if (colourSearch_.done(found, colourGrid.centres, timeNs))
+			colourGrid.update(found && timeNs >= startUs * 1000u, timeNs, kColourStillPx);
+		if (tofSearch_.done(found, tofGrid.centres, timeNs))
+			tofGrid.update(found && timeNs >= startUs * 1000u, timeNs, kTofStillPx); // ToF pixels
 		if (colourGrid.stillS() >= kStillS && tofGrid.stillS() >= kStillS) {
-			colour = lastColour_;
-			depth = lastDepth_;
+			// The frames whose grids were still: the last searched.
+			colour = searchedColour;
+			depth = searchedDepth;
 			return 0;
 		}
 	}

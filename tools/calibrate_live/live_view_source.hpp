@@ -3,7 +3,9 @@
 // must be stopped: it holds the devices). For each step of the plan the tool
 // says where to hold the pattern; a view is taken when both cameras see the
 // whole grid and it has been still for 0.5 s (circle centres moving less
-// than 1 colour px and 0.5 ToF px). On the simulated cameras a simulated
+// than 1 colour px and 0.5 ToF px). The pattern is searched for off the
+// loop that reads the cameras (background_grid_search.hpp), so the view's
+// timeout comes on time whatever the frames show. On the simulated cameras a simulated
 // technician (hal/sim/sim_technician.hpp) carries the pattern where the
 // tool says.
 #pragma once
@@ -15,6 +17,7 @@
 #include "hal/event_loop.hpp"
 #include "hal/sim/sim_technician.hpp"
 #include "settings/settings.hpp"
+#include "tools/calibrate_live/background_grid_search.hpp"
 
 #include <memory>
 #include <string>
@@ -72,6 +75,9 @@ private:
 	DepthFrame lastDepth_;
 	bool newColour_ = false, newDepth_ = false;
 	bool haveColour_ = false, haveDepth_ = false;
+	// Declared after the frames: a search still running at the end is
+	// waited for first.
+	BackgroundGridSearch colourSearch_, tofSearch_;
 };
 
 } // namespace depthkey
