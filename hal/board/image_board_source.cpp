@@ -7,6 +7,7 @@
 #include <cstring>
 #include <sys/epoll.h>
 #include <sys/inotify.h>
+#include <sys/resource.h>
 #include <unistd.h>
 #include <utility>
 
@@ -15,6 +16,10 @@ namespace depthkey {
 namespace {
 
 constexpr uint64_t kWatchRetryUs = 1'000'000;
+// The decoding thread's nice value (Linux's is per thread): a new picture
+// may come a frame or two later, the keyed frames should not. Weight 110
+// against the keyer's 1024, as the preview server's threads.
+constexpr int kDecodeNice = 10;
 
 // OpenCV's imread decodes a JPEG that was cut short (the board's computer
 // died while writing it in place) with only a warning, the rest grey; a
@@ -133,6 +138,8 @@ void ImageBoardSource::reload()
 	int ret = job_.start(
 		*loop_,
 		[this, path = path_] {
+			// Not allowed to: it decodes at the daemon's priority.
+			(void)setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), kDecodeNice);
 			decodeError_ = jpegCutShort(path);
 			decodeResult_ = decodeError_.empty() ? readRgbImage(path, decoded_, decodeError_) : -EINVAL;
 		},

@@ -11,7 +11,8 @@
 // The file is decoded on a worker thread (hal/background_job.hpp), never on
 // the event loop: a 1080p PNG takes tens of milliseconds to decode, and the
 // loop hands the keyed frames on (issue 31 point 9: 35 replacements in 10 s
-// took the composite from 12 to 3 fps). Replacements that come while one is
+// took the composite from 12 to 3 fps), at nice 10 so that on a busy box
+// the keyer's threads come first. Replacements that come while one is
 // decoded are read once after it, the newest file then.
 #pragma once
 
