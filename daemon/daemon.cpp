@@ -191,6 +191,10 @@ void Daemon::stopCameras()
 void Daemon::onDeviceStatus(const std::string &device, const DeviceStatus &status)
 {
 	status_.countDeviceStatus(device, status);
+	// Depth lost: the offset estimator's history would span the gap (or
+	// hold what came before junk), so it starts again when depth is back.
+	if (status.state == DeviceState::Lost && depth_ && device == depth_->name())
+		pairing_.forgetLatency();
 	if (status.state == DeviceState::Lost)
 		logger().errorOnce(device, device + " lost: " + status.detail,
 				   { { "DEVICE", device }, { "ERROR", errnoText(status.error) } });
@@ -305,7 +309,8 @@ StatusSnapshot Daemon::statusSnapshot() const
 
 void Daemon::onStatusTick()
 {
-	pairing_.updateLatency(depth_ ? depth_->name() : std::string("depth"));
+	if (depth_ && depth_->status().state == DeviceState::Streaming) // not measured on lost depth
+		pairing_.updateLatency(depth_->name());
 	std::optional<PreviewStatus> figures = status_.report(statusSnapshot());
 	if (!figures)
 		return;
