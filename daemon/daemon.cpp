@@ -342,8 +342,10 @@ void Daemon::applyNow(const Settings &next, const PipelineFiles &files)
 	board_.apply(next);
 	pairing_.configure(settings_);
 	stageDumps_.setFolders(next.daemon.snapshotDir, overrides_.previewDir);
+	// A new colour size records into a folder of its own (one size a replay).
 	if (previous.daemon.recordDir != next.daemon.recordDir ||
-	    previous.daemon.recordCompression != next.daemon.recordCompression)
+	    previous.daemon.recordCompression != next.daemon.recordCompression ||
+	    previous.colour.width != next.colour.width || previous.colour.height != next.colour.height)
 		updateRecording();
 
 	outputs_.apply(previous, settings_, outputGeometry(), configPath_);
@@ -379,7 +381,8 @@ void Daemon::updateRecording()
 	if (dir.empty())
 		return;
 	std::string error;
-	int ret = recorder_.start(dir, settings_.daemon.recordCompression, error);
+	int ret = recorder_.start(dir, settings_.daemon.recordCompression, error, settings_.colour.width,
+				  settings_.colour.height);
 	if (ret < 0)
 		logger().errorOnce("record", "cannot record: " + error,
 				   { { "DEVICE", "recorder" }, { "ERROR", errnoText(ret) } });
