@@ -4,7 +4,6 @@
 #include "hal/recording/sequence_writer.hpp"
 #include "hal/replay/replay_cameras.hpp"
 #include "hal/sim/sim_sequence.hpp"
-#include "tests/temp_dir.hpp"
 #include "tests/wait_until.hpp"
 
 #include <cstdlib>
@@ -14,9 +13,30 @@
 #include <vector>
 
 using namespace depthkey;
-using depthkey::test::TempDir;
 
 namespace {
+
+// A fresh folder, removed with everything in it when the test ends.
+class TempDir
+{
+public:
+	TempDir()
+	{
+		char pattern[] = "/tmp/depthkey-rec-XXXXXX";
+		const char *dir = mkdtemp(pattern);
+		path_ = dir ? dir : "";
+	}
+	~TempDir()
+	{
+		if (!path_.empty())
+			std::filesystem::remove_all(path_);
+	}
+	operator std::string() const { return path_; }
+	std::string operator+(const char *sub) const { return path_ + sub; }
+
+private:
+	std::string path_;
+};
 
 // A short simulated sequence: colour frames with truth, the depth frames
 // paired with them (each once).

@@ -9,7 +9,7 @@
 #include "hal/recording/sequence_reader.hpp"
 #include "hal/recording/sequence_writer.hpp"
 #include "hal/replay/replay_cameras.hpp"
-#include "tests/temp_dir.hpp"
+#include "tests/hostile_files.hpp"
 
 #include <csignal>
 #include <filesystem>
@@ -18,7 +18,7 @@
 #include <vector>
 
 using namespace depthkey;
-using depthkey::test::TempDir;
+using depthkey::test::ScratchDir;
 
 namespace {
 
@@ -124,7 +124,8 @@ Played play(const std::string &dir, int colourWidth, int colourHeight, bool loop
 // colour file when it was missing and the depth file when it was bad.
 TEST(ReplayTimeline, ABadFileLosesItsOwnCameraAndNamesIt)
 {
-	TempDir dir;
+	ScratchDir scratch;
+	const std::string dir = scratch.path();
 	record(dir, 10, 4);
 	const std::string colourFile = listed(dir, true)[4].file, depthFile = listed(dir, false)[2].file;
 	std::filesystem::remove(dir + "/" + colourFile);
@@ -146,7 +147,8 @@ TEST(ReplayTimeline, ABadFileLosesItsOwnCameraAndNamesIt)
 // [colour]'s size, which refused every frame: nothing was published.
 TEST(ReplayTimeline, ColourOfAnotherSizeIsRefusedNamingTheFileAndBothSizes)
 {
-	TempDir dir;
+	ScratchDir scratch;
+	const std::string dir = scratch.path();
 	record(dir, 6, 3, 16, 12);
 	Played p = play(dir, 32, 24, false);
 	EXPECT_EQ(p.colourFrames, 0);
@@ -165,7 +167,8 @@ TEST(ReplayTimeline, ColourOfAnotherSizeIsRefusedNamingTheFileAndBothSizes)
 // and the depth frames never came.
 TEST(ReplayTimeline, ADepthOnlyRecordingPlaysItsDepth)
 {
-	TempDir dir;
+	ScratchDir scratch;
+	const std::string dir = scratch.path();
 	record(dir, 0, 5);
 	Played p = play(dir, 16, 12, false);
 	EXPECT_EQ(p.depthFrames, 5);
@@ -177,7 +180,8 @@ TEST(ReplayTimeline, ADepthOnlyRecordingPlaysItsDepth)
 // dropped by the pairing, counted nowhere.
 TEST(ReplayTimeline, RepeatedTimestampsAreDroppedAndCounted)
 {
-	TempDir dir;
+	ScratchDir scratch;
+	const std::string dir = scratch.path();
 	record(dir, 5, 4);
 	for (const char *optional : { "/amplitude.txt", "/intensity.txt" })
 		std::filesystem::remove(dir + optional);
@@ -200,7 +204,8 @@ TEST(ReplayTimeline, RepeatedTimestampsAreDroppedAndCounted)
 // are skipped on later loops, counted, without a word.
 TEST(ReplayTimeline, AFolderOfBadFilesIsReportedOnceNotEveryFrame)
 {
-	TempDir dir;
+	ScratchDir scratch;
+	const std::string dir = scratch.path();
 	record(dir, 20, 0);
 	const std::vector<SequenceEntry> colour = listed(dir, true);
 	for (size_t i = 1; i < colour.size(); i += 2)
@@ -221,7 +226,8 @@ TEST(ReplayTimeline, AFolderOfBadFilesIsReportedOnceNotEveryFrame)
 // replay of another size (the status said 24 fps). Now it gets NO SIGNAL.
 TEST(ReplayTimeline, ADaemonReplayingAnotherSizePublishesNoSignal)
 {
-	TempDir dir;
+	ScratchDir scratch;
+	const std::string dir = scratch.path();
 	record(dir, 25, 10, 16, 12);
 	FakeFrameSink *sink = nullptr;
 	DeviceFactory factory; // the real replay cameras
