@@ -4,11 +4,13 @@
 // nothing; a depth-only recording plays; frames dropped are counted; a
 // folder of bad files changes the status once, not once a frame.
 #include "daemon/daemon.hpp"
+#include "daemon/frame_pairing.hpp"
 #include "hal/depthkey_shm.h"
 #include "hal/fake_frame_sink.hpp"
 #include "hal/recording/sequence_reader.hpp"
 #include "hal/recording/sequence_writer.hpp"
 #include "hal/replay/replay_cameras.hpp"
+#include "hal/sim/sim_sequence.hpp"
 #include "tests/hostile_files.hpp"
 
 #include <csignal>
@@ -253,4 +255,45 @@ TEST(ReplayTimeline, ADaemonReplayingAnotherSizePublishesNoSignal)
 	ASSERT_NE(sink, nullptr);
 	EXPECT_GE(sink->compositeCount(), 5u) << "the recorder heard nothing";
 	EXPECT_EQ(sink->noColourCount(), sink->compositeCount()) << "every frame NO SIGNAL";
+}
+
+// Point 11: the offset estimator went on measuring across a depth loss ("-269
+// ms measured" from a replay whose depth files were bad). The daemon now has
+// it forget what it had when depth is lost (Daemon::onDeviceStatus), and no
+// estimate stands until enough depth has come after.
+TEST(ReplayTimeline, LostDepthRestartsTheOffsetMeasurement)
+{
+	SimSequence sequence;
+	sequence.configure(SimSettings{}, 320, 240, 25, 10);
+	Settings settings;
+	settings.pairing.offsetAuto = true;
+	FramePairing pairing;
+	pairing.configure(settings);
+	ColourFrame colour;
+	GroundTruth truth;
+	int depthFrames = 0;
+	auto play = [&](int from, int to, bool depth) {
+		for (int n = from; n < to; ++n) {
+			sequence.frame(uint64_t(n), colour, truth, [&](const DepthFrame &d) {
+				if (depth) {
+					pairing.addDepth(d);
+					depthFrames++;
+				}
+			});
+			pairing.addColour(colour, colour.timestampNs);
+			pairing.queue().clear(); // the estimator is the point here, not the queue
+		}
+	};
+	play(0, 25 * 12, true);
+	pairing.updateLatency("sim-depth");
+	ASSERT_TRUE(pairing.latency().valid) << "12 s of the simulated lecture measure the offset";
+
+	pairing.forgetLatency(); // depth lost
+	EXPECT_FALSE(pairing.latency().valid);
+	play(25 * 12, 25 * 14, false); // 2 s of colour alone
+	depthFrames = 0;
+	play(25 * 14, 25 * 16, true); // then 2 s of depth again: 20 frames, fewer than the 30 needed
+	pairing.updateLatency("sim-depth");
+	EXPECT_LT(depthFrames, int(LatencyEstimator::kMinDepthFrames));
+	EXPECT_FALSE(pairing.latency().valid) << "measured across the gap";
 }
