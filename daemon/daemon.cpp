@@ -191,6 +191,10 @@ void Daemon::stopCameras()
 void Daemon::onDeviceStatus(const std::string &device, const DeviceStatus &status)
 {
 	status_.countDeviceStatus(device, status);
+	// Depth lost: the offset estimator's history would span the gap (or
+	// hold what came before junk), so it starts again when depth is back.
+	if (status.state == DeviceState::Lost && depth_ && device == depth_->name())
+		pairing_.forgetLatency();
 	if (status.state == DeviceState::Lost)
 		logger().errorOnce(device, device + " lost: " + status.detail,
 				   { { "DEVICE", device }, { "ERROR", errnoText(status.error) } });
@@ -305,7 +309,8 @@ StatusSnapshot Daemon::statusSnapshot() const
 
 void Daemon::onStatusTick()
 {
-	pairing_.updateLatency(depth_ ? depth_->name() : std::string("depth"));
+	if (depth_ && depth_->status().state == DeviceState::Streaming) // not measured on lost depth
+		pairing_.updateLatency(depth_->name());
 	std::optional<PreviewStatus> figures = status_.report(statusSnapshot());
 	if (!figures)
 		return;
@@ -337,8 +342,10 @@ void Daemon::applyNow(const Settings &next, const PipelineFiles &files)
 	board_.apply(next);
 	pairing_.configure(settings_);
 	stageDumps_.setFolders(next.daemon.snapshotDir, overrides_.previewDir);
+	// A new colour size records into a folder of its own (one size a replay).
 	if (previous.daemon.recordDir != next.daemon.recordDir ||
-	    previous.daemon.recordCompression != next.daemon.recordCompression)
+	    previous.daemon.recordCompression != next.daemon.recordCompression ||
+	    previous.colour.width != next.colour.width || previous.colour.height != next.colour.height)
 		updateRecording();
 
 	outputs_.apply(previous, settings_, outputGeometry(), configPath_);
@@ -374,7 +381,8 @@ void Daemon::updateRecording()
 	if (dir.empty())
 		return;
 	std::string error;
-	int ret = recorder_.start(dir, settings_.daemon.recordCompression, error);
+	int ret = recorder_.start(dir, settings_.daemon.recordCompression, error, settings_.colour.width,
+				  settings_.colour.height);
 	if (ret < 0)
 		logger().errorOnce("record", "cannot record: " + error,
 				   { { "DEVICE", "recorder" }, { "ERROR", errnoText(ret) } });

@@ -15,13 +15,15 @@ namespace {
 
 // The replay colour and depth cameras of one folder must share a timeline
 // (to keep the recorded order). The daemon creates them one after the
-// other; the second finds the first's timeline here while it lives.
-std::shared_ptr<ReplayTimeline> replayTimeline(const ReplaySettings &settings)
+// other; the second finds the first's timeline here while it lives. Colour
+// frames play only at [colour]'s size: the outputs are made for it.
+std::shared_ptr<ReplayTimeline> replayTimeline(const Settings &settings)
 {
 	static std::weak_ptr<ReplayTimeline> current;
 	std::shared_ptr<ReplayTimeline> timeline = current.lock();
-	if (!timeline || !(timeline->settings() == settings)) {
-		timeline = std::make_shared<ReplayTimeline>(settings);
+	const int width = settings.colour.width, height = settings.colour.height;
+	if (!timeline || !timeline->plays(settings.replay, width, height)) {
+		timeline = std::make_shared<ReplayTimeline>(settings.replay, width, height);
 		current = timeline;
 	}
 	return timeline;
@@ -36,7 +38,7 @@ std::unique_ptr<ColourCamera> createColourCamera(const Settings &settings)
 	if (settings.colour.backend == "v4l2")
 		return std::make_unique<V4l2ColourCamera>(settings.colour);
 	if (settings.colour.backend == "replay")
-		return std::make_unique<ReplayColourCamera>(replayTimeline(settings.replay));
+		return std::make_unique<ReplayColourCamera>(replayTimeline(settings));
 	return std::make_unique<SimColourCamera>(settings.colour, settings.sim);
 }
 
@@ -47,7 +49,7 @@ std::unique_ptr<DepthCamera> createDepthCamera(const Settings &settings)
 	if (settings.depth.backend == "v4l2")
 		return std::make_unique<V4l2DepthCamera>(settings.depth);
 	if (settings.depth.backend == "replay")
-		return std::make_unique<ReplayDepthCamera>(replayTimeline(settings.replay));
+		return std::make_unique<ReplayDepthCamera>(replayTimeline(settings));
 	return std::make_unique<SimDepthCamera>(settings.depth, settings.sim);
 }
 

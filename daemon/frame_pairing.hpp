@@ -33,6 +33,12 @@ public:
 		latency_.addDepth(frame, frame.timestampNs);
 	}
 	void clear() { queue_.clear(); }
+	// Depth was lost: the offset is measured afresh from the frames after.
+	void forgetLatency()
+	{
+		latency_.reset();
+		estimate_ = {};
+	}
 
 	// Once a second; depthName names the camera in the journal.
 	void updateLatency(const std::string &depthName);

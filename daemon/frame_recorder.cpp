@@ -2,16 +2,17 @@
 
 namespace depthkey {
 
-int FrameRecorder::start(const std::string &dir, int pngCompression, std::string &error)
+int FrameRecorder::start(const std::string &dir, int pngCompression, std::string &error, int colourWidth,
+			 int colourHeight)
 {
 	stop();
 	writer_.setCompression(pngCompression);
-	int ret = writer_.open(dir);
+	int ret = writer_.open(dir, colourWidth, colourHeight);
 	if (ret < 0) {
 		error = writer_.describeError();
 		return ret;
 	}
-	dir_ = writer_.folder(); // dir, or dir/boot-N after a reboot
+	dir_ = writer_.folder(); // dir, or dir/boot-N after a reboot, or dir/WxH
 	stopping_ = false;
 	colourBusy_.fill(false);
 	depthBusy_.fill(false);

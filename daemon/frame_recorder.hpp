@@ -26,9 +26,12 @@ public:
 	FrameRecorder(const FrameRecorder &) = delete;
 	FrameRecorder &operator=(const FrameRecorder &) = delete;
 
-	// Creates the folder and starts the worker. Negative errno; error says
-	// what and where.
-	int start(const std::string &dir, int pngCompression, std::string &error);
+	// Creates the folder and starts the worker. Colour frames are to be
+	// colourWidth x colourHeight (0: any): a folder of another size is left
+	// for dir/WxH (SequenceWriter::open). Negative errno; error says what
+	// and where.
+	int start(const std::string &dir, int pngCompression, std::string &error, int colourWidth = 0,
+		  int colourHeight = 0);
 	// Writes what is queued, then stops the worker.
 	void stop();
 	bool running() const { return worker_.joinable(); }

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 using namespace depthkey;
 using namespace std::chrono_literals;
@@ -23,10 +24,10 @@ constexpr int kFramesPerRun = 12;
 
 // A colour frame whose pixels say which it is, so a read-back shows whether
 // its file was overwritten by another frame.
-ColourFrame colourFrame(uint8_t id, uint64_t sequence, uint64_t timestampNs)
+ColourFrame colourFrame(uint8_t id, uint64_t sequence, uint64_t timestampNs, int width = 8, int height = 6)
 {
 	ColourFrame f;
-	f.rgb = RgbImage(8, 6, { id, uint8_t(id ^ 0x5a), 7 });
+	f.rgb = RgbImage(width, height, { id, uint8_t(id ^ 0x5a), 7 });
 	f.sequence = sequence;
 	f.timestampNs = timestampNs;
 	return f;
@@ -44,10 +45,11 @@ DepthFrame depthFrame(uint16_t id, uint64_t sequence, uint64_t timestampNs)
 
 // Records one frame pair and waits for both to be written, so that none is
 // dropped by a worker a loaded machine holds up.
-void recordPair(FrameRecorder &recorder, uint8_t id, uint64_t sequence, uint64_t timestampNs)
+void recordPair(FrameRecorder &recorder, uint8_t id, uint64_t sequence, uint64_t timestampNs, int width = 8,
+		int height = 6)
 {
 	const uint64_t before = recorder.written();
-	recorder.recordColour(colourFrame(id, sequence, timestampNs));
+	recorder.recordColour(colourFrame(id, sequence, timestampNs, width, height));
 	recorder.recordDepth(depthFrame(id, sequence, timestampNs));
 	ASSERT_TRUE(depthkey::test::waitUntil([&] { return recorder.written() >= before + 2; }, 10s));
 }
@@ -160,5 +162,44 @@ TEST(RecordingRestart, AFolderOfAnEarlierBootIsKeptAndTheSessionGoesBeside)
 		EXPECT_EQ(reader.depth().size(), frames) << folder;
 	}
 	EXPECT_FALSE(std::filesystem::exists(dir / "boot-3"));
+	std::filesystem::remove_all(dir);
+}
+
+// Issue 31 point 14: a reload that changed [colour]'s size appended frames of
+// the new size to the folder, and a replay at either size refused half of it.
+// A session of another colour size goes into DIR/WxH; back at the first
+// size, the folder is appended to again. Each folder holds one size.
+TEST(RecordingRestart, AnotherColourSizeGoesIntoAFolderOfItsOwn)
+{
+	const std::filesystem::path dir =
+		std::filesystem::temp_directory_path() / ("depthkey-resize-" + std::to_string(getpid()));
+	std::filesystem::remove_all(dir);
+	const std::filesystem::path resized = dir / "16x12";
+	const struct {
+		int width, height;
+		std::filesystem::path folder;
+	} runs[] = { { 8, 6, dir }, { 16, 12, resized }, { 8, 6, dir } };
+
+	uint8_t id = 0;
+	uint64_t timestampNs = 1'000'000'000;
+	for (const auto &run : runs) {
+		FrameRecorder recorder;
+		std::string error;
+		ASSERT_EQ(recorder.start(dir.string(), 0, error, run.width, run.height), 0) << error;
+		EXPECT_EQ(recorder.dir(), run.folder.string());
+		for (int i = 1; i <= 3; i++)
+			recordPair(recorder, ++id, i, timestampNs += 40'000'000, run.width, run.height);
+		recorder.stop();
+	}
+	for (const auto &[folder, width, frames] : { std::tuple{ dir, 8, 6u }, std::tuple{ resized, 16, 3u } }) {
+		SequenceReader reader;
+		ASSERT_EQ(reader.open(folder.string()), 0) << reader.describeError();
+		ASSERT_EQ(reader.colour().size(), frames) << folder;
+		for (size_t i = 0; i < frames; i++) {
+			ColourFrame colour;
+			ASSERT_EQ(reader.readColour(i, colour), 0) << reader.describeError();
+			EXPECT_EQ(colour.rgb.width(), width) << folder << " frame " << i;
+		}
+	}
 	std::filesystem::remove_all(dir);
 }

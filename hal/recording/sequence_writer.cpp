@@ -42,7 +42,7 @@ uint64_t numberOf(const char *name)
 
 } // namespace
 
-int SequenceWriter::open(const std::string &dir)
+int SequenceWriter::open(const std::string &dir, int colourWidth, int colourHeight)
 {
 	close();
 	dir_ = dir;
@@ -53,7 +53,8 @@ int SequenceWriter::open(const std::string &dir)
 	}
 	timespec now{};
 	clock_gettime(CLOCK_MONOTONIC, &now);
-	dir_ = sessionFolder(dir, static_cast<uint64_t>(now.tv_sec) * 1000000000u + static_cast<uint64_t>(now.tv_nsec));
+	dir_ = sessionFolder(dir, static_cast<uint64_t>(now.tv_sec) * 1000000000u + static_cast<uint64_t>(now.tv_nsec),
+			     colourWidth, colourHeight);
 	if (dir_ != dir && (ret = makeDir(dir_)) < 0) {
 		error_ = dir_ + ": cannot create folder: " + std::strerror(-ret);
 		return ret;

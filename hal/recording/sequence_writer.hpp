@@ -27,8 +27,10 @@ public:
 	// highest file number already in each stream's folder (fileNumber()).
 	// A folder holding frames of an earlier boot is left as it is: the
 	// session goes into dir/boot-N (hal/recording/session_folder.hpp), which
-	// folder() names. Negative errno, with describeError() naming the path.
-	int open(const std::string &dir);
+	// folder() names; so is a folder of colour frames of another size than
+	// colourWidth x colourHeight (when given), into dir/WxH. Negative errno,
+	// with describeError() naming the path.
+	int open(const std::string &dir, int colourWidth = 0, int colourHeight = 0);
 	const std::string &folder() const { return dir_; }
 	void close();
 

@@ -1,6 +1,7 @@
 // The "replay" backends: a recorded sequence folder ([replay] path) played
 // back as a colour and a depth camera. Both share one ReplayTimeline, so
-// their frames keep the recorded order (see replay_timeline.hpp).
+// their frames keep the recorded order; each has a status of its own, naming
+// the files of its own stream (see replay_timeline.hpp).
 #pragma once
 
 #include "hal/camera.hpp"
@@ -21,7 +22,7 @@ public:
 		return timeline_->attachColour(loop, std::move(onFrame), std::move(onStatus));
 	}
 	void stop() override { timeline_->detachColour(); }
-	DeviceStatus status() const override { return timeline_->status(); }
+	DeviceStatus status() const override { return timeline_->colourStatus(); }
 	bool freeRunning() const override { return timeline_->settings().realtime; }
 
 private:
@@ -39,7 +40,7 @@ public:
 		return timeline_->attachDepth(loop, std::move(onFrame), std::move(onStatus));
 	}
 	void stop() override { timeline_->detachDepth(); }
-	DeviceStatus status() const override { return timeline_->status(); }
+	DeviceStatus status() const override { return timeline_->depthStatus(); }
 
 private:
 	std::shared_ptr<ReplayTimeline> timeline_;

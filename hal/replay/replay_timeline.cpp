@@ -8,14 +8,33 @@ namespace depthkey {
 namespace {
 
 constexpr uint64_t kRetryUs = 2'000'000; // a missing folder may be copied in later
+// Not in real time, a frame that is skipped waits this long before the
+// next: a folder of bad files would otherwise spin the loop.
+constexpr uint64_t kSkippedFrameUs = 40'000;
+constexpr uint64_t kDefaultPeriodNs = 40'000'000;
+
+std::string sizeText(int width, int height)
+{
+	return std::to_string(width) + "x" + std::to_string(height);
+}
+
+// The mean period of an index, or 0 with fewer than two frames.
+uint64_t meanPeriodNs(const std::vector<SequenceEntry> &index)
+{
+	if (index.size() < 2)
+		return 0;
+	return (index.back().timestampNs - index.front().timestampNs) / (index.size() - 1);
+}
 
 } // namespace
 
 int ReplayTimeline::attachColour(EventLoop &loop, ColourCamera::FrameHandler onFrame,
 				 ColourCamera::StatusHandler onStatus)
 {
-	onColour_ = std::move(onFrame);
-	colourStatus_ = std::move(onStatus);
+	colour_.onFrame = std::move(onFrame);
+	colour_.onStatus = std::move(onStatus);
+	if (loop_ && opened_)
+		startTrack(colour_);
 	begin(loop);
 	return 0;
 }
@@ -23,49 +42,57 @@ int ReplayTimeline::attachColour(EventLoop &loop, ColourCamera::FrameHandler onF
 int ReplayTimeline::attachDepth(EventLoop &loop, DepthCamera::FrameHandler onFrame,
 				DepthCamera::StatusHandler onStatus)
 {
-	onDepth_ = std::move(onFrame);
-	depthStatus_ = std::move(onStatus);
+	depth_.onFrame = std::move(onFrame);
+	depth_.onStatus = std::move(onStatus);
+	if (loop_ && opened_)
+		startTrack(depth_);
 	begin(loop);
 	return 0;
 }
 
 void ReplayTimeline::detachColour()
 {
-	onColour_ = nullptr;
-	colourStatus_ = nullptr;
-	if (!onDepth_)
-		rewind();
+	colour_.onFrame = nullptr;
+	colour_.onStatus = nullptr;
+	colour_.status = { DeviceState::Stopped, 0, "", colour_.status.droppedFrames };
+	detached();
 }
 
 void ReplayTimeline::detachDepth()
 {
-	onDepth_ = nullptr;
-	depthStatus_ = nullptr;
-	if (!onColour_)
-		rewind();
+	depth_.onFrame = nullptr;
+	depth_.onStatus = nullptr;
+	depth_.status = { DeviceState::Stopped, 0, "", depth_.status.droppedFrames };
+	detached();
 }
 
-// Nobody listens any more: stop, and start afresh on the next attach.
-void ReplayTimeline::rewind()
+// Nobody listens any more: stop, and start afresh (the folder read again) on
+// the next attach.
+void ReplayTimeline::detached()
 {
+	if (colour_.attached() || depth_.attached())
+		return;
 	timer_.reset();
 	loop_ = nullptr;
+	opened_ = false;
 }
 
-void ReplayTimeline::setStatus(DeviceStatus status)
-{
-	status_ = std::move(status);
-	if (colourStatus_)
-		colourStatus_(status_);
-	if (depthStatus_)
-		depthStatus_(status_);
-}
-
-// The first attach opens the folder; the second joins the running timeline.
+// The first attach opens the folder; the second joins the running timeline
+// (its frames scheduled from now on: the first may have had none to play).
 void ReplayTimeline::begin(EventLoop &loop)
 {
-	if (loop_)
+	if (loop_) {
+		if (opened_)
+			scheduleNext();
+		else // the folder is being retried: the newcomer hears why
+			for (const DeviceStatus *s : { &colour_.status, &depth_.status })
+				if (s->state == DeviceState::Lost) {
+					colour_.setStatus(s->state, s->error, s->detail);
+					depth_.setStatus(s->state, s->error, s->detail);
+					break;
+				}
 		return;
+	}
 	loop_ = &loop;
 	open();
 }
@@ -74,10 +101,13 @@ void ReplayTimeline::open()
 {
 	int ret = reader_.open(settings_.path);
 	if (ret < 0) {
-		setStatus({ DeviceState::Lost, ret, reader_.describeError() });
+		// The folder is both cameras'.
+		colour_.setStatus(DeviceState::Lost, ret, reader_.describeError());
+		depth_.setStatus(DeviceState::Lost, ret, reader_.describeError());
 		loop_->addTimer(kRetryUs, [this] { open(); }, timer_);
 		return;
 	}
+	opened_ = true;
 	uint64_t first = UINT64_MAX, last = 0;
 	for (const auto *index : { &reader_.colour(), &reader_.depth() })
 		if (!index->empty()) {
@@ -85,17 +115,48 @@ void ReplayTimeline::open()
 			last = std::max(last, index->back().timestampNs);
 		}
 	firstNs_ = first;
-	// One loop lasts the recording plus one colour period (or 40 ms).
-	uint64_t period = reader_.colour().size() > 1
-				  ? (reader_.colour().back().timestampNs - reader_.colour().front().timestampNs) /
-					    (reader_.colour().size() - 1)
-				  : 40'000'000u;
-	lengthNs_ = last - first + period;
+	// One loop lasts the recording plus one frame period (colour's, else
+	// depth's, else 40 ms).
+	uint64_t period = meanPeriodNs(reader_.colour());
+	if (period == 0)
+		period = meanPeriodNs(reader_.depth());
+	lengthNs_ = last - first + (period ? period : kDefaultPeriodNs);
 	startNs_ = loop_->nowUs() * 1000u;
-	nextColour_ = nextDepth_ = 0;
 	loops_ = 0;
-	setStatus({ DeviceState::Streaming, 0, "" });
+	skipped_ = false;
+	startTrack(colour_);
+	startTrack(depth_);
 	scheduleNext();
+}
+
+// A frame with the timestamp of the one before cannot be paired apart from
+// it (the pairer drops it); it is refused here, where it is counted.
+template<typename Frame>
+static void refuseRepeatedTimestamps(ReplayTrack<Frame> &track, const std::vector<SequenceEntry> &index)
+{
+	track.next = 0;
+	track.goodInRow = 0;
+	track.refused.assign(index.size(), false);
+	for (size_t i = 1; i < index.size(); ++i)
+		track.refused[i] = index[i].timestampNs == index[i - 1].timestampNs;
+}
+
+void ReplayTimeline::startTrack(ReplayTrack<ColourFrame> &track)
+{
+	refuseRepeatedTimestamps(track, reader_.colour());
+	if (reader_.colour().empty()) // a depth-only recording: depth plays, colour says why not
+		track.setStatus(DeviceState::Lost, -ENODATA, reader_.dir() + "/rgb.txt: no colour frames recorded");
+	else
+		track.setStatus(DeviceState::Streaming, 0, "");
+}
+
+void ReplayTimeline::startTrack(ReplayTrack<DepthFrame> &track)
+{
+	refuseRepeatedTimestamps(track, reader_.depth());
+	if (reader_.depth().empty())
+		track.setStatus(DeviceState::Lost, -ENODATA, reader_.dir() + "/depth.txt: no depth frames recorded");
+	else
+		track.setStatus(DeviceState::Streaming, 0, "");
 }
 
 uint64_t ReplayTimeline::localNs(uint64_t recordedNs) const
@@ -105,26 +166,32 @@ uint64_t ReplayTimeline::localNs(uint64_t recordedNs) const
 
 void ReplayTimeline::scheduleNext()
 {
-	bool colourLeft = onColour_ && nextColour_ < reader_.colour().size();
-	bool depthLeft = onDepth_ && nextDepth_ < reader_.depth().size();
+	bool colourLeft = colour_.attached() && colour_.next < reader_.colour().size();
+	bool depthLeft = depth_.attached() && depth_.next < reader_.depth().size();
 	if (!colourLeft && !depthLeft) {
+		const bool anything = (colour_.attached() && !reader_.colour().empty()) ||
+				      (depth_.attached() && !reader_.depth().empty());
+		if (!anything)
+			return; // nothing an attached camera can play; a second attach reschedules
 		if (!settings_.loop) {
-			setStatus({ DeviceState::Lost, -ENODATA, settings_.path + ": end of the recording" });
+			const std::string end = settings_.path + ": end of the recording";
+			if (colour_.attached())
+				colour_.setStatus(DeviceState::Lost, -ENODATA, end);
+			if (depth_.attached())
+				depth_.setStatus(DeviceState::Lost, -ENODATA, end);
 			return;
 		}
 		loops_++;
-		nextColour_ = nextDepth_ = 0;
-		colourLeft = onColour_ && !reader_.colour().empty();
-		depthLeft = onDepth_ && !reader_.depth().empty();
-		if (!colourLeft && !depthLeft)
-			return;
+		colour_.next = depth_.next = 0;
+		colourLeft = colour_.attached() && !reader_.colour().empty();
+		depthLeft = depth_.attached() && !reader_.depth().empty();
 	}
 	uint64_t due = UINT64_MAX;
 	if (colourLeft)
-		due = reader_.colour()[nextColour_].timestampNs;
+		due = reader_.colour()[colour_.next].timestampNs;
 	if (depthLeft)
-		due = std::min(due, reader_.depth()[nextDepth_].timestampNs);
-	uint64_t delayUs = 0;
+		due = std::min(due, reader_.depth()[depth_.next].timestampNs);
+	uint64_t delayUs = skipped_ ? kSkippedFrameUs : 0;
 	if (settings_.realtime) {
 		uint64_t dueNs = localNs(due), nowNs = loop_->nowUs() * 1000u;
 		delayUs = dueNs > nowNs ? (dueNs - nowNs) / 1000u : 0;
@@ -134,34 +201,71 @@ void ReplayTimeline::scheduleNext()
 
 void ReplayTimeline::emitNext()
 {
-	bool colourLeft = onColour_ && nextColour_ < reader_.colour().size();
-	bool depthLeft = onDepth_ && nextDepth_ < reader_.depth().size();
+	bool colourLeft = colour_.attached() && colour_.next < reader_.colour().size();
+	bool depthLeft = depth_.attached() && depth_.next < reader_.depth().size();
 	// Depth first on equal timestamps: the daemon pairs colour with the
 	// newest depth at or before it.
-	bool depthNext = depthLeft && (!colourLeft || reader_.depth()[nextDepth_].timestampNs <=
-							     reader_.colour()[nextColour_].timestampNs);
-	int ret = 0;
-	if (depthNext) {
-		ret = reader_.readDepth(nextDepth_++, depth_);
-		if (ret >= 0) {
-			depth_.timestampNs = localNs(depth_.timestampNs);
-			depth_.sequence += loops_ * reader_.depth().size();
-			onDepth_(depth_);
-		}
-	} else if (colourLeft) {
-		ret = reader_.readColour(nextColour_++, colour_);
-		if (ret >= 0) {
-			colour_.timestampNs = localNs(colour_.timestampNs);
-			colour_.sequence += loops_ * reader_.colour().size();
-			onColour_(colour_);
-		}
+	bool depthNext = depthLeft && (!colourLeft || reader_.depth()[depth_.next].timestampNs <=
+							     reader_.colour()[colour_.next].timestampNs);
+	if (depthNext)
+		emit(depth_, reader_.depth(), depthFrame_, &ReplayTimeline::readDepth);
+	else if (colourLeft)
+		emit(colour_, reader_.colour(), colourFrame_, &ReplayTimeline::readColour);
+	if (loop_) // a frame handler may have stopped both cameras (a reload)
+		scheduleNext();
+}
+
+int ReplayTimeline::readColour(size_t i)
+{
+	int ret = reader_.readColour(i, colourFrame_);
+	if (ret < 0) {
+		error_ = reader_.describeError();
+		return ret;
 	}
-	// A bad frame is reported and skipped; the replay goes on.
+	const int width = colourFrame_.rgb.width(), height = colourFrame_.rgb.height();
+	if (colourWidth_ > 0 && (width != colourWidth_ || height != colourHeight_)) {
+		error_ = reader_.dir() + "/" + reader_.colour()[i].file + ": " + sizeText(width, height) +
+			 ", not [colour]'s " + sizeText(colourWidth_, colourHeight_);
+		return -EINVAL;
+	}
+	return 0;
+}
+
+int ReplayTimeline::readDepth(size_t i)
+{
+	int ret = reader_.readDepth(i, depthFrame_);
 	if (ret < 0)
-		setStatus({ DeviceState::Lost, ret, reader_.describeError() });
-	else if (status_.state != DeviceState::Streaming)
-		setStatus({ DeviceState::Streaming, 0, "" });
-	scheduleNext();
+		error_ = reader_.describeError();
+	return ret;
+}
+
+// A bad frame is dropped and counted; the replay goes on. Its camera goes
+// Lost naming the file, and says so again only when the error changes or
+// after it came back.
+template<typename Frame>
+void ReplayTimeline::emit(ReplayTrack<Frame> &track, const std::vector<SequenceEntry> &index, Frame &frame,
+			  int (ReplayTimeline::*read)(size_t))
+{
+	const size_t i = track.next++;
+	skipped_ = true;
+	if (track.refused[i]) {
+		track.status.droppedFrames++;
+		return;
+	}
+	if (int ret = (this->*read)(i); ret < 0) {
+		track.refused[i] = true;
+		track.status.droppedFrames++;
+		track.goodInRow = 0;
+		if (track.status.state != DeviceState::Lost || track.status.error != ret)
+			track.setStatus(DeviceState::Lost, ret, error_);
+		return;
+	}
+	skipped_ = false;
+	frame.timestampNs = localNs(frame.timestampNs);
+	frame.sequence += loops_ * index.size();
+	track.onFrame(frame);
+	if (track.status.state != DeviceState::Streaming && ++track.goodInRow >= kRecoverFrames)
+		track.setStatus(DeviceState::Streaming, 0, "");
 }
 
 } // namespace depthkey

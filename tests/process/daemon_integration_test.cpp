@@ -2,6 +2,7 @@
 // the recorder would see: the notify protocol, frames in shared memory,
 // reload with a broken config, clean stop.
 #include "hal/depthkey_shm.h"
+#include "hal/recording/sequence_writer.hpp"
 #include "tests/process/daemon_process.hpp"
 #include "tests/test_paths.hpp"
 #include "tests/wait_until.hpp"
@@ -288,6 +289,49 @@ TEST_F(DaemonIntegration, RecordThenReplayWithPreviews)
 	EXPECT_TRUE(frame.info.flags & DK_SHM_FLAG_ONLINE) << replay.log();
 	ASSERT_EQ(replay.signal(SIGTERM), 0);
 	EXPECT_NE(replay.waitExit(5s), -1);
+}
+
+// Issue 31 point 14: a replay whose colour size is not [colour]'s published
+// nothing (0 frames to the recorder in 12 s) while the status said 24 fps,
+// and sent neither READY=1 nor WATCHDOG=1. Its colour frames are refused now,
+// naming the size, and the recorder gets NO SIGNAL frames at [colour]'s size,
+// which READY=1 and the watchdog follow.
+TEST_F(DaemonIntegration, AReplayOfAnotherSizeSendsNoSignalReadyAndWatchdog)
+{
+	const std::string recording = daemon_.dir() + "/small";
+	{
+		depthkey::SequenceWriter writer;
+		ASSERT_EQ(writer.open(recording), 0) << writer.describeError();
+		for (int i = 0; i < 25; ++i) {
+			depthkey::ColourFrame colour;
+			colour.rgb = depthkey::RgbImage(160, 120, depthkey::Rgb8{ uint8_t(i * 10), 90, 40 });
+			colour.timestampNs = 1'000'000'000 + uint64_t(i) * 40'000'000;
+			colour.sequence = i + 1;
+			ASSERT_EQ(writer.writeColour(colour), 0) << writer.describeError();
+		}
+	}
+	std::string config = daemon_.writeFile("replay.toml",
+					       "[colour]\nbackend = \"replay\"\nwidth = 320\nheight = 240\n"
+					       "[output]\ncomposite_name = \"" + prefix_ + ".composite\"\n"
+					       "lecturer_name = \"" + prefix_ + ".lecturer\"\n"
+					       "[replay]\npath = \"" + recording + "\"\n");
+	ASSERT_TRUE(daemon_.start({ "--config", config }, 300000));
+	ASSERT_TRUE(daemon_.waitForNotify("READY=1", 10s)) << daemon_.log(); // degraded: after 5 s
+	int before = daemon_.countNotify("WATCHDOG=1");
+	waitUntil(
+		[&] {
+			daemon_.pollNotify();
+			return daemon_.countNotify("WATCHDOG=1") - before >= 3;
+		},
+		5s);
+	EXPECT_GE(daemon_.countNotify("WATCHDOG=1") - before, 3) << daemon_.log();
+	ShmFrame frame;
+	ASSERT_TRUE(readFrame(prefix_ + ".composite", frame, 2s));
+	EXPECT_EQ(frame.info.width, 320u);
+	EXPECT_FALSE(frame.info.flags & DK_SHM_FLAG_COLOUR_OK) << "a NO SIGNAL frame";
+	EXPECT_NE(daemon_.log().find("160x120, not [colour]'s 320x240"), std::string::npos) << daemon_.log();
+	ASSERT_EQ(daemon_.signal(SIGTERM), 0);
+	EXPECT_NE(daemon_.waitExit(5s), -1);
 }
 
 // depthkey-calibrate --sim calibrates the simulated room in one go: its file's
