@@ -20,14 +20,21 @@ public:
 		name_ = "/depthkey-test-" + std::to_string(getpid()) + "-" +
 			std::to_string(counter++);
 		shm_unlink(name_.c_str());
+		shm_unlink(presence().c_str());
 	}
-	~ShmName() { shm_unlink(name_.c_str()); }
+	~ShmName()
+	{
+		shm_unlink(name_.c_str());
+		shm_unlink(presence().c_str());
+	}
 
 	ShmName(const ShmName &) = delete;
 	ShmName &operator=(const ShmName &) = delete;
 
 	const std::string &str() const { return name_; }
 	const char *c_str() const { return name_.c_str(); }
+	// The readers' heartbeat object (hal/depthkey_shm.h).
+	std::string presence() const { return name_ + DK_SHM_PRESENCE_SUFFIX; }
 
 private:
 	std::string name_;
