@@ -104,30 +104,30 @@ TEST(ShmRingGuard, AShrunkObjectIsResizedNotAFault)
 {
 	for (off_t size : { off_t{ 0 }, off_t{ 4096 } }) {
 		SCOPED_TRACE(size);
-		EXPECT_EXIT(
-			{
-				ShmName name;
-				ShmRingWriter writer;
-				if (writer.open(name.str(), kWidth, kHeight, DK_SHM_FORMAT_RGB24, 3, "") != 0 ||
-				    writer.write(frameOf(1).data(), kStride, 1, 0) != 0)
-					_exit(1);
-				const int fd = ownerFd(name);
-				if (fd < 0 || ftruncate(fd, size) != 0)
-					_exit(2);
-				// Frames 2 and 3 go to slots 2 and 0, past one page.
-				if (writer.write(frameOf(2).data(), kStride, 2, 0) != -EUCLEAN)
-					_exit(3);
-				if (writer.describeError().find(name.str() + ": restored the size of the object '" +
-								std::to_string(size) + " bytes") == std::string::npos)
-					_exit(4);
-				struct stat st{};
-				fstat(fd, &st);
-				close(fd);
-				if (st.st_size <= 4096 || writer.write(frameOf(3).data(), kStride, 3, 0) != 0)
-					_exit(5);
-				_exit(aReaderReads(name, 3) ? 0 : 6);
-			},
-			::testing::ExitedWithCode(0), "")
+		// Returns rather than exits, so that the objects are removed.
+		auto shrinkAndWrite = [size]() {
+			ShmName name;
+			ShmRingWriter writer;
+			if (writer.open(name.str(), kWidth, kHeight, DK_SHM_FORMAT_RGB24, 3, "") != 0 ||
+			    writer.write(frameOf(1).data(), kStride, 1, 0) != 0)
+				return 1;
+			const int fd = ownerFd(name);
+			if (fd < 0 || ftruncate(fd, size) != 0)
+				return 2;
+			// Frames 2 and 3 go to slots 2 and 0, past one page.
+			if (writer.write(frameOf(2).data(), kStride, 2, 0) != -EUCLEAN)
+				return 3;
+			if (writer.describeError().find(name.str() + ": restored the size of the object '" +
+							std::to_string(size) + " bytes") == std::string::npos)
+				return 4;
+			struct stat st{};
+			fstat(fd, &st);
+			close(fd);
+			if (st.st_size <= 4096 || writer.write(frameOf(3).data(), kStride, 3, 0) != 0)
+				return 5;
+			return aReaderReads(name, 3) ? 0 : 6;
+		};
+		EXPECT_EXIT(_exit(shrinkAndWrite()), ::testing::ExitedWithCode(0), "")
 			<< "1: open, 2: ftruncate, 3: not -EUCLEAN, 4: message, 5: not resized, 6: unreadable";
 	}
 }
