@@ -5,7 +5,8 @@
 // slot_count (every reader refused the stream while the daemon reported
 // frames and no errors). Each is refused now; the one object it may write,
 // its presence object, it shrinks, and the daemon restores it and says so.
-// The daemon keeps publishing and a reader of the group accepts the stream.
+// The owner's header writes are rewritten. The daemon keeps publishing and a
+// reader of the group accepts the stream.
 #include "tests/process/daemon_process.hpp"
 #include "tests/shm_test_util.hpp"
 
@@ -159,6 +160,17 @@ TEST(DaemonShmTamper, AReaderOfTheGroupCannotKillOrSilenceTheStream)
 					     "4: mapped writable, 8: truncated by path, 16: presence not writable, "
 					     "100: setuid";
 
+	// The owner (root here) still can write the header: what the issue's
+	// reader did. The daemon rewrites it at its next frame and says so.
+	const int fd = shm_open(composite.c_str(), O_RDWR, 0);
+	ASSERT_GE(fd, 0);
+	void *map = mmap(nullptr, sizeof(dk_shm_header), PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
+	close(fd);
+	ASSERT_NE(map, MAP_FAILED);
+	static_cast<dk_shm_header *>(map)->generation = 0;
+	static_cast<dk_shm_header *>(map)->slot_count = 9;
+	munmap(map, sizeof(dk_shm_header));
+
 	// Both streams keep coming, and a reader of the group takes them.
 	for (const std::string &name : { composite, lecturer }) {
 		pid_t reader = fork();
@@ -171,6 +183,10 @@ TEST(DaemonShmTamper, AReaderOfTheGroupCannotKillOrSilenceTheStream)
 	EXPECT_TRUE(daemon.running()) << daemon.log();
 	// The shrunk presence objects were restored, and the journal said so.
 	EXPECT_NE(daemon.log().find(composite + DK_SHM_PRESENCE_SUFFIX + ": 0 bytes"), std::string::npos)
+		<< daemon.log();
+	EXPECT_NE(daemon.log().find("shared-memory output repaired: " + composite +
+				    ": rewrote the header, field 'slot_count = 9 (expected 2)'"),
+		  std::string::npos)
 		<< daemon.log();
 
 	ASSERT_EQ(daemon.signal(SIGTERM), 0);
