@@ -40,6 +40,17 @@ private:
 	std::string name_;
 };
 
+// Removes a daemon's two streams PREFIX.composite and PREFIX.lecturer and
+// their readers' objects, for a test whose daemon may not have stopped
+// cleanly (a clean stop removes them itself).
+inline void unlinkStreams(const std::string &prefix)
+{
+	for (const char *stream : { ".composite", ".lecturer" }) {
+		shm_unlink((prefix + stream).c_str());
+		shm_unlink((prefix + stream + DK_SHM_PRESENCE_SUFFIX).c_str());
+	}
+}
+
 // What a reader gets when it opens the object: 0 or a negative errno.
 inline int openStatus(const char *name)
 {
