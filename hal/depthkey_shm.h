@@ -29,7 +29,9 @@
  * A reader calls one of those functions at least every 500 ms to stay
  * counted. Presence needs no clock in the reader; the writer never waits on
  * it. A reader without write access still reads (presence_error says why it
- * is not counted).
+ * is not counted). A reader of the group can still shrink the presence
+ * object: until the writer restores it (within 250 ms) other readers' beats
+ * into the cut part fault (SIGBUS); their frames are untouched.
  *
  * Every field has a fixed width and offset (checked below) so that C, C++ and
  * other languages agree on the layout whatever the ABI. Multi-byte fields are
