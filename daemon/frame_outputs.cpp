@@ -74,6 +74,18 @@ void FrameOutputs::remove()
 		sink_->remove();
 }
 
+// -EUCLEAN: the stream's object had been shrunk or its header changed by
+// someone else, and the writer repaired it and published the frame
+// (hal/shm_ring_guard.cpp). Said once per change, and not a failed frame.
+int FrameOutputs::noteRepair(int ret)
+{
+	if (ret != -EUCLEAN)
+		return ret;
+	logger().errorOnce("output-repaired", "shared-memory output repaired: " + sink_->describeError(),
+			   { { "DEVICE", "shm" }, { "ERROR", errnoText(ret) } });
+	return 0;
+}
+
 int FrameOutputs::publish(const OutputFrame &frame)
 {
 	if (!sink_)
@@ -84,10 +96,11 @@ int FrameOutputs::publish(const OutputFrame &frame)
 	}
 	int ret = frame.composite ? sink_->publishComposite(*frame.composite, frame.captureNs, frame.flags)
 				  : sink_->publishComposite(*frame.compositeInputs, frame.captureNs, frame.flags);
+	ret = noteRepair(ret);
 	if (ret >= 0)
-		ret = sink_->publishLecturer(frame.colour, frame.alpha, frame.captureNs, frame.flags);
+		ret = noteRepair(sink_->publishLecturer(frame.colour, frame.alpha, frame.captureNs, frame.flags));
 	if (ret >= 0 && frame.boardLecturer)
-		ret = sink_->publishBoardLecturer(*frame.boardLecturer, frame.captureNs, frame.flags);
+		ret = noteRepair(sink_->publishBoardLecturer(*frame.boardLecturer, frame.captureNs, frame.flags));
 	if (ret < 0)
 		logger().errorOnce("output", "cannot publish: " + sink_->describeError(),
 				   { { "DEVICE", "shm" }, { "ERROR", errnoText(ret) } });

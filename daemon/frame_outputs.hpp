@@ -76,6 +76,8 @@ public:
 
 private:
 	int openSink();
+	// ret, or 0 (logged once) for a stream the writer repaired (-EUCLEAN).
+	int noteRepair(int ret);
 
 	SinkFactory makeSink_;
 	std::unique_ptr<FrameSink> sink_;

@@ -7,21 +7,31 @@
  * slot_count pixel slots starting at data_offset. Frame n (n >= 1) is written
  * into slot n % slot_count under that slot's seqlock, then latest_frame = n.
  * The writer never waits for readers; a reader that is lapped mid-copy sees the
- * sequence number change and retries. Readers map the frames read-only, so a
- * reader that crashes or stalls cannot harm the writer or other readers.
+ * sequence number change and retries.
  *
- * Reader presence (version 2): after the header, on a page of its own at
- * reader_offset, a table of DK_SHM_MAX_READERS reader slots. A reader that
- * may write the object (mode 0660, the reader in its group) maps that page
- * alone read-write, claims a free slot and bumps its beat counter on every
+ * Readers cannot write the frames or the header (version 3): the object is
+ * mode 0640, so the output group opens it read-only and maps it PROT_READ;
+ * it can neither scribble on the header nor shrink the object under the
+ * writer's mapping (which would kill the writer with SIGBUS). A reader that
+ * crashes or stalls cannot harm the writer or other readers' frames.
+ *
+ * Reader presence: a second, small object of its own, the stream's name plus
+ * DK_SHM_PRESENCE_SUFFIX ("/depthkey.composite.readers", mode 0660), holds at
+ * reader_offset a table of DK_SHM_MAX_READERS reader slots. The only thing a
+ * reader may write. A reader in the group maps it read-write, claims a free
+ * slot and bumps its beat counter on every
  * dk_shm_latest / dk_shm_read_latest / dk_shm_heartbeat call. The writer
+ * reads the table with pread (never through a mapping, so a reader that
+ * shrinks it cannot fault the writer; the writer restores its size) and
  * samples the counters; a slot whose counter has not moved for
  * DK_SHM_READER_TIMEOUT_MS is counted gone and freed, so a reader that dies
  * is gone within about a second, and a clean dk_shm_close frees it at once.
  * A reader calls one of those functions at least every 500 ms to stay
  * counted. Presence needs no clock in the reader; the writer never waits on
  * it. A reader without write access still reads (presence_error says why it
- * is not counted).
+ * is not counted). A reader of the group can still shrink the presence
+ * object: until the writer restores it (within 250 ms) other readers' beats
+ * into the cut part fault (SIGBUS); their frames are untouched.
  *
  * Every field has a fixed width and offset (checked below) so that C, C++ and
  * other languages agree on the layout whatever the ABI. Multi-byte fields are
@@ -51,7 +61,7 @@ extern "C" {
 #endif
 
 #define DK_SHM_MAGIC 0x48534b44u /* "DKSH" in memory on little-endian */
-#define DK_SHM_VERSION 2u /* 2: reader presence table */
+#define DK_SHM_VERSION 3u /* 2: reader presence table; 3: in its own object */
 #define DK_SHM_MIN_SLOTS 2u
 #define DK_SHM_MAX_SLOTS 8u
 #define DK_SHM_MAX_DIMENSION 16384u
@@ -64,6 +74,13 @@ extern "C" {
 #define DK_SHM_MAX_READERS 16u
 /* A reader whose beat counter did not move for this long is counted gone. */
 #define DK_SHM_READER_TIMEOUT_MS 1000u
+/* Bound on reader_offset, so that offset + table size cannot overflow. */
+#define DK_SHM_MAX_PRESENCE_OFFSET ((uint64_t)1 << 32)
+/* The presence object's name is the stream's name plus this suffix. */
+#define DK_SHM_PRESENCE_SUFFIX ".readers"
+/* Longest stream name, its leading '/' included, whose presence name still
+ * fits glibc's bound (253 characters after the slash before glibc 2.34). */
+#define DK_SHM_NAME_MAX (254u - (sizeof(DK_SHM_PRESENCE_SUFFIX) - 1))
 
 #ifdef O_CLOEXEC
 #define DK_SHM_O_CLOEXEC O_CLOEXEC
@@ -105,7 +122,7 @@ struct dk_shm_header {
 	uint64_t latest_frame;  /* newest complete frame, 0 = none yet */
 	uint32_t online;        /* 1 while a writer has the stream open */
 	uint32_t reader_slots;  /* slots in the presence table, <= DK_SHM_MAX_READERS */
-	uint64_t reader_offset; /* offset of struct dk_shm_reader_table, page-aligned */
+	uint64_t reader_offset; /* offset of struct dk_shm_reader_table in the presence object, page-aligned */
 	uint8_t reserved[48];   /* slots start on their own cache line */
 	struct dk_shm_slot slots[DK_SHM_MAX_SLOTS];
 };
@@ -183,8 +200,10 @@ struct dk_shm_reader {
 	uint32_t presence_index;
 	uint64_t presence_token;
 	/* 0 while counted, else why not: -EACCES (no write access to the
-	 * object), -EBUSY (all reader slots taken; retried on every beat), or
-	 * the errno of mapping the table. */
+	 * presence object: not in the output group), -ENOENT (no presence
+	 * object), -EBUSY (all reader slots taken; retried on every beat),
+	 * -EPROTO (presence object too small), -ENAMETOOLONG, or the errno of
+	 * mapping the table. */
 	int presence_error;
 };
 
@@ -221,12 +240,11 @@ static inline int dk_shm_check_layout(const struct dk_shm_header *h, uint64_t si
 	    r->data_offset < sizeof(struct dk_shm_header) || r->data_offset > size ||
 	    (size - r->data_offset) / r->slot_count < r->slot_size)
 		return -EPROTO;
-	/* The presence table lies between the header and the pixels. */
+	/* The presence table is in the presence object; its size is checked
+	 * when it is mapped. */
 	r->presence_slots = h->reader_slots;
 	if (r->presence_slots == 0 || r->presence_slots > DK_SHM_MAX_READERS ||
-	    h->reader_offset < sizeof(struct dk_shm_header) || h->reader_offset % DK_SHM_DATA_ALIGN ||
-	    h->reader_offset > r->data_offset ||
-	    r->data_offset - h->reader_offset < sizeof(struct dk_shm_reader_table))
+	    h->reader_offset % DK_SHM_DATA_ALIGN || h->reader_offset > DK_SHM_MAX_PRESENCE_OFFSET)
 		return -EPROTO;
 	return 0;
 }
@@ -279,16 +297,43 @@ static inline int dk_shm_heartbeat(struct dk_shm_reader *r)
 	return 0;
 }
 
-/* Maps the reader table read-write and claims a slot. Failing only leaves
- * the reader uncounted. fd must be open read-write. */
-static inline void dk_shm_join_presence(struct dk_shm_reader *r, int fd)
+/* Opens the presence object of stream `name` read-write, maps its reader
+ * table and claims a slot. Failing only leaves the reader uncounted
+ * (presence_error says why). */
+static inline void dk_shm_join_presence(struct dk_shm_reader *r, const char *name)
 {
-	void *map = mmap(NULL, sizeof(struct dk_shm_reader_table), PROT_READ | PROT_WRITE,
-			 MAP_SHARED, fd, (off_t)r->header->reader_offset);
-	if (map == MAP_FAILED) {
+	char presence[DK_SHM_NAME_MAX + sizeof(DK_SHM_PRESENCE_SUFFIX)];
+	uint64_t offset = r->header->reader_offset;
+	size_t length = strlen(name);
+	struct stat st;
+	void *map;
+	int fd;
+
+	if (length > DK_SHM_NAME_MAX) {
+		r->presence_error = -ENAMETOOLONG;
+		return;
+	}
+	memcpy(presence, name, length);
+	memcpy(presence + length, DK_SHM_PRESENCE_SUFFIX, sizeof(DK_SHM_PRESENCE_SUFFIX));
+	fd = shm_open(presence, O_RDWR | DK_SHM_O_CLOEXEC, 0);
+	if (fd < 0) {
 		r->presence_error = -errno;
 		return;
 	}
+	if (fstat(fd, &st) < 0)
+		r->presence_error = -errno;
+	else if ((uint64_t)st.st_size < offset + sizeof(struct dk_shm_reader_table))
+		r->presence_error = -EPROTO; /* shrunk by someone, or not ours */
+	if (r->presence_error) {
+		close(fd);
+		return;
+	}
+	map = mmap(NULL, sizeof(struct dk_shm_reader_table), PROT_READ | PROT_WRITE, MAP_SHARED, fd,
+		   (off_t)offset);
+	r->presence_error = map == MAP_FAILED ? -errno : 0;
+	close(fd); /* the mapping keeps the object alive */
+	if (map == MAP_FAILED)
+		return;
 	r->presence = (struct dk_shm_reader_table *)map;
 	dk_shm_claim_reader_slot(r);
 }
@@ -320,21 +365,15 @@ static inline int dk_shm_open(const char *name, struct dk_shm_reader *r)
 	struct stat st;
 	uint64_t gen;
 	void *map;
-	int fd, ret, presence_error;
+	int fd, ret;
 
 	memset(r, 0, sizeof(*r));
-	/* Read-write only to beat in the presence table; the frames are mapped
-	 * read-only either way. */
-	fd = shm_open(name, O_RDWR | DK_SHM_O_CLOEXEC, 0);
-	if (fd < 0 && (errno == EACCES || errno == EROFS)) {
-		r->presence_error = -errno;
-		fd = shm_open(name, O_RDONLY | DK_SHM_O_CLOEXEC, 0);
-	}
+	/* Read-only: the frames and the header are the writer's alone. */
+	fd = shm_open(name, O_RDONLY | DK_SHM_O_CLOEXEC, 0);
 	if (fd < 0)
 		return -errno;
 	if (!DK_SHM_O_CLOEXEC)
 		fcntl(fd, F_SETFD, FD_CLOEXEC);
-	presence_error = r->presence_error;
 	if (fstat(fd, &st) < 0) {
 		ret = -errno;
 		close(fd);
@@ -378,10 +417,8 @@ static inline int dk_shm_open(const char *name, struct dk_shm_reader *r)
 		return ret;
 	}
 	r->generation = gen;
-	r->presence_error = presence_error;
-	if (!presence_error)
-		dk_shm_join_presence(r, fd);
-	close(fd); /* the mappings keep the object alive */
+	close(fd); /* the mapping keeps the object alive */
+	dk_shm_join_presence(r, name);
 	return 0;
 }
 

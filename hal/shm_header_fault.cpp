@@ -56,11 +56,9 @@ std::string shmHeaderFault(const dk_shm_header &h, uint64_t objectSize)
 	if (h.reader_slots == 0 || h.reader_slots > DK_SHM_MAX_READERS)
 		return outOfRange("reader_slots", h.reader_slots,
 				  "1.." + std::to_string(DK_SHM_MAX_READERS));
-	if (h.reader_offset < sizeof(dk_shm_header) || h.reader_offset % DK_SHM_DATA_ALIGN ||
-	    h.reader_offset > h.data_offset ||
-	    h.data_offset - h.reader_offset < sizeof(dk_shm_reader_table))
+	if (h.reader_offset % DK_SHM_DATA_ALIGN || h.reader_offset > DK_SHM_MAX_PRESENCE_OFFSET)
 		return outOfRange("reader_offset", h.reader_offset,
-				  "a page boundary after the header, a reader table before data_offset");
+				  "a page boundary in the presence object, at most 2^32");
 	return "";
 }
 

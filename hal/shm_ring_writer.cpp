@@ -19,17 +19,17 @@ namespace depthkey {
 
 namespace {
 
-// Group read-write: readers beat in the presence table (they map the frames
-// read-only); others get nothing.
-constexpr mode_t kMode = 0660;
-static_assert(DK_SHM_MAX_READERS == 16, "readerSeen_ has one entry per reader slot");
+// Group read-only: a reader that could write the object could shrink it
+// under our mapping (SIGBUS) or scribble on the header (issue 31). Others
+// get nothing.
+constexpr mode_t kMode = 0640;
 
 uint64_t roundUp(uint64_t value, uint64_t align)
 {
 	return (value + align - 1) / align * align;
 }
 
-// Readers map the presence table alone, so it starts on a page of its own.
+// Pixels start on a page of their own (DMA, mapping slots alone).
 uint64_t pageAlign()
 {
 	long page = sysconf(_SC_PAGESIZE);
@@ -118,7 +118,7 @@ int ShmRingWriter::retireStale(const std::string &name)
 {
 	UniqueFd fd(shm_open(name.c_str(), O_RDWR | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0));
 	if (!fd.isValid() && errno == ENOENT)
-		return 0;
+		return removePresence(name); // a crash between the two unlinks
 	if (!fd.isValid() && errno == EACCES)
 		return fail(-EPERM, "refusing an object created by another user",
 			    "it is not ours and we may not even open it: remove it from /dev/shm");
@@ -150,13 +150,14 @@ int ShmRingWriter::retireStale(const std::string &name)
 		}
 	}
 	int ret = shm_unlink(name.c_str()) < 0 && errno != ENOENT ? -errno : 0;
-	return ret ? fail(ret, "unlink the stale object") : 0;
+	return ret ? fail(ret, "unlink the stale object") : removePresence(name);
 }
 
 // O_EXCL: the object is ours from its first byte. Created 0600, then group
 // and mode are applied through the fd, so nobody outside the group can open
 // it in between, and the umask cannot narrow the mode.
-int ShmRingWriter::createFresh(const std::string &name, unsigned int gid, const std::string &group, UniqueFd &out)
+int ShmRingWriter::createFresh(const std::string &name, unsigned int gid, const std::string &group, mode_t mode,
+				UniqueFd &out)
 {
 	UniqueFd fd(shm_open(name.c_str(), O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600));
 	if (!fd.isValid())
@@ -174,8 +175,8 @@ int ShmRingWriter::createFresh(const std::string &name, unsigned int gid, const 
 		step = "fstat";
 	else if (st.st_gid != gid && fchown(fd.get(), static_cast<uid_t>(-1), gid) < 0)
 		step = kChgrp;
-	else if (fchmod(fd.get(), kMode) < 0)
-		step = "chmod 0660";
+	else if (fchmod(fd.get(), mode) < 0)
+		step = "chmod";
 	if (step) {
 		int err = -errno; // before anything else may change errno
 		if (step == kChgrp)
@@ -218,16 +219,15 @@ int ShmRingWriter::open(const std::string &name, int width, int height, uint32_t
 
 	const int stride = width * static_cast<int>(bpp);
 	const uint64_t slotSize = roundUp(static_cast<uint64_t>(stride) * height, DK_SHM_DATA_ALIGN);
-	const uint64_t align = pageAlign();
-	const uint64_t readerOffset = roundUp(sizeof(dk_shm_header), align);
-	const uint64_t dataOffset = readerOffset + roundUp(sizeof(dk_shm_reader_table), align);
+	const uint64_t dataOffset = roundUp(sizeof(dk_shm_header), pageAlign());
 	const uint64_t needed = dataOffset + slotSize * slots;
 
 	int ret = retireStale(name);
 	if (ret)
 		return ret;
+	const unsigned int ownerGid = group.empty() ? getegid() : gid;
 	UniqueFd fd;
-	ret = createFresh(name, group.empty() ? getegid() : gid, group, fd);
+	ret = createFresh(name, ownerGid, group, kMode, fd);
 	if (ret)
 		return ret;
 	// On a failure from here the object is unlinked and fd closes itself.
@@ -243,12 +243,23 @@ int ShmRingWriter::open(const std::string &name, int width, int height, uint32_t
 		shm_unlink(name.c_str());
 		return fail(err, "mmap");
 	}
+	// Before the header is written: a reader that finds the header finds
+	// the presence object too.
+	ret = createPresence(name, ownerGid, group);
+	if (ret) {
+		munmap(map, needed);
+		shm_unlink(name.c_str());
+		return ret;
+	}
 
 	fd_ = std::move(fd);
 	created_ = name;
 	header_ = static_cast<dk_shm_header *>(map);
 	data_ = static_cast<uint8_t *>(map) + dataOffset;
-	readers_ = reinterpret_cast<dk_shm_reader_table *>(static_cast<uint8_t *>(map) + readerOffset);
+	readerOffset_ = 0;
+	dataOffset_ = dataOffset;
+	readerSeen_ = {};
+	presenceShrunkTo_ = -1;
 	mapSize_ = needed;
 	width_ = width;
 	height_ = height;
@@ -257,7 +268,7 @@ int ShmRingWriter::open(const std::string &name, int width, int height, uint32_t
 	slots_ = slots;
 	slotSize_ = slotSize;
 	frame_ = 0;
-	writeHeader(slotSize, readerOffset, dataOffset);
+	writeHeader();
 	if (!renamedFrom.empty())
 		retireName(renamedFrom);
 	return 0;
@@ -266,7 +277,7 @@ int ShmRingWriter::open(const std::string &name, int width, int height, uint32_t
 // The header has its own seqlock: generation 0 while the fields change, then
 // the new generation. Readers that raced with us see 0 or a new value and
 // retry; readers still on the old generation get -ESTALE.
-void ShmRingWriter::writeHeader(uint64_t slotSize, uint64_t readerOffset, uint64_t dataOffset)
+void ShmRingWriter::writeHeader()
 {
 	dk_shm_header *h = header_;
 	const uint64_t previous = __atomic_load_n(&h->generation, __ATOMIC_RELAXED);
@@ -282,11 +293,13 @@ void ShmRingWriter::writeHeader(uint64_t slotSize, uint64_t readerOffset, uint64
 	h->height = static_cast<uint32_t>(height_);
 	h->stride = static_cast<uint32_t>(stride_);
 	h->fourcc = fourcc_;
-	h->slot_size = slotSize;
-	h->data_offset = dataOffset;
+	h->slot_size = slotSize_;
+	h->data_offset = dataOffset_;
 	h->reader_slots = DK_SHM_MAX_READERS;
-	h->reader_offset = readerOffset;
-	clearReaders();
+	h->reader_offset = readerOffset_;
+	// header_size, magic, version and the reserved bytes too: the header
+	// may be rewritten after someone scribbled on it (guard()).
+	std::memset(h->reserved, 0, sizeof(h->reserved));
 	__atomic_store_n(&h->latest_frame, 0, __ATOMIC_RELAXED);
 	for (dk_shm_slot &slot : h->slots) {
 		// Sequence numbers only ever grow; an odd one left by a writer
@@ -311,6 +324,9 @@ int ShmRingWriter::write(const uint8_t *pixels, int srcStride, uint64_t captureN
 	const size_t rowBytes = static_cast<size_t>(stride_);
 	if (!pixels || srcStride < stride_)
 		return fail(-EINVAL, "write with a bad source buffer");
+	const int guarded = guard();
+	if (guarded < 0 && guarded != -EUCLEAN)
+		return guarded;
 
 	uint8_t *dst = beginFrame(captureNs, flags);
 	if (static_cast<size_t>(srcStride) == rowBytes) {
@@ -321,7 +337,7 @@ int ShmRingWriter::write(const uint8_t *pixels, int srcStride, uint64_t captureN
 				    rowBytes);
 	}
 	endFrame();
-	return 0;
+	return guarded;
 }
 
 uint8_t *ShmRingWriter::beginFrame(uint64_t captureNs, uint32_t flags)
@@ -354,51 +370,6 @@ void ShmRingWriter::endFrame()
 	frame_ = frame;
 }
 
-// Readers of an earlier writer re-open on the new generation and claim new
-// slots; their old ones must not count. Tokens keep counting up, so an old
-// reader never mistakes a new claim for its own.
-void ShmRingWriter::clearReaders()
-{
-	for (dk_shm_reader_slot &slot : readers_->readers) {
-		__atomic_store_n(&slot.owner, 0, __ATOMIC_RELAXED);
-		__atomic_store_n(&slot.frames_read, 0, __ATOMIC_RELAXED);
-	}
-	readerSeen_ = {};
-}
-
-int ShmRingWriter::countReaders(uint64_t nowNs)
-{
-	if (!readers_)
-		return 0;
-	constexpr uint64_t kTimeoutNs = uint64_t{ DK_SHM_READER_TIMEOUT_MS } * 1000000u;
-	int present = 0;
-	for (size_t i = 0; i < readerSeen_.size(); i++) {
-		dk_shm_reader_slot &slot = readers_->readers[i];
-		ReaderSeen &seen = readerSeen_[i];
-		uint64_t owner = __atomic_load_n(&slot.owner, __ATOMIC_ACQUIRE);
-		uint64_t beats = __atomic_load_n(&slot.beats, __ATOMIC_ACQUIRE);
-		if (owner == 0) {
-			seen = {};
-			continue;
-		}
-		if (owner != seen.owner || beats != seen.beats) {
-			seen = { owner, beats, nowNs };
-			present++;
-		} else if (nowNs - seen.sinceNs <= kTimeoutNs) {
-			present++;
-		} else {
-			// Gone: free the slot unless its reader beat or a new one
-			// claimed it meanwhile (then the owner or count changed).
-			uint64_t expected = owner;
-			if (__atomic_load_n(&slot.beats, __ATOMIC_ACQUIRE) == beats &&
-			    __atomic_compare_exchange_n(&slot.owner, &expected, 0, false,
-							__ATOMIC_ACQ_REL, __ATOMIC_RELAXED))
-				seen = {};
-		}
-	}
-	return present;
-}
-
 void ShmRingWriter::close()
 {
 	if (!header_)
@@ -406,9 +377,9 @@ void ShmRingWriter::close()
 	__atomic_store_n(&header_->online, 0, __ATOMIC_RELEASE);
 	munmap(header_, mapSize_);
 	fd_.reset(); // releases the writer lock
+	presenceFd_.reset();
 	header_ = nullptr;
 	data_ = nullptr;
-	readers_ = nullptr;
 	mapSize_ = 0;
 }
 
@@ -419,9 +390,9 @@ int ShmRingWriter::unlink()
 		created_.clear();
 	if (name_.empty())
 		return fail(-EINVAL, "unlink an unnamed ring");
-	if (shm_unlink(name_.c_str()) < 0)
-		return fail(-errno, "shm_unlink");
-	return 0;
+	const int ret = shm_unlink(name_.c_str()) < 0 ? -errno : 0;
+	shm_unlink(shmPresenceName(name_).c_str()); // ours, or gone already
+	return ret ? fail(ret, "shm_unlink") : 0;
 }
 
 } // namespace depthkey

@@ -5,13 +5,24 @@
 // under that slot's seqlock and moves on, so a stalled or crashed consumer
 // cannot hold up the daemon. Each open() stamps a new generation so that
 // readers notice a restart (or a new geometry) and re-open.
+//
+// Readers cannot harm it (issue 31): the frames and header are mode 0640, so
+// the output group maps them read-only; the readers' heartbeats live in a
+// separate object (NAME.readers, 0660) that the writer only reads and writes
+// with pread/pwrite, never through a mapping, so shrinking it cannot fault
+// the writer. Before each frame the writer checks its own object's size and
+// header too (guard(), hal/shm_ring_guard.cpp), so that even the owner or
+// root shrinking or scribbling on it is repaired and reported, not a SIGBUS
+// or a stream every reader silently refuses.
 #pragma once
 
 #include "hal/unique_fd.hpp"
 
 #include <array>
+#include <cerrno>
 #include <cstdint>
 #include <string>
+#include <sys/types.h>
 
 struct dk_shm_header;
 struct dk_shm_reader_table;
@@ -28,9 +39,10 @@ public:
 	ShmRingWriter &operator=(const ShmRingWriter &) = delete;
 
 	// Creates the object `name` ("/depthkey.composite") afresh and
-	// exclusively (O_EXCL), with mode 0660 (the group writes only its
-	// presence heartbeats) and group `group` ("" = our own egid) set through
-	// its fd. A stale object of ours is retired first (readers mapping it get
+	// exclusively (O_EXCL), with mode 0640 (the group reads), and its
+	// presence object `name` + ".readers" with mode 0660 (the group writes
+	// its heartbeats there), group `group` ("" = our own egid) set through
+	// their fds. A stale object of ours is retired first (readers mapping it get
 	// -ESTALE; their mapping stays valid); one owned by another user is
 	// refused with -EPERM, one held by a running writer with -EBUSY.
 	// fourcc is DK_SHM_FORMAT_RGB24 or DK_SHM_FORMAT_RGBA32, slots 2..8.
@@ -40,25 +52,30 @@ public:
 		 const std::string &group);
 
 	// Publishes one frame: height rows of width * bytesPerPixel bytes, rows
-	// srcStride bytes apart. No allocation, no system call, no waiting.
-	// Returns 0, -EBADF when not open or -EINVAL for a bad buffer.
+	// srcStride bytes apart. No allocation, no waiting; one fstat (guard()).
+	// Returns 0, -EBADF when not open, -EINVAL for a bad buffer, or
+	// -EUCLEAN when the object had been tampered with and was repaired (the
+	// frame is published; describeError() names what had changed).
 	int write(const uint8_t *pixels, int srcStride, uint64_t captureNs, uint32_t flags);
 
 	// Publishes one frame made in place: makeRow(y, row) writes row y
 	// (width * bytesPerPixel bytes) straight into the slot, so the frame
 	// needs no buffer of its own beside the ring (issue 15: the lecturer
 	// layer, 1.2 MB at 640x480). Readers see the slot busy until the last
-	// row is made. Returns 0 or -EBADF when not open.
+	// row is made. Returns as write(), without -EINVAL.
 	template<typename MakeRow>
 	int writeRows(MakeRow &&makeRow, uint64_t captureNs, uint32_t flags)
 	{
 		if (!header_)
 			return fail(-EBADF, "write to a closed ring");
+		const int guarded = guard();
+		if (guarded < 0 && guarded != -EUCLEAN)
+			return guarded;
 		uint8_t *dst = beginFrame(captureNs, flags);
 		for (int y = 0; y < height_; y++)
 			makeRow(y, dst + static_cast<size_t>(y) * static_cast<size_t>(stride_));
 		endFrame();
-		return 0;
+		return guarded;
 	}
 
 	// Marks the stream offline and unmaps. The object stays, holding the last
@@ -84,7 +101,9 @@ public:
 	// (CLOCK_MONOTONIC) and returns how many are present: their beat
 	// counter moved within DK_SHM_READER_TIMEOUT_MS. A slot that stopped
 	// beating is freed. Call it at least every 250 ms so that a dead reader
-	// is counted gone within 2 s. Only atomic loads and CAS: never waits.
+	// is counted gone within 2 s. One pread (a pwrite per slot freed):
+	// never waits, never faults (hal/shm_ring_presence.cpp). A shrunk
+	// presence object is resized; the next write() reports it.
 	int countReaders(uint64_t nowNs);
 
 	bool isOpen() const { return header_ != nullptr; }
@@ -109,21 +128,37 @@ private:
 	// retireStale() on an object we created, leaving error() as it was.
 	void retireName(const std::string &name);
 	// 0 with out holding the new object, or a negative errno.
-	int createFresh(const std::string &name, unsigned int gid, const std::string &group, UniqueFd &out);
-	void writeHeader(uint64_t slotSize, uint64_t readerOffset, uint64_t dataOffset);
+	int createFresh(const std::string &name, unsigned int gid, const std::string &group, mode_t mode,
+			UniqueFd &out);
+	// The presence object: a stale one removed (retireStale), a fresh one
+	// created and sized.
+	int removePresence(const std::string &name);
+	int createPresence(const std::string &name, unsigned int gid, const std::string &group);
+	void writeHeader();
+	// Before each frame: 0 when the object still has its size and the
+	// header its fields; else repairs them (size restored, header
+	// rewritten under a new generation) and returns -EUCLEAN, or another
+	// negative errno (and nothing may be written) when it could not.
+	int guard();
+	// The first header field not as writeHeader() left it, "" for none.
+	std::string headerChange() const;
 	// The seqlock's two halves around a frame's payload: the slot of frame
 	// frame_ + 1 marked busy and its fields set (returns its pixels), then
 	// marked done and made the latest.
 	uint8_t *beginFrame(uint64_t captureNs, uint32_t flags);
 	void endFrame();
-	void clearReaders();
 
 	std::string name_;
 	std::string created_; // the object we created and have not removed, "" none
 	UniqueFd fd_; // held for the writer lock
+	UniqueFd presenceFd_; // the readers' object: pread/pwrite only
 	dk_shm_header *header_ = nullptr;
 	uint8_t *data_ = nullptr;
-	dk_shm_reader_table *readers_ = nullptr;
+	uint64_t readerOffset_ = 0; // the table's offset in the presence object
+	uint64_t dataOffset_ = 0;
+	// Bytes pread() found in a shrunk presence object (resized since),
+	// reported by the next write(); -1 = nothing to report.
+	int64_t presenceShrunkTo_ = -1;
 	// What countReaders() saw of each slot last, and since when.
 	struct ReaderSeen {
 		uint64_t owner = 0;
@@ -132,6 +167,7 @@ private:
 	};
 	std::array<ReaderSeen, 16> readerSeen_{};
 	size_t mapSize_ = 0;
+	size_t presenceSize_ = 0;
 
 	int width_ = 0;
 	int height_ = 0;

@@ -2,6 +2,7 @@
 // are exactly those the daemon's writer can create (hal/shm_name.hpp).
 #include "config/config_loader.hpp"
 #include "hal/depthkey_shm.h"
+#include "hal/shm_name.hpp"
 #include "hal/shm_ring_writer.hpp"
 
 #include <gtest/gtest.h>
@@ -27,19 +28,20 @@ ConfigError firstError(const std::string &text)
 // and the names the red team found are refused with the key and the line.
 TEST(ConfigLoader, SharedMemoryNamesTheDaemonCannotCreateAreRefused)
 {
-	const std::string longest = "/" + std::string(253, 'a');
-	for (const std::string &bad : { std::string("/."), std::string("/.."), "/" + std::string(254, 'a'),
+	// The longest name leaves room for its presence object's ".readers".
+	const std::string longest = "/" + std::string(kMaxShmNameLength - 1, 'a');
+	for (const std::string &bad : { std::string("/."), std::string("/.."), longest + "a", "/" + std::string(254, 'a'),
 					std::string("/a\\nb"), std::string("/a\\\\b"), std::string("/caf\u00e9"),
 					std::string("/a b"), std::string("/a:b") }) {
 		const ConfigError e = firstError("[output]\ncomposite_name = \"" + bad + "\"\n");
 		EXPECT_EQ(e.key, "output.composite_name") << bad;
 		EXPECT_EQ(e.line, 2) << bad;
 	}
-	EXPECT_NE(firstError("[output]\nlecturer_name = \"/" + std::string(254, 'a') + "\"\n").message.find("254"),
+	EXPECT_NE(firstError("[output]\nlecturer_name = \"" + longest + "a\"\n").message.find("246"),
 		  std::string::npos);
 	// And every accepted name is created by the writer, then removed.
 	const std::string tag = std::to_string(getpid());
-	for (const std::string &good : { longest.substr(0, 254 - tag.size()) + tag, "/dk_" + tag + ".room-12",
+	for (const std::string &good : { longest.substr(0, kMaxShmNameLength - tag.size()) + tag, "/dk_" + tag + ".room-12",
 					 "/." + tag }) {
 		ConfigResult r = parseConfig("[output]\ncomposite_name = \"" + good + "\"\n", kFile);
 		ASSERT_TRUE(r.ok()) << good;

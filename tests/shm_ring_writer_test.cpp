@@ -13,6 +13,30 @@ using namespace depthkey;
 using depthkey::test::openStatus;
 using depthkey::test::ShmName;
 
+namespace {
+
+struct stat statObject(const std::string &name)
+{
+	struct stat st{};
+	int fd = shm_open(name.c_str(), O_RDONLY, 0);
+	if (fd >= 0) {
+		fstat(fd, &st);
+		close(fd);
+	}
+	return st;
+}
+
+// An object as someone else might have left it: mode 0666.
+int precreate(const std::string &name)
+{
+	int fd = shm_open(name.c_str(), O_RDWR | O_CREAT | O_EXCL, 0666);
+	if (fd >= 0)
+		fchmod(fd, 0666);
+	return fd;
+}
+
+} // namespace
+
 TEST(ShmRingWriter, BadArgumentsRejected)
 {
 	ShmName name;
@@ -53,12 +77,12 @@ TEST(ShmRingWriter, ModeAndGroup)
 	int ret = writer.open(name.str(), 8, 8, DK_SHM_FORMAT_RGB24, 2, std::to_string(getegid()));
 	umask(oldMask);
 	ASSERT_EQ(ret, 0) << writer.describeError();
-	int fd = shm_open(name.c_str(), O_RDONLY, 0);
-	struct stat st{};
-	ASSERT_EQ(fstat(fd, &st), 0);
-	close(fd);
-	EXPECT_EQ(st.st_mode & 0777, 0660u);
-	EXPECT_EQ(st.st_gid, getegid());
+	// Issue 31: the group reads the frames and writes only its heartbeats.
+	const struct stat frames = statObject(name.str()), presence = statObject(name.presence());
+	EXPECT_EQ(frames.st_mode & 0777, 0640u);
+	EXPECT_EQ(frames.st_gid, getegid());
+	EXPECT_EQ(presence.st_mode & 0777, 0660u);
+	EXPECT_EQ(presence.st_gid, getegid());
 }
 
 TEST(ShmRingWriter, SecondWriterRefused)
@@ -74,29 +98,6 @@ TEST(ShmRingWriter, SecondWriterRefused)
 	EXPECT_EQ(openStatus(name.c_str()), -ENOENT);
 }
 
-namespace {
-
-struct stat statObject(const std::string &name)
-{
-	struct stat st{};
-	int fd = shm_open(name.c_str(), O_RDONLY, 0);
-	if (fd >= 0) {
-		fstat(fd, &st);
-		close(fd);
-	}
-	return st;
-}
-
-// An object as someone else might have left it: mode 0666.
-int precreate(const std::string &name)
-{
-	int fd = shm_open(name.c_str(), O_RDWR | O_CREAT | O_EXCL, 0666);
-	if (fd >= 0)
-		fchmod(fd, 0666);
-	return fd;
-}
-
-} // namespace
 
 // Issue 14: an existing object is never reused; ours is replaced by a fresh
 // one (O_EXCL) with our mode, so whoever held an fd to the old one (or made
@@ -112,7 +113,7 @@ TEST(ShmRingWriter, StaleObjectIsReplacedNotReused)
 	ASSERT_EQ(fstat(old, &before), 0);
 	EXPECT_EQ(before.st_nlink, 0u); // the old object was unlinked
 	EXPECT_NE(now.st_ino, before.st_ino);
-	EXPECT_EQ(now.st_mode & 0777, 0660u);
+	EXPECT_EQ(now.st_mode & 0777, 0640u);
 	EXPECT_EQ(before.st_size, 0); // and never sized or written by the writer
 	close(old);
 }
@@ -160,5 +161,6 @@ TEST(ShmRingWriter, EmptyGroupIsOurOwnGroupAgain)
 	ShmRingWriter restarted;
 	ASSERT_EQ(restarted.open(name.str(), 8, 8, DK_SHM_FORMAT_RGB24, 2, ""), 0);
 	EXPECT_EQ(statObject(name.str()).st_gid, getegid());
-	EXPECT_EQ(statObject(name.str()).st_mode & 0777, 0660u);
+	EXPECT_EQ(statObject(name.presence()).st_gid, getegid());
+	EXPECT_EQ(statObject(name.str()).st_mode & 0777, 0640u);
 }

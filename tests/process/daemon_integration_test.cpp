@@ -6,6 +6,7 @@
 #include "tests/process/daemon_process.hpp"
 #include "tests/test_paths.hpp"
 #include "tests/wait_until.hpp"
+#include "tests/shm_test_util.hpp"
 
 #include <gtest/gtest.h>
 
@@ -74,8 +75,7 @@ protected:
 	}
 	void TearDown() override
 	{
-		shm_unlink((prefix_ + ".composite").c_str());
-		shm_unlink((prefix_ + ".lecturer").c_str());
+		depthkey::test::unlinkStreams(prefix_);
 	}
 
 	DaemonProcess daemon_;

@@ -3,6 +3,7 @@
 // when it is killed it is counted gone within 2 s of its last heartbeat.
 #include "tests/process/daemon_process.hpp"
 #include "tests/test_paths.hpp"
+#include "tests/shm_test_util.hpp"
 
 #include <gtest/gtest.h>
 
@@ -48,6 +49,5 @@ TEST(DaemonReaderPresence, StatusCountsAReaderAndForgetsItWhenKilled)
 
 	ASSERT_EQ(daemon.signal(SIGTERM), 0);
 	EXPECT_NE(daemon.waitExit(5s), -1);
-	shm_unlink((prefix + ".composite").c_str());
-	shm_unlink((prefix + ".lecturer").c_str());
+	depthkey::test::unlinkStreams(prefix);
 }

@@ -9,6 +9,7 @@
 #include "tests/process/daemon_process.hpp"
 #include "tests/sample_calibration.hpp"
 #include "tests/wait_until.hpp"
+#include "tests/shm_test_util.hpp"
 
 #include <gtest/gtest.h>
 
@@ -69,8 +70,7 @@ protected:
 	{
 		daemon_.signal(SIGTERM);
 		daemon_.waitExit(5s);
-		shm_unlink((prefix_ + ".composite").c_str());
-		shm_unlink((prefix_ + ".lecturer").c_str());
+		depthkey::test::unlinkStreams(prefix_);
 	}
 	void startDaemon()
 	{

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <csignal>
+#include <fcntl.h>
 #include <sys/mman.h>
 #include <sys/wait.h>
 
@@ -24,10 +25,17 @@ std::string outputConfig(const std::string &prefix)
 	       ".composite\"\nlecturer_name = \"" + prefix + ".lecturer\"\n";
 }
 
-void unlinkAll(const std::string &prefix)
+// Whether a stream's readers' object (NAME.readers) is still in /dev/shm.
+bool readersObjectLeft(const std::string &prefix)
 {
-	shm_unlink((prefix + ".composite").c_str());
-	shm_unlink((prefix + ".lecturer").c_str());
+	for (const char *stream : { ".composite", ".lecturer" }) {
+		const int fd = shm_open((prefix + stream + DK_SHM_PRESENCE_SUFFIX).c_str(), O_RDONLY, 0);
+		if (fd >= 0) {
+			close(fd);
+			return true;
+		}
+	}
+	return false;
 }
 
 // The lines of the log that say something went wrong.
@@ -65,7 +73,7 @@ TEST(DaemonShmLifecycle, ASecondDaemonOnTheSameNamesExitsWithOneLine)
 	EXPECT_EQ(openStatus((prefix + ".lecturer").c_str()), 0);
 	ASSERT_EQ(first.signal(SIGTERM), 0);
 	EXPECT_NE(first.waitExit(5s), -1);
-	unlinkAll(prefix);
+	depthkey::test::unlinkStreams(prefix);
 }
 
 TEST(DaemonShmLifecycle, RenamesAndACleanStopLeaveNothingInDevShm)
@@ -91,6 +99,7 @@ TEST(DaemonShmLifecycle, RenamesAndACleanStopLeaveNothingInDevShm)
 	EXPECT_TRUE(depthkey::test::waitUntil([&] { return openStatus((renamed + ".composite").c_str()) == 0; }, 5s));
 	EXPECT_EQ(openStatus((prefix + ".composite").c_str()), -ENOENT);
 	EXPECT_EQ(openStatus((prefix + ".lecturer").c_str()), -ENOENT);
+	EXPECT_FALSE(readersObjectLeft(prefix));
 
 	ASSERT_EQ(daemon.signal(SIGTERM), 0);
 	const int status = daemon.waitExit(5s);
@@ -98,6 +107,7 @@ TEST(DaemonShmLifecycle, RenamesAndACleanStopLeaveNothingInDevShm)
 	EXPECT_EQ(WEXITSTATUS(status), 0);
 	EXPECT_EQ(openStatus((renamed + ".composite").c_str()), -ENOENT);
 	EXPECT_EQ(openStatus((renamed + ".lecturer").c_str()), -ENOENT);
-	unlinkAll(prefix);
-	unlinkAll(renamed);
+	EXPECT_FALSE(readersObjectLeft(renamed));
+	depthkey::test::unlinkStreams(prefix);
+	depthkey::test::unlinkStreams(renamed);
 }

@@ -10,6 +10,7 @@
 #include "tests/process/daemon_process.hpp"
 #include "tests/process/preview_test_util.hpp"
 #include "tests/wait_until.hpp"
+#include "tests/shm_test_util.hpp"
 
 #include <gtest/gtest.h>
 
@@ -32,8 +33,7 @@ protected:
 	void SetUp() override { prefix_ = "/depthkey-pl-" + std::to_string(getpid()); }
 	void TearDown() override
 	{
-		shm_unlink((prefix_ + ".composite").c_str());
-		shm_unlink((prefix_ + ".lecturer").c_str());
+		depthkey::test::unlinkStreams(prefix_);
 	}
 
 	// USER:HASH lines (yescrypt, as mkpasswd makes them) from user, password

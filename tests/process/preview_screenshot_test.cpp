@@ -5,6 +5,7 @@
 #include "tests/process/daemon_process.hpp"
 #include "tests/process/preview_test_util.hpp"
 #include "tests/process/shell_command.hpp"
+#include "tests/shm_test_util.hpp"
 
 #include <gtest/gtest.h>
 
@@ -54,8 +55,7 @@ TEST(PreviewScreenshot, ChromiumShowsTheStageImages)
 					      "--hide-scrollbars --window-size=1280,1100 --timeout=8000 --screenshot=" +
 						      shot + " " + url + "/",
 					      status);
-	shm_unlink((prefix + ".composite").c_str());
-	shm_unlink((prefix + ".lecturer").c_str());
+	depthkey::test::unlinkStreams(prefix);
 	ASSERT_EQ(status, 0) << out;
 	cv::Mat page = cv::imread(shot, cv::IMREAD_COLOR);
 	ASSERT_FALSE(page.empty()) << out;

@@ -1,4 +1,4 @@
-// Reader presence in the shared-memory ring (hal/depthkey_shm.h, version 2):
+// Reader presence in the shared-memory ring (hal/depthkey_shm.h, version 3):
 // readers beat in their slot, ShmRingWriter::countReaders() counts them, a
 // reader that stops or dies is counted gone and its slot freed, a clean
 // close is gone at once, and a reader without write access still reads.
@@ -157,10 +157,11 @@ TEST_F(ReaderPresence, TheSeventeenthReaderReadsButIsNotCounted)
 
 TEST_F(ReaderPresence, AReaderWithoutWriteAccessReadsUncounted)
 {
-	// root may write anything, so the child drops to nobody (the object is
-	// then readable by others only); otherwise it is made read-only to us.
+	// root may write anything, so the child drops to nobody (the frames are
+	// then made readable by others); otherwise the presence object is made
+	// read-only to us.
 	const bool root = geteuid() == 0;
-	int fd = shm_open(name_.c_str(), O_RDWR, 0);
+	int fd = shm_open(root ? name_.c_str() : name_.presence().c_str(), O_RDWR, 0);
 	ASSERT_GE(fd, 0);
 	ASSERT_EQ(fchmod(fd, root ? 0644 : 0440), 0);
 	close(fd);
@@ -210,19 +211,49 @@ TEST_F(ReaderPresence, ABadPresenceTableIsRefused)
 	const uint64_t offset = h->reader_offset;
 	const uint32_t slots = h->reader_slots;
 	EXPECT_EQ(offset % DK_SHM_DATA_ALIGN, 0u);
-	EXPECT_GE(h->data_offset, offset + sizeof(dk_shm_reader_table));
 
-	h->reader_offset = h->data_offset; // no room for the table
-	EXPECT_EQ(depthkey::test::openStatus(name_.c_str()), -EPROTO);
 	h->reader_offset = offset + 8; // not on a page
 	EXPECT_EQ(depthkey::test::openStatus(name_.c_str()), -EPROTO);
+	h->reader_offset = offset + DK_SHM_DATA_ALIGN; // past the presence object: read, uncounted
+	dk_shm_reader r;
+	ASSERT_EQ(dk_shm_open(name_.c_str(), &r), 0);
+	EXPECT_EQ(r.presence_error, -EPROTO);
+	EXPECT_EQ(r.presence, nullptr);
+	dk_shm_close(&r);
 	h->reader_offset = offset;
 	h->reader_slots = DK_SHM_MAX_READERS + 1;
 	EXPECT_EQ(depthkey::test::openStatus(name_.c_str()), -EPROTO);
 	h->reader_slots = slots;
-	h->version = 1; // a version-1 writer's object: no presence table
+	h->version = 2; // a version-2 writer's object: the table inside it, group-writable
 	EXPECT_EQ(depthkey::test::openStatus(name_.c_str()), -EPROTO);
 	h->version = DK_SHM_VERSION;
 	EXPECT_EQ(depthkey::test::openStatus(name_.c_str()), 0);
 	munmap(map, sizeof(dk_shm_header));
+}
+
+// Issue 31: the presence object is the one thing a reader may write; one
+// that shrinks it to nothing neither faults the writer (it never maps it)
+// nor stops counting for good: the size is restored, reported by the next
+// write(), and readers claim slots again.
+TEST_F(ReaderPresence, AShrunkPresenceObjectIsRestored)
+{
+	dk_shm_reader r;
+	ASSERT_EQ(dk_shm_open(name_.c_str(), &r), 0);
+	ASSERT_EQ(writer_.countReaders(kSecond), 1);
+	int fd = shm_open(name_.presence().c_str(), O_RDWR, 0);
+	ASSERT_GE(fd, 0);
+	ASSERT_EQ(ftruncate(fd, 0), 0);
+	EXPECT_EQ(writer_.countReaders(2 * kSecond), 0);
+	struct stat st{};
+	ASSERT_EQ(fstat(fd, &st), 0);
+	close(fd);
+	EXPECT_GE(static_cast<size_t>(st.st_size), sizeof(dk_shm_reader_table));
+	std::vector<uint8_t> pixels(8 * 4 * 3, 9);
+	EXPECT_EQ(writer_.write(pixels.data(), 8 * 3, 2, 0), -EUCLEAN);
+	EXPECT_NE(writer_.describeError().find(name_.presence() + ": 0 bytes"), std::string::npos)
+		<< writer_.describeError();
+	EXPECT_EQ(writer_.write(pixels.data(), 8 * 3, 3, 0), 0); // reported once
+	EXPECT_EQ(dk_shm_heartbeat(&r), 0); // its slot was zeroed: claims one again
+	EXPECT_EQ(writer_.countReaders(3 * kSecond), 1);
+	dk_shm_close(&r);
 }

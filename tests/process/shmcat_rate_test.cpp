@@ -102,8 +102,7 @@ TEST(ShmCatRateTest, HeaderRateIsTheDaemonsRealRate)
 
 	ASSERT_EQ(daemon.signal(SIGTERM), 0);
 	EXPECT_NE(daemon.waitExit(5s), -1);
-	shm_unlink((prefix + ".composite").c_str());
-	shm_unlink((prefix + ".lecturer").c_str());
+	depthkey::test::unlinkStreams(prefix);
 }
 
 // --yuv420 (and --chroma 420): ffprobe reads yuv420p at the object's size,

@@ -3,6 +3,7 @@
 // makes systemd restart the daemon. The boot test (tests/boot/) checks the
 // restart itself.
 #include "tests/process/daemon_process.hpp"
+#include "tests/shm_test_util.hpp"
 
 #include <gtest/gtest.h>
 
@@ -29,8 +30,7 @@ protected:
 	}
 	void TearDown() override
 	{
-		shm_unlink((prefix_ + ".composite").c_str());
-		shm_unlink((prefix_ + ".lecturer").c_str());
+		depthkey::test::unlinkStreams(prefix_);
 	}
 
 	// Starts with the fault armed, waits for READY and a fed watchdog.
