@@ -1,6 +1,8 @@
 #include "daemon/frame_outputs.hpp"
 
+#include "algo/capture_slots.hpp"
 #include "daemon/log.hpp"
+#include "hal/depthkey_shm.h"
 
 #include <cerrno>
 
@@ -10,6 +12,8 @@ int FrameOutputs::open(const Settings &settings, const OutputGeometry &geometry)
 {
 	settings_ = settings.output;
 	geometry_ = geometry;
+	intervalNs_ = 1'000'000'000ull / static_cast<uint64_t>(settings.colour.fps > 0 ? settings.colour.fps : 25);
+	lastKeyedNs_ = 0; // a new stream starts its own time
 	if (!sink_)
 		sink_ = makeSink_(settings);
 	return openSink();
@@ -82,6 +86,7 @@ int FrameOutputs::publish(const OutputFrame &frame)
 		if (int ret = openSink(); ret < 0)
 			return ret;
 	}
+	fillSkippedSlots(frame);
 	int ret = frame.composite ? sink_->publishComposite(*frame.composite, frame.captureNs, frame.flags)
 				  : sink_->publishComposite(*frame.compositeInputs, frame.captureNs, frame.flags);
 	if (ret >= 0)
@@ -91,7 +96,24 @@ int FrameOutputs::publish(const OutputFrame &frame)
 	if (ret < 0)
 		logger().errorOnce("output", "cannot publish: " + sink_->describeError(),
 				   { { "DEVICE", "shm" }, { "ERROR", errnoText(ret) } });
+	// NO SIGNAL frames (no colour) are stamped by the loop's timer, not a
+	// capture: the slots start again with the next keyed frame.
+	lastKeyedNs_ = ret >= 0 && frame.colour ? frame.captureNs : 0;
+	lastKeyedFlags_ = frame.flags;
 	return ret;
+}
+
+void FrameOutputs::fillSkippedSlots(const OutputFrame &frame)
+{
+	if (!frame.colour)
+		return;
+	// Over a second without a keyed frame is an outage, not a hiccup.
+	const uint64_t skipped = skippedCaptureSlots(lastKeyedNs_, frame.captureNs, intervalNs_, 1'000'000'000);
+	for (uint64_t slot = 1; slot <= skipped; slot++) {
+		if (sink_->repeatLast(lastKeyedNs_ + slot * intervalNs_, lastKeyedFlags_ | DK_SHM_FLAG_REPEATED) < 0)
+			return; // publish() below says what failed
+		repeated_++;
+	}
 }
 
 bool FrameOutputs::sampleReaders(uint64_t nowNs)

@@ -66,8 +66,13 @@ public:
 	std::string describeError() const { return sink_ ? sink_->describeError() : std::string(); }
 
 	// Opens again first when the last open failed. The result of the first
-	// output that failed, else 0.
+	// output that failed, else 0. A keyed frame (with colour) whose capture
+	// time skipped slots of the colour camera's interval since the last one
+	// is preceded by the last output again for each of them, flagged
+	// DK_SHM_FLAG_REPEATED (algo/capture_slots.hpp, issue 29 point 5).
 	int publish(const OutputFrame &frame);
+	// Capture slots filled with the previous output so far.
+	uint64_t repeated() const { return repeated_; }
 
 	// Every 250 ms: samples the readers (logged when their counts change);
 	// true when the first came or the last left (the LEDs show that).
@@ -76,6 +81,8 @@ public:
 
 private:
 	int openSink();
+	// The slots between the last keyed frame and this one (publish()).
+	void fillSkippedSlots(const OutputFrame &frame);
 
 	SinkFactory makeSink_;
 	std::unique_ptr<FrameSink> sink_;
@@ -84,6 +91,10 @@ private:
 	OutputSettings settings_;   // what open() was given, for the retry in publish()
 	OutputGeometry geometry_;
 	ReaderCounts readers_;      // recorders reading the shared memory
+	uint64_t intervalNs_ = 40'000'000; // the colour camera's frame interval
+	uint64_t lastKeyedNs_ = 0;  // capture time of the last keyed frame out, 0 none
+	uint32_t lastKeyedFlags_ = 0;
+	uint64_t repeated_ = 0;
 };
 
 } // namespace depthkey

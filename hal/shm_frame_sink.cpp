@@ -79,6 +79,15 @@ int ShmFrameSink::noteWrite(const ShmRingWriter &writer, int ret)
 	return ret;
 }
 
+int ShmFrameSink::repeatLast(uint64_t captureNs, uint32_t flags)
+{
+	for (ShmRingWriter *writer : { &composite_, &lecturer_, &boardLecturer_ })
+		if (writer->isOpen())
+			if (int ret = noteWrite(*writer, writer->repeatLast(captureNs, flags)); ret < 0)
+				return ret;
+	return 0;
+}
+
 int ShmFrameSink::checkSize(const ShmRingWriter &writer, int width, int height)
 {
 	if (!writer.isOpen() || (width == writer.width() && height == writer.height()))
