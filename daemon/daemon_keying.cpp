@@ -11,6 +11,8 @@
 #include "daemon/log.hpp"
 #include "hal/depthkey_shm.h"
 
+#include <unistd.h>
+
 namespace depthkey {
 
 void Daemon::keyDueFrames(bool makeRoom)
@@ -52,6 +54,8 @@ void Daemon::keyOnWorker(KeyingJob &job)
 	}
 	if (factory_.beforeKeying)
 		factory_.beforeKeying();
+	if (testFault_ == TestFault::Slow) // TEST-ONLY: a box too slow to key every frame
+		usleep(kSlowKeyingUs);
 	// The composite for the recorder is made in its shared memory; the
 	// pipeline makes an image of it only for the readers on the loop.
 	pipeline_.setMakeComposite(job.makeComposite);
