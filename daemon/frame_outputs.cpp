@@ -1,6 +1,5 @@
 #include "daemon/frame_outputs.hpp"
 
-#include "algo/capture_slots.hpp"
 #include "daemon/log.hpp"
 #include "hal/depthkey_shm.h"
 
@@ -12,8 +11,10 @@ int FrameOutputs::open(const Settings &settings, const OutputGeometry &geometry)
 {
 	settings_ = settings.output;
 	geometry_ = geometry;
-	intervalNs_ = 1'000'000'000ull / static_cast<uint64_t>(settings.colour.fps > 0 ? settings.colour.fps : 25);
-	lastKeyedNs_ = 0; // a new stream starts its own time
+	// Over a second without a keyed frame is an outage, not a hiccup: a new
+	// stream, too, starts its own time.
+	slots_.configure(1'000'000'000ull / static_cast<uint64_t>(settings.colour.fps > 0 ? settings.colour.fps : 25),
+			 1'000'000'000ull);
 	if (!sink_)
 		sink_ = makeSink_(settings);
 	return openSink();
@@ -98,7 +99,8 @@ int FrameOutputs::publish(const OutputFrame &frame)
 				   { { "DEVICE", "shm" }, { "ERROR", errnoText(ret) } });
 	// NO SIGNAL frames (no colour) are stamped by the loop's timer, not a
 	// capture: the slots start again with the next keyed frame.
-	lastKeyedNs_ = ret >= 0 && frame.colour ? frame.captureNs : 0;
+	if (ret < 0 || !frame.colour)
+		slots_.reset();
 	lastKeyedFlags_ = frame.flags;
 	return ret;
 }
@@ -107,10 +109,9 @@ void FrameOutputs::fillSkippedSlots(const OutputFrame &frame)
 {
 	if (!frame.colour)
 		return;
-	// Over a second without a keyed frame is an outage, not a hiccup.
-	const uint64_t skipped = skippedCaptureSlots(lastKeyedNs_, frame.captureNs, intervalNs_, 1'000'000'000);
+	const uint64_t skipped = slots_.skippedBefore(frame.captureNs);
 	for (uint64_t slot = 1; slot <= skipped; slot++) {
-		if (sink_->repeatLast(lastKeyedNs_ + slot * intervalNs_, lastKeyedFlags_ | DK_SHM_FLAG_REPEATED) < 0)
+		if (sink_->repeatLast(slots_.slotNs(slot), lastKeyedFlags_ | DK_SHM_FLAG_REPEATED) < 0)
 			return; // publish() below says what failed
 		repeated_++;
 	}

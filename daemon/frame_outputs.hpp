@@ -6,6 +6,7 @@
 // (DEVICE=shm) and retried with the next frame; the daemon runs on.
 #pragma once
 
+#include "algo/capture_slots.hpp"
 #include "algo/image.hpp"
 #include "hal/frame_sink.hpp"
 #include "settings/settings.hpp"
@@ -91,8 +92,7 @@ private:
 	OutputSettings settings_;   // what open() was given, for the retry in publish()
 	OutputGeometry geometry_;
 	ReaderCounts readers_;      // recorders reading the shared memory
-	uint64_t intervalNs_ = 40'000'000; // the colour camera's frame interval
-	uint64_t lastKeyedNs_ = 0;  // capture time of the last keyed frame out, 0 none
+	CaptureSlotClock slots_;    // the colour camera's frame slots, keyed frames out
 	uint32_t lastKeyedFlags_ = 0;
 	uint64_t repeated_ = 0;
 };

@@ -26,3 +26,33 @@ TEST(CaptureSlots, NothingAtTheStartBackwardsOrAfterAnOutage)
 	EXPECT_EQ(skippedCaptureSlots(1000 * kMs, 2001 * kMs, kInterval, kSecond), 0u); // an outage
 	EXPECT_EQ(skippedCaptureSlots(1000 * kMs, 1200 * kMs, 0, kSecond), 0u);
 }
+
+// Slots count from the previous slot, not the previous jittered capture:
+// the frames out between two captures number the slots between them.
+TEST(CaptureSlots, TheClockKeepsCountUnderJitterAndFollowsDrift)
+{
+	CaptureSlotClock clock;
+	clock.configure(20 * kMs, kSecond);
+	EXPECT_EQ(clock.skippedBefore(1000 * kMs), 0u); // the first frame
+	// Every other frame shed, the kept ones 9 ms late or 9 ms early in turn:
+	// per-gap rounding would fill 2 then 0 slots (49 ms, then 31 ms gaps).
+	uint64_t out = 1, t = 1000;
+	for (int i = 1; i <= 50; i++) {
+		t += 40;
+		const uint64_t capture = (t + (i % 2 ? 9 : -9)) * kMs;
+		const uint64_t skipped = clock.skippedBefore(capture);
+		if (skipped) {
+			EXPECT_EQ(clock.slotNs(1), (t - 20) * kMs) << "frame " << i;
+		}
+		out += skipped + 1;
+	}
+	EXPECT_EQ(out, 101u); // 2000 ms of 20 ms slots, both ends counted
+	// A camera 5% fast: the slots follow its time, no frame is counted twice.
+	uint64_t fast = t * kMs;
+	for (int i = 0; i < 100; i++) {
+		fast += 19 * kMs;
+		EXPECT_EQ(clock.skippedBefore(fast), 0u) << "frame " << i;
+	}
+	clock.reset();
+	EXPECT_EQ(clock.skippedBefore(fast + 100 * kMs), 0u); // starts again
+}

@@ -21,13 +21,14 @@
 // written as 25. --fps overrides.
 //
 // The recording keeps time (issue 29 point 5): a player assumes that rate,
-// so every slot of it in capture time gets a frame. Where the capture
-// times skip slots (frames this reader was too slow for, the daemon's
-// DK_SHM_FLAG_REPEATED copies it read past, or frames the daemon never
-// published) the previous frame is written again, up to --timeout of them.
+// so every slot of it in capture time, counted from the first frame's,
+// gets one frame. Where the capture times skip slots (frames this reader
+// was too slow for, the daemon's DK_SHM_FLAG_REPEATED copies it read past,
+// or frames the daemon never published) the previous frame is written
+// again, up to --timeout of them; a frame whose slot is taken (a stream
+// faster than the header) is left out.
 // At the end one line on stderr says how many frames cover how much
 // capture time.
-#include "algo/capture_slots.hpp"
 #include "algo/y4m_rows.hpp"
 #include "hal/depthkey_shm.h"
 #include "hal/shm_header_fault.hpp"
@@ -77,9 +78,12 @@ private:
 		convert();
 		return writeOut();
 	}
-	// Writes the frame in out_ again for each capture slot between it and
-	// a frame captured at ns, up to `room` frames; returns how many, or -1.
-	int64_t fillSlots(uint64_t ns, uint64_t room);
+	// Before a frame captured at ns, with `written` frames out: writes the
+	// frame in out_ again for each slot of the header's rate since the
+	// first frame that has none yet, up to `room` of them. Returns how
+	// many, -1 when writing failed, or -2 when the frame's slot is taken
+	// (the stream runs faster than the header says): it is left out.
+	int64_t fillSlots(uint64_t ns, uint64_t written, uint64_t room);
 
 	const Options &opts_;
 	dk_shm_reader reader_{};
@@ -114,7 +118,7 @@ private:
 	} fit_;
 	// Keeping time: the header's frame interval, the capture times of the
 	// first and last frames written (0: none yet), the copies written.
-	uint64_t intervalNs_ = 0, firstWrittenNs_ = 0, lastWrittenNs_ = 0, repeats_ = 0;
+	uint64_t intervalNs_ = 0, firstWrittenNs_ = 0, lastWrittenNs_ = 0, repeats_ = 0, dropped_ = 0;
 };
 
 // Retries while the writer is (re)creating the object. A missing object is
@@ -259,15 +263,28 @@ void ShmCat::convert()
 	}
 }
 
-int64_t ShmCat::fillSlots(uint64_t ns, uint64_t room)
+int64_t ShmCat::fillSlots(uint64_t ns, uint64_t written, uint64_t room)
 {
+	// Frames are counted from the first one's capture time, not from the
+	// last one's: per-gap rounding of a jittery camera's times would add
+	// or lose a frame now and then, and the duration would drift from the
+	// capture time. An outage longer than --timeout, or times going back,
+	// start the count again from here.
 	const uint64_t maxGapNs = static_cast<uint64_t>(opts_.timeoutSec * 1e9);
-	const uint64_t slots = std::min(skippedCaptureSlots(lastWrittenNs_, ns, intervalNs_, maxGapNs), room);
+	if (ns < lastWrittenNs_ || ns - lastWrittenNs_ > maxGapNs)
+		firstWrittenNs_ = ns - std::min(ns, written * intervalNs_);
+	const uint64_t due = (ns - firstWrittenNs_ + intervalNs_ / 2) / intervalNs_ + 1;
+	if (due <= written) {
+		dropped_++;
+		return -2;
+	}
+	const uint64_t slots = std::min(due - written - 1, room);
 	for (uint64_t i = 0; i < slots; i++)
 		if (writeOut())
 			return -1;
 	repeats_ += slots;
-	lastWrittenNs_ += slots * intervalNs_;
+	if (slots)
+		lastWrittenNs_ = firstWrittenNs_ + (written + slots - 1) * intervalNs_;
 	return static_cast<int64_t>(slots);
 }
 
@@ -314,8 +331,10 @@ int ShmCat::run()
 				lastFrame = info.frame;
 				lastNew = Clock::now();
 				if (!measuring) {
-					const int64_t filled = fillSlots(
-						info.timestamp_ns, opts_.frames ? opts_.frames - emitted : UINT64_MAX);
+					const int64_t filled = fillSlots(info.timestamp_ns, emitted,
+									 opts_.frames ? opts_.frames - emitted : UINT64_MAX);
+					if (filled == -2)
+						continue; // its slot is taken: time is kept
 					if (filled < 0)
 						return 1;
 					emitted += static_cast<uint64_t>(filled);
@@ -383,9 +402,10 @@ int ShmCat::run()
 	}
 	if (emitted > 0)
 		std::fprintf(stderr, "depthkey-shmcat: %llu frames, %llu of them repeated for capture slots "
-			     "the stream skipped, over %.3f s of capture time\n",
+			     "the stream skipped, over %.3f s of capture time (%llu left out: their slot was taken)\n",
 			     static_cast<unsigned long long>(emitted), static_cast<unsigned long long>(repeats_),
-			     static_cast<double>(lastWrittenNs_ - firstWrittenNs_ + intervalNs_) / 1e9);
+			     static_cast<double>(lastWrittenNs_ - firstWrittenNs_ + intervalNs_) / 1e9,
+			     static_cast<unsigned long long>(dropped_));
 	return 0;
 }
 
