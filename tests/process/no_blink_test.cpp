@@ -2,6 +2,9 @@
 // frame goes out as the board alone (flags colour-only). A colour frame
 // with no depth frame within pairing.max_skew_ms is keyed with the nearest
 // depth (DK_SHM_FLAG_DEPTH_STALE) instead of strobing the board's picture.
+// The simulator's defaults pair well on an idle machine; a tight
+// pairing.max_skew_ms (20 ms, depth at 10 fps) makes the hiccups that a
+// loaded box makes now and then (about 80 in 500 frames seen) most frames.
 #include "hal/depthkey_shm.h"
 #include "tests/process/daemon_process.hpp"
 #include "tests/process/sim_daemon.hpp"
@@ -21,7 +24,7 @@ TEST(NoBlink, NoBoardOnlyFrameWhileBothCamerasStream)
 {
 	DaemonProcess daemon;
 	const std::string prefix = "/depthkey-noblink-" + std::to_string(getpid());
-	ASSERT_TRUE(depthkey::test::startSimDaemon(daemon, prefix, "")); // the simulator's defaults
+	ASSERT_TRUE(depthkey::test::startSimDaemon(daemon, prefix, "[pairing]\nmax_skew_ms = 20\n"));
 	std::this_thread::sleep_for(2s); // the depth offset measured, the colours learnt
 
 	dk_shm_reader reader{};
@@ -51,4 +54,5 @@ TEST(NoBlink, NoBoardOnlyFrameWhileBothCamerasStream)
 		    static_cast<unsigned long long>(stale), static_cast<unsigned long long>(repeated));
 	EXPECT_GT(frames, 40u) << daemon.log();
 	EXPECT_EQ(boardOnly, 0u) << daemon.log();
+	EXPECT_GT(stale, 0u) << "no pairing hiccup was made: the test shows nothing";
 }
