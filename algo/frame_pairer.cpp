@@ -1,5 +1,7 @@
 #include "algo/frame_pairer.hpp"
 
+#include <algorithm>
+
 namespace depthkey {
 
 PairableOffsets pairableOffsetsMs(int maxSkewMs, int delayMs, int colourFps, int depthFps)
@@ -86,12 +88,41 @@ FramePairer::Bracket FramePairer::bracket(uint64_t colourNs)
 		if (s) {
 			s->used = true;
 		}
+	if (!before && !after)
+		return nearestWithin(c, kLostNs);
 	b.before = before ? &before->frame : nullptr;
 	b.after = after ? &after->frame : nullptr;
-	if (b.any())
-		stats_.paired++;
-	else
+	stats_.paired++;
+	return b;
+}
+
+FramePairer::Bracket FramePairer::nearestWithin(int64_t colourNs, int64_t limitNs)
+{
+	Bracket b;
+	Slot *best = nullptr;
+	int64_t bestNs = 0, bestGap = 0;
+	for (size_t i = 0; i < count_; i++) {
+		const int64_t t = corrected(slots_[i].frame), gap = t > colourNs ? t - colourNs : colourNs - t;
+		if (gap <= limitNs && (!best || gap < bestGap)) {
+			best = &slots_[i];
+			bestNs = t;
+			bestGap = gap;
+		}
+	}
+	if (!best) {
 		stats_.unpaired++;
+		return b;
+	}
+	best->used = true;
+	stats_.stale++;
+	b.staleNs = std::max<int64_t>(1, bestGap);
+	if (bestNs <= colourNs) {
+		b.before = &best->frame;
+		b.beforeNs = bestNs;
+	} else {
+		b.after = &best->frame;
+		b.afterNs = bestNs;
+	}
 	return b;
 }
 

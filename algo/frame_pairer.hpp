@@ -7,9 +7,16 @@
 // (bracket: what a colour frame held back by pairing.delay_ms is keyed with,
 // algo/pairing_queue.hpp).
 //
-// Drop policy:
-//  - a colour frame with no depth frame within maxSkew is not keyed (the
-//    daemon publishes it unkeyed, marked offline) and counted unpaired;
+// Drop policy (issue 29 point 4: no blink):
+//  - a colour frame with no depth frame within maxSkew is still keyed, with
+//    the nearest depth frame if that is within kLostNs (a second): the
+//    bracket says how far off it is (staleNs), the pipeline grows the depth
+//    superset by how far the lecturer can walk in that time, and the frame
+//    goes out flagged DK_SHM_FLAG_DEPTH_STALE. Counted stale. A pairing
+//    hiccup then costs a looser key, not a strobe of the board alone;
+//  - only a colour frame with no depth frame within kLostNs (the depth
+//    camera offline or silent for over a second) is not keyed (the daemon
+//    publishes the board alone, marked offline) and counted unpaired;
 //  - a depth frame may serve several colour frames (depth runs slower);
 //  - a depth frame that leaves the history without ever being paired is
 //    counted unused (depth faster than colour, or colour missing);
@@ -41,6 +48,7 @@ PairableOffsets pairableOffsetsMs(int maxSkewMs, int delayMs, int colourFps, int
 struct PairingStats {
 	uint64_t paired = 0;
 	uint64_t unpaired = 0;
+	uint64_t stale = 0; // keyed with depth beyond maxSkew (kLostNs at most)
 	uint64_t depthUnused = 0;
 	uint64_t depthOutOfOrder = 0;
 };
@@ -51,6 +59,9 @@ public:
 	// 6 frames: 600 ms at 10 fps, 100 ms at 60 fps; enough for a frame
 	// before and one after a colour frame held back up to pairing.delay_ms.
 	static constexpr size_t kHistory = 6;
+	// Depth farther than this from a colour frame is lost, not late: the
+	// lecturer may have walked anywhere since (issue 29 point 4).
+	static constexpr int64_t kLostNs = 1'000'000'000;
 
 	void configure(int64_t offsetNs, uint64_t maxSkewNs);
 	void clear();
@@ -62,12 +73,19 @@ public:
 
 	// The depth frames whose corrected times are the latest at or before
 	// colourNs and the earliest after it, each only within maxSkew (nullptr
-	// otherwise); counted paired when either exists. Valid until the next
-	// addDepth/clear. beforeNs/afterNs receive their corrected times.
+	// otherwise); counted paired when either exists. When neither is, the
+	// nearest depth frame within kLostNs, alone (before or after by its
+	// time), with staleNs its distance from colourNs: counted stale. Valid
+	// until the next addDepth/clear. beforeNs/afterNs receive the corrected
+	// times.
 	struct Bracket {
 		const DepthFrame *before = nullptr, *after = nullptr;
 		int64_t beforeNs = 0, afterNs = 0;
+		// > 0: no depth within maxSkew; the time between the colour frame
+		// and the depth frame it is keyed with (the lecturer moved since).
+		int64_t staleNs = 0;
 		bool any() const { return before || after; }
+		bool stale() const { return staleNs > 0; }
 	};
 	Bracket bracket(uint64_t colourNs);
 
@@ -83,6 +101,8 @@ private:
 		bool used = false;
 	};
 	int64_t corrected(const DepthFrame &frame) const;
+	// bracket()'s fallback: the nearest depth frame within limitNs, stale.
+	Bracket nearestWithin(int64_t colourNs, int64_t limitNs);
 
 	std::array<Slot, kHistory> slots_;
 	size_t count_ = 0;  // valid slots

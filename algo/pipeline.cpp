@@ -180,10 +180,17 @@ void Pipeline::process(const ColourFrame &colour, const FramePairer::Bracket &de
 	} else {
 		uniteTrimaps(a.mapped, a.mapped, 0, keyed_);
 	}
+	const bool stale = depth.stale();
+	if (stale)
+		growSuperset(staleMarginPx(colour.rgb.width(), depth.staleNs));
 	const Gray8Image &trimap = keyed_.trimap;
 	const int marginPx = settings_.learning.marginPx * seedMapper_.colourPixelsPerTofPixel();
-	learner_.learn(colour.rgb, trimap, marginPx, classifier_);
-	boardModel_.learn(colour.rgb, trimap);
+	// A stale trimap says where the lecturer was, not is: the colours under
+	// it would teach the signatures and the board model wrong.
+	if (!stale) {
+		learner_.learn(colour.rgb, trimap, marginPx, classifier_);
+		boardModel_.learn(colour.rgb, trimap);
+	}
 	teachBoardFromPicture(colour.rgb);
 	// Until the first signatures exist (no lecturer or no board seen yet)
 	// the classifier calls every colour lecturer: the output is the depth
@@ -194,7 +201,8 @@ void Pipeline::process(const ColourFrame &colour, const FramePairer::Bracket &de
 	refiner_.refine(colour.rgb, trimap, keyed_.roi, evidence_, out.alpha);
 	if (settings_.siox.guidedRadius > 0)
 		guideAlpha(colour.rgb, out.alpha);
-	boardModel_.learnDecided(colour.rgb, trimap, out.alpha, keyed_.roi, marginPx);
+	if (!stale)
+		boardModel_.learnDecided(colour.rgb, trimap, out.alpha, keyed_.roi, marginPx);
 	rememberFrame(colour.rgb, out.alpha);
 	compose(colour.rgb, out);
 
@@ -203,6 +211,36 @@ void Pipeline::process(const ColourFrame &colour, const FramePairer::Bracket &de
 	status_.bandPixels = refiner_.bandPixels();
 	status_.lecturerCentroids = classifier_.lecturer().size();
 	status_.boardCentroids = classifier_.board().size();
+}
+
+int Pipeline::staleMarginPx(int width, int64_t gapNs)
+{
+	const int64_t walked = int64_t{ width } * std::max<int64_t>(0, gapNs) / kCrossingNs;
+	return static_cast<int>(std::min<int64_t>(walked, width / kMaxGrowthDivisor));
+}
+
+void Pipeline::growSuperset(int marginPx)
+{
+	Roi &roi = keyed_.roi;
+	if (marginPx <= 0 || roi.empty())
+		return; // depth saw no lecturer: nothing to follow
+	Gray8Image &trimap = keyed_.trimap;
+	dilateSquare(trimap, marginPx, grown_, morphology_, kernelPath_);
+	roi = { std::max(0, roi.x0 - marginPx), std::max(0, roi.y0 - marginPx),
+		std::min(trimap.width(), roi.x1 + marginPx), std::min(trimap.height(), roi.y1 + marginPx) };
+	// Inside the grown superset nothing is sure: the lecturer may have
+	// walked off the core and onto what depth saw as board. Depth's
+	// evidence, where he was, says neither; colour decides.
+	for (int y = roi.y0; y < roi.y1; ++y) {
+		const uint8_t *g = grown_.row(y);
+		uint8_t *t = trimap.row(y), *e = keyed_.evidence.row(y);
+		for (int x = roi.x0; x < roi.x1; ++x) {
+			if (!g[x])
+				continue;
+			t[x] = t[x] == kTrimapBoard ? kTrimapUndecided : std::min(t[x], kTrimapSubset);
+			e[x] = kTrimapUndecided;
+		}
+	}
 }
 
 void Pipeline::guideAlpha(const RgbImage &colour, Gray8Image &alpha)

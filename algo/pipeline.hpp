@@ -24,6 +24,7 @@
 #include "algo/boundary_unmixing.hpp"
 #include "algo/kernel_path.hpp"
 #include "algo/mapping_model.hpp"
+#include "algo/morphology.hpp"
 #include "algo/pipeline_settings.hpp"
 #include "algo/seed_mapper.hpp"
 #include "algo/siox_classifier.hpp"
@@ -103,6 +104,8 @@ public:
 
 	// Keys a colour frame with the depth frames captured just before and
 	// just after it (either may be missing, not both: FramePairer::bracket).
+	// A stale bracket (depth.staleNs > 0, no depth within pairing.max_skew_ms)
+	// is keyed with its superset grown by staleMarginPx() (issue 29 point 4).
 	void process(const ColourFrame &colour, const FramePairer::Bracket &depth, PipelineOutput &out);
 	// With one depth frame (pairing.delay_ms = 0, tests).
 	void process(const ColourFrame &colour, const DepthFrame &depth, PipelineOutput &out);
@@ -110,6 +113,14 @@ public:
 	// What is published when the depth camera is missing: the colour frame as
 	// it is (lecturer layer opaque), since a plain picture beats a black one.
 	void passThrough(const ColourFrame &colour, PipelineOutput &out);
+
+	// How far the lecturer may have walked in gapNs, in colour pixels at
+	// width: the superset of a stale frame is grown by this. A brisk walk
+	// crosses the camera's view in kCrossingNs; capped at width / kMaxGrowthDivisor
+	// (the dilation's cost grows with it, and beyond it depth says little).
+	static constexpr int64_t kCrossingNs = 2'000'000'000;
+	static constexpr int kMaxGrowthDivisor = 4;
+	static int staleMarginPx(int width, int64_t gapNs);
 
 	const PipelineStatus &status() const { return status_; }
 	// Stage images of the last frame, for snapshots and previews.
@@ -147,6 +158,8 @@ private:
 	// The seeds of depth, seeding it unless held; never evicts `keep`.
 	const SeededDepth &seededFor(const DepthFrame &depth, const SeededDepth *keep);
 	void compose(const RgbImage &colour, PipelineOutput &out) const;
+	// A stale frame's superset: grown by marginPx, depth's say in it dropped.
+	void growSuperset(int marginPx);
 	// Keeps this frame's alpha and colour inside its ROI for the next
 	// frame's temporal evidence.
 	void rememberFrame(const RgbImage &colour, const Gray8Image &alpha);
@@ -176,6 +189,8 @@ private:
 	GuidedFilter guided_;
 	BoundaryUnmixing unmixing_;
 	Gray8Image matte_;               // the hard decision, the guided filter's input
+	Gray8Image grown_;               // a stale frame's grown superset (growSuperset)
+	MorphologyScratch morphology_;
 	Gray8Image previousAlpha_;
 	RgbImage previousColour_;
 	Roi previousRoi_;

@@ -11,6 +11,8 @@
 #include "daemon/log.hpp"
 #include "hal/depthkey_shm.h"
 
+#include <unistd.h>
+
 namespace depthkey {
 
 void Daemon::keyDueFrames(bool makeRoom)
@@ -52,6 +54,8 @@ void Daemon::keyOnWorker(KeyingJob &job)
 	}
 	if (factory_.beforeKeying)
 		factory_.beforeKeying();
+	if (testFault_ == TestFault::Slow) // TEST-ONLY: a box too slow to key every frame
+		usleep(kSlowKeyingUs);
 	// The composite for the recorder is made in its shared memory; the
 	// pipeline makes an image of it only for the readers on the loop.
 	pipeline_.setMakeComposite(job.makeComposite);
@@ -73,8 +77,11 @@ void Daemon::onKeyed(KeyingJob &job)
 	uint32_t flags = DK_SHM_FLAG_COLOUR_OK;
 	if (depth)
 		flags |= DK_SHM_FLAG_DEPTH_OK | DK_SHM_FLAG_ONLINE;
+	if (depth && job.depth.stale())
+		flags |= DK_SHM_FLAG_DEPTH_STALE; // keyed all the same: no blink (issue 29)
 	// Board geometry: the lecturer warped onto the board's picture. Without
-	// depth the board's picture alone goes out, marked offline: it is the
+	// depth within a second (FramePairer::kLostNs: the depth camera offline
+	// or silent) the board's picture alone goes out, marked offline: it is the
 	// lecture's content, and warping the whole colour frame would cost the
 	// CPU a slow box needs to get depth back.
 	if (depth)

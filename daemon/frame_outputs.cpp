@@ -1,6 +1,7 @@
 #include "daemon/frame_outputs.hpp"
 
 #include "daemon/log.hpp"
+#include "hal/depthkey_shm.h"
 
 #include <cerrno>
 
@@ -10,6 +11,10 @@ int FrameOutputs::open(const Settings &settings, const OutputGeometry &geometry)
 {
 	settings_ = settings.output;
 	geometry_ = geometry;
+	// Over a second without a keyed frame is an outage, not a hiccup: a new
+	// stream, too, starts its own time.
+	slots_.configure(1'000'000'000ull / static_cast<uint64_t>(settings.colour.fps > 0 ? settings.colour.fps : 25),
+			 1'000'000'000ull);
 	if (!sink_)
 		sink_ = makeSink_(settings);
 	return openSink();
@@ -94,6 +99,7 @@ int FrameOutputs::publish(const OutputFrame &frame)
 		if (int ret = openSink(); ret < 0)
 			return ret;
 	}
+	fillSkippedSlots(frame);
 	int ret = frame.composite ? sink_->publishComposite(*frame.composite, frame.captureNs, frame.flags)
 				  : sink_->publishComposite(*frame.compositeInputs, frame.captureNs, frame.flags);
 	ret = noteRepair(ret);
@@ -104,7 +110,24 @@ int FrameOutputs::publish(const OutputFrame &frame)
 	if (ret < 0)
 		logger().errorOnce("output", "cannot publish: " + sink_->describeError(),
 				   { { "DEVICE", "shm" }, { "ERROR", errnoText(ret) } });
+	// NO SIGNAL frames (no colour) are stamped by the loop's timer, not a
+	// capture: the slots start again with the next keyed frame.
+	if (ret < 0 || !frame.colour)
+		slots_.reset();
+	lastKeyedFlags_ = frame.flags;
 	return ret;
+}
+
+void FrameOutputs::fillSkippedSlots(const OutputFrame &frame)
+{
+	if (!frame.colour)
+		return;
+	const uint64_t skipped = slots_.skippedBefore(frame.captureNs);
+	for (uint64_t slot = 1; slot <= skipped; slot++) {
+		if (noteRepair(sink_->repeatLast(slots_.slotNs(slot), lastKeyedFlags_ | DK_SHM_FLAG_REPEATED)) < 0)
+			return; // publish() below says what failed
+		repeated_++;
+	}
 }
 
 bool FrameOutputs::sampleReaders(uint64_t nowNs)

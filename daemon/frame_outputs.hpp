@@ -6,6 +6,7 @@
 // (DEVICE=shm) and retried with the next frame; the daemon runs on.
 #pragma once
 
+#include "algo/capture_slots.hpp"
 #include "algo/image.hpp"
 #include "hal/frame_sink.hpp"
 #include "settings/settings.hpp"
@@ -66,8 +67,13 @@ public:
 	std::string describeError() const { return sink_ ? sink_->describeError() : std::string(); }
 
 	// Opens again first when the last open failed. The result of the first
-	// output that failed, else 0.
+	// output that failed, else 0. A keyed frame (with colour) whose capture
+	// time skipped slots of the colour camera's interval since the last one
+	// is preceded by the last output again for each of them, flagged
+	// DK_SHM_FLAG_REPEATED (algo/capture_slots.hpp, issue 29 point 5).
 	int publish(const OutputFrame &frame);
+	// Capture slots filled with the previous output so far.
+	uint64_t repeated() const { return repeated_; }
 
 	// Every 250 ms: samples the readers (logged when their counts change);
 	// true when the first came or the last left (the LEDs show that).
@@ -78,6 +84,8 @@ private:
 	int openSink();
 	// ret, or 0 (logged once) for a stream the writer repaired (-EUCLEAN).
 	int noteRepair(int ret);
+	// The slots between the last keyed frame and this one (publish()).
+	void fillSkippedSlots(const OutputFrame &frame);
 
 	SinkFactory makeSink_;
 	std::unique_ptr<FrameSink> sink_;
@@ -86,6 +94,9 @@ private:
 	OutputSettings settings_;   // what open() was given, for the retry in publish()
 	OutputGeometry geometry_;
 	ReaderCounts readers_;      // recorders reading the shared memory
+	CaptureSlotClock slots_;    // the colour camera's frame slots, keyed frames out
+	uint32_t lastKeyedFlags_ = 0;
+	uint64_t repeated_ = 0;
 };
 
 } // namespace depthkey

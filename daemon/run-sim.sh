@@ -60,7 +60,7 @@ and [board] homography_file = "$board"
 The composite is in the board's geometry: the simulated board's slide and strokes,
 the lecturer laid over them half transparent.
 Look at its output from another terminal:
-  $bin/depthkey-shmcat --frames 250 --yuv420 | ffmpeg -y -i - -pix_fmt yuv420p composite.mp4   # 250 frames, H.264 4:2:0
+  $bin/depthkey-shmcat --frames 250 --yuv420 | ffmpeg -y -i - -pix_fmt yuv420p composite.mp4   # 250 frames, H.264 4:2:0, real time
   $bin/depthkey-shmcat --stream lecturer --frames 1 | ffmpeg -y -i - lecturer.png
   kill -USR1 \$(pidof depthkeyd)    # stage snapshots (PNG) into $snapshots
   kill -HUP \$(pidof depthkeyd)     # re-read $config (edit that file, not $source, for it)

@@ -16,6 +16,8 @@ bool parseTestFault(std::string_view text, TestFault &fault)
 		fault = TestFault::Hang;
 	else if (text == "stall")
 		fault = TestFault::Stall;
+	else if (text == "slow")
+		fault = TestFault::Slow;
 	else
 		return false;
 	return true;
@@ -27,10 +29,12 @@ TestFault testFaultFromEnvironment()
 	TestFault fault = TestFault::None;
 	if (value && !parseTestFault(value, fault))
 		logger().warning(std::string("DEPTHKEY_TEST_FAULT=") + value +
-				 " ignored: the test faults are \"hang\" and \"stall\"");
+				 " ignored: the test faults are \"hang\", \"stall\" and \"slow\"");
 	else if (fault != TestFault::None)
 		logger().warning(std::string("TEST-ONLY fault switch armed: SIGUSR2 will ") +
-				 (fault == TestFault::Hang ? "hang the event loop" : "stall the frames"),
+				 (fault == TestFault::Hang ? "hang the event loop"
+				  : fault == TestFault::Slow ? "(armed already) slow every keying"
+							      : "stall the frames"),
 				 { { "TEST_FAULT", value } });
 	return fault;
 }

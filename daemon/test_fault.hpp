@@ -7,13 +7,20 @@
 //                              frame and stops publishing (NO SIGNAL too)
 //                              while the event loop, status and LEDs go on
 // Either way WATCHDOG=1 stops and systemd kills and restarts the daemon.
+//   DEPTHKEY_TEST_FAULT=slow   from the start, every frame's keying takes
+//                              kSlowKeyingUs longer: a box too slow to key
+//                              every frame, which must shed some and still
+//                              keep the stream's time (issue 29 point 5)
 #pragma once
 
 #include <string_view>
 
 namespace depthkey {
 
-enum class TestFault { None, Hang, Stall };
+enum class TestFault { None, Hang, Stall, Slow };
+
+// The "slow" fault's extra keying time: 1.5 frame periods at 25 fps.
+constexpr unsigned kSlowKeyingUs = 60000;
 
 // Parses the variable's value; false for an unknown one (fault stays None).
 bool parseTestFault(std::string_view text, TestFault &fault);

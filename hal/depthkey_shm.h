@@ -97,6 +97,12 @@ extern "C" {
 #define DK_SHM_FLAG_ONLINE 0x1u    /* both cameras are delivering */
 #define DK_SHM_FLAG_COLOUR_OK 0x2u /* the colour camera is delivering */
 #define DK_SHM_FLAG_DEPTH_OK 0x4u  /* the depth camera is delivering */
+/* Added in version 2 without a layout change (issue 29; older readers
+ * ignore unknown bits, which is safe: the frame is a good one either way). */
+#define DK_SHM_FLAG_DEPTH_STALE 0x8u /* keyed with depth beyond pairing.max_skew_ms
+				      * (the superset grown for the gap) */
+#define DK_SHM_FLAG_REPEATED 0x10u   /* the previous frame again, stamped with this
+				      * capture slot: its own frame was shed or late */
 
 struct dk_shm_slot {
 	uint32_t sequence;      /* seqlock: odd while the writer fills the slot */

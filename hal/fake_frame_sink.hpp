@@ -87,6 +87,18 @@ public:
 		return 0;
 	}
 
+	int repeatLast(uint64_t captureNs, uint32_t flags) override
+	{
+		if (!compositeCount_)
+			return -ENODATA;
+		compositeCount_++;
+		lecturerCount_++;
+		repeatedCount_++;
+		captureNs_ = captureNs;
+		flags_ = flags;
+		return 0;
+	}
+
 	ReaderCounts countReaders(uint64_t) override { return readers_; }
 	void close() override { open_ = false; }
 	void setReaders(ReaderCounts readers) { readers_ = readers; }
@@ -114,6 +126,7 @@ public:
 	// Composites published without the colour camera (NO SIGNAL frames).
 	uint64_t noColourCount() const { return noColourCount_; }
 	uint64_t lecturerCount() const { return lecturerCount_; }
+	uint64_t repeatedCount() const { return repeatedCount_; }
 	uint64_t lastCaptureNs() const { return captureNs_; }
 	uint32_t lastFlags() const { return flags_; }
 
@@ -142,6 +155,7 @@ private:
 	uint64_t compositeCount_ = 0;
 	uint64_t noColourCount_ = 0;
 	uint64_t lecturerCount_ = 0;
+	uint64_t repeatedCount_ = 0;
 	uint64_t captureNs_ = 0;
 	uint32_t flags_ = 0;
 	ReaderCounts readers_;

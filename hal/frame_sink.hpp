@@ -51,6 +51,11 @@ public:
 	// The board-geometry lecturer layer; -EBADF when opened without a board size.
 	virtual int publishBoardLecturer(const RgbaImage &image, uint64_t captureNs, uint32_t flags) = 0;
 
+	// Every open stream's newest frame again, stamped captureNs with flags
+	// (DK_SHM_FLAG_REPEATED): a capture slot whose frame was shed or keyed
+	// late (issue 29 point 5). -ENODATA before a frame was published.
+	virtual int repeatLast(uint64_t captureNs, uint32_t flags) = 0;
+
 	// Samples the readers' heartbeats at nowNs (CLOCK_MONOTONIC); called
 	// every 250 ms. Never blocks.
 	virtual ReaderCounts countReaders(uint64_t nowNs) = 0;

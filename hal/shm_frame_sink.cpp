@@ -79,6 +79,23 @@ int ShmFrameSink::noteWrite(const ShmRingWriter &writer, int ret)
 	return ret;
 }
 
+int ShmFrameSink::repeatLast(uint64_t captureNs, uint32_t flags)
+{
+	// -EUCLEAN (a stream repaired, the frame still written) goes on to
+	// the other streams and is returned last, for FrameOutputs to log.
+	int repaired = 0;
+	for (ShmRingWriter *writer : { &composite_, &lecturer_, &boardLecturer_ }) {
+		if (!writer->isOpen())
+			continue;
+		const int ret = noteWrite(*writer, writer->repeatLast(captureNs, flags));
+		if (ret == -EUCLEAN)
+			repaired = ret;
+		else if (ret < 0)
+			return ret;
+	}
+	return repaired;
+}
+
 int ShmFrameSink::checkSize(const ShmRingWriter &writer, int width, int height)
 {
 	if (!writer.isOpen() || (width == writer.width() && height == writer.height()))

@@ -340,6 +340,24 @@ int ShmRingWriter::write(const uint8_t *pixels, int srcStride, uint64_t captureN
 	return guarded;
 }
 
+int ShmRingWriter::repeatLast(uint64_t captureNs, uint32_t flags)
+{
+	if (!header_)
+		return fail(-EBADF, "repeat on a closed ring");
+	if (frame_ == 0)
+		return fail(-ENODATA, "repeat before the first frame");
+	// The same check as write(): a shrunk object would SIGBUS the copy.
+	const int guarded = guard();
+	if (guarded < 0 && guarded != -EUCLEAN)
+		return guarded;
+	// Slots >= 2: the newest frame's slot is not the one written next.
+	const uint8_t *last = data_ + (frame_ % static_cast<uint64_t>(slots_)) * slotSize_;
+	uint8_t *dst = beginFrame(captureNs, flags);
+	std::memcpy(dst, last, static_cast<size_t>(stride_) * height_);
+	endFrame();
+	return guarded;
+}
+
 uint8_t *ShmRingWriter::beginFrame(uint64_t captureNs, uint32_t flags)
 {
 	const uint64_t frame = frame_ + 1;

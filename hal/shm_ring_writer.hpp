@@ -58,6 +58,12 @@ public:
 	// frame is published; describeError() names what had changed).
 	int write(const uint8_t *pixels, int srcStride, uint64_t captureNs, uint32_t flags);
 
+	// Publishes the newest frame's pixels again as the next frame, stamped
+	// captureNs with flags (issue 29 point 5: a capture slot whose own frame
+	// was shed or late keeps the stream at its rate). A copy from slot to
+	// slot: no buffer, no allocation. -ENODATA before the first frame.
+	int repeatLast(uint64_t captureNs, uint32_t flags);
+
 	// Publishes one frame made in place: makeRow(y, row) writes row y
 	// (width * bytesPerPixel bytes) straight into the slot, so the frame
 	// needs no buffer of its own beside the ring (issue 15: the lecturer

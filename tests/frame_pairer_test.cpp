@@ -92,9 +92,42 @@ TEST(FramePairer, BracketsAColourFrameWithDepthFromBothSides)
 	EXPECT_EQ(b.before, nullptr);
 	EXPECT_EQ(b.after->depthMm.at(0, 0), 1040);
 	b = p.bracket(1400 * kMs); // 200 ms after the newest: beyond the skew
-	EXPECT_FALSE(b.any());
+	ASSERT_TRUE(b.stale()); // keyed with the newest all the same (issue 29)
+	EXPECT_EQ(b.before->depthMm.at(0, 0), 1240);
 	EXPECT_EQ(p.stats().paired, 3u);
+	EXPECT_EQ(p.stats().unpaired, 0u);
+}
+
+// Issue 29 point 4: a colour frame with depth only beyond maxSkew is keyed
+// with the nearest depth frame, flagged stale with the gap; depth more
+// than a second away is lost: nothing (the board alone).
+TEST(FramePairer, DepthBeyondTheSkewIsStaleAndBeyondASecondLost)
+{
+	FramePairer p;
+	p.configure(0, 150 * kMs);
+	p.addDepth(depthAt(1000));
+	p.addDepth(depthAt(1100));
+	FramePairer::Bracket b = p.bracket(1400 * kMs); // 300 ms after the newest
+	ASSERT_TRUE(b.any());
+	EXPECT_TRUE(b.stale());
+	EXPECT_EQ(b.staleNs, int64_t(300 * kMs));
+	ASSERT_NE(b.before, nullptr);
+	EXPECT_EQ(b.before->depthMm.at(0, 0), 1100);
+	EXPECT_EQ(b.after, nullptr);
+	b = p.bracket(700 * kMs); // 300 ms before the oldest: after it
+	ASSERT_NE(b.after, nullptr);
+	EXPECT_EQ(b.after->depthMm.at(0, 0), 1000);
+	EXPECT_EQ(b.staleNs, int64_t(300 * kMs));
+	b = p.bracket(1100 * kMs + uint64_t(FramePairer::kLostNs)); // exactly a second
+	EXPECT_TRUE(b.stale());
+	b = p.bracket(1101 * kMs + uint64_t(FramePairer::kLostNs)); // over a second
+	EXPECT_FALSE(b.any());
+	EXPECT_FALSE(b.stale());
+	b = p.bracket(1130 * kMs); // within the skew: not stale
+	EXPECT_FALSE(b.stale());
+	EXPECT_EQ(p.stats().stale, 3u);
 	EXPECT_EQ(p.stats().unpaired, 1u);
+	EXPECT_EQ(p.stats().paired, 1u);
 }
 
 TEST(FramePairer, ClearForgetsHistory)

@@ -229,3 +229,63 @@ TEST(Pipeline, CompositeInputsMakeTheCompositeItWouldHaveMade)
 	notMaking.passThrough(sim.colour, parts);
 	EXPECT_TRUE(parts.composite.empty());
 }
+
+// Issue 29 point 4: a colour frame keyed with depth from half a second
+// before it (no depth within pairing.max_skew_ms) gets a superset grown by
+// how far the lecturer can walk in that time, so that it holds where he is
+// now, not where depth saw him; in steady state that allocates nothing.
+TEST(Pipeline, StaleDepthGrowsTheSupersetToHoldTheMovedLecturer)
+{
+	constexpr int kW = 640, kH = 480;
+	SimFrames sim(kW, kH), old(kW, kH);
+	Pipeline pipeline;
+	Settings settings;
+	settings.decision.cutSmoothness = 0; // the cut allocates per frame (above); the growth must not
+	pipeline.configure(PipelineSettings::from(settings), identity(kW, kH));
+	PipelineOutput out;
+	for (int frame = 0; frame < 40; ++frame) {
+		sim.render(frame * 0.04);
+		pipeline.process(sim.colour, sim.depth, out);
+	}
+	// The fraction of the lecturer (truth) inside the superset.
+	auto covered = [&](const Gray8Image &truth) {
+		size_t in = 0, all = 0;
+		for (int y = 0; y < kH; ++y)
+			for (int x = 0; x < kW; ++x)
+				if (truth.at(x, y)) {
+					++all;
+					in += pipeline.trimap().at(x, y) != kTrimapBoard;
+				}
+		return all ? double(in) / double(all) : 0.0;
+	};
+	constexpr int64_t kGapNs = 500'000'000;
+	const double t = 3.0;
+	sim.render(t);
+	old.render(t - kGapNs * 1e-9);
+	sim.colour.timestampNs = uint64_t(t * 1e9);
+	old.depth.timestampNs = sim.colour.timestampNs - kGapNs;
+	FramePairer::Bracket stale;
+	stale.before = &old.depth;
+	stale.beforeNs = int64_t(old.depth.timestampNs);
+	FramePairer::Bracket unflagged = stale; // the same depth, not known stale
+	stale.staleNs = kGapNs;
+
+	pipeline.process(sim.colour, unflagged, out);
+	const double plain = covered(sim.truth);
+	pipeline.process(sim.colour, stale, out);
+	const double grown = covered(sim.truth);
+	const int margin = Pipeline::staleMarginPx(kW, kGapNs);
+	std::printf("stale depth (500 ms): margin %d px, lecturer in the superset %.4f (ungrown %.4f), IoU %.4f\n",
+		    margin, grown, plain, intersectionOverUnion(out.alpha, sim.truth));
+	EXPECT_EQ(margin, kW / 4); // 160 px walked in 0.5 s, the cap
+	EXPECT_EQ(Pipeline::staleMarginPx(kW, 100'000'000), 32);
+	EXPECT_LT(plain, 0.99) << "the simulated lecturer did not move: the test shows nothing";
+	EXPECT_GE(grown, 0.999);
+	EXPECT_GT(intersectionOverUnion(out.alpha, sim.truth), 0.8);
+
+	if (!allocationCounting())
+		return;
+	CountAllocations counter;
+	pipeline.process(sim.colour, stale, out);
+	EXPECT_EQ(counter.count(), 0u);
+}

@@ -417,3 +417,29 @@ TEST(ShmRing, MissingObject)
 	ShmName name;
 	EXPECT_EQ(openStatus(name.c_str()), -ENOENT);
 }
+
+// Issue 29 point 5: repeatLast() publishes the newest frame's pixels again as
+// a new frame, with its own number, capture time and flags; not before the
+// first frame.
+TEST(ShmRing, RepeatLastCopiesTheNewestFrameIntoTheNextSlot)
+{
+	ShmName name;
+	ShmRingWriter writer;
+	ASSERT_EQ(writer.open(name.str(), 17, 5, DK_SHM_FORMAT_RGB24, 2, ""), 0) << writer.describeError();
+	EXPECT_EQ(writer.repeatLast(500, DK_SHM_FLAG_REPEATED), -ENODATA);
+	dk_shm_reader r;
+	ASSERT_EQ(dk_shm_open(name.c_str(), &r), 0);
+	std::vector<uint8_t> out(r.frame_bytes);
+	auto src = pattern(17, 5, 3, 17 * 3, 4);
+	ASSERT_EQ(writer.write(src.data(), 17 * 3, 1000, DK_SHM_FLAG_ONLINE), 0);
+	for (uint64_t k = 1; k <= 3; k++) { // a two-slot ring: the copy alternates slots
+		ASSERT_EQ(writer.repeatLast(1000 + 40 * k, DK_SHM_FLAG_ONLINE | DK_SHM_FLAG_REPEATED), 0);
+		dk_shm_frame_info info{};
+		ASSERT_EQ(dk_shm_read_latest(&r, out.data(), out.size(), &info), 0);
+		EXPECT_EQ(info.frame, 1 + k);
+		EXPECT_EQ(info.timestamp_ns, 1000 + 40 * k);
+		EXPECT_EQ(info.flags, DK_SHM_FLAG_ONLINE | DK_SHM_FLAG_REPEATED);
+		EXPECT_EQ(std::memcmp(out.data(), src.data(), out.size()), 0) << "repeat " << k;
+	}
+	dk_shm_close(&r);
+}

@@ -15,6 +15,8 @@ TEST(TestFault, ParsesKnownValuesOnly)
 	EXPECT_EQ(fault, TestFault::Hang);
 	EXPECT_TRUE(depthkey::parseTestFault("stall", fault));
 	EXPECT_EQ(fault, TestFault::Stall);
+	EXPECT_TRUE(depthkey::parseTestFault("slow", fault));
+	EXPECT_EQ(fault, TestFault::Slow);
 	fault = TestFault::None;
 	EXPECT_FALSE(depthkey::parseTestFault("Hang", fault));
 	EXPECT_FALSE(depthkey::parseTestFault("crash", fault));

@@ -16,9 +16,19 @@
 // writer is faster than the consumer, intermediate frames are skipped.
 //
 // The header's rate is the rate the stream really delivers (issue 29): the
-// published frame numbers over the capture timestamps of the first second,
+// published frame numbers over the capture timestamps of the first two seconds (a line fitted through them),
 // so skipped frames do not lower it and a busy daemon's 14 fps is not
 // written as 25. --fps overrides.
+//
+// The recording keeps time (issue 29 point 5): a player assumes that rate,
+// so every slot of it in capture time, counted from the first frame's,
+// gets one frame. Where the capture times skip slots (frames this reader
+// was too slow for, the daemon's DK_SHM_FLAG_REPEATED copies it read past,
+// or frames the daemon never published) the previous frame is written
+// again, up to --timeout of them; a frame whose slot is taken (a stream
+// faster than the header) is left out.
+// At the end one line on stderr says how many frames cover how much
+// capture time.
 #include "algo/y4m_rows.hpp"
 #include "hal/depthkey_shm.h"
 #include "hal/shm_header_fault.hpp"
@@ -44,9 +54,9 @@ constexpr auto kPollInterval = std::chrono::milliseconds(2);
 // The rate is measured over this much capture time or this many frame
 // intervals, whichever comes first, and given up after kMeasureWall of wall
 // time (a stalled stream then gets the fallback).
-constexpr uint64_t kMeasureSpanNs = 1000000000ull;
-constexpr uint64_t kMeasureFrames = 25;
-constexpr auto kMeasureWall = std::chrono::milliseconds(1500);
+constexpr uint64_t kMeasureSpanNs = 2000000000ull;
+constexpr uint64_t kMeasureFrames = 50;
+constexpr auto kMeasureWall = std::chrono::milliseconds(2500);
 
 class ShmCat
 {
@@ -60,7 +70,20 @@ private:
 	int takeGeometry();
 	bool writeHeader(FrameRate rate);
 	FrameRate measuredRate() const;
-	int emit();
+	// The frame in frame_ converted and written; convert() alone fills out_.
+	void convert();
+	int writeOut();
+	int emit()
+	{
+		convert();
+		return writeOut();
+	}
+	// Before a frame captured at ns, with `written` frames out: writes the
+	// frame in out_ again for each slot of the header's rate since the
+	// first frame that has none yet, up to `room` of them. Returns how
+	// many, -1 when writing failed, or -2 when the frame's slot is taken
+	// (the stream runs faster than the header says): it is left out.
+	int64_t fillSlots(uint64_t ns, uint64_t written, uint64_t room);
 
 	const Options &opts_;
 	dk_shm_reader reader_{};
@@ -72,6 +95,30 @@ private:
 	std::vector<uint8_t> chromaRows_; // 4:2:0: two full-width rows of Cb and of Cr
 	// Rate measurement: the first frame seen and the newest.
 	dk_shm_frame_info first_{}, newest_{};
+	// A line fitted through (frame number, capture time) of every frame
+	// seen since first_ (least squares, relative to first_): a camera's
+	// capture jitter at the two ends alone would move the rate by half a
+	// percent over a second, and the recording's duration with it.
+	struct RateFit {
+		double n = 0, x = 0, y = 0, xx = 0, xy = 0;
+		void add(double frame, double ns)
+		{
+			n += 1;
+			x += frame;
+			y += ns;
+			xx += frame * frame;
+			xy += frame * ns;
+		}
+		// Nanoseconds per frame number; 0 when it cannot be fitted.
+		double slope() const
+		{
+			const double d = n * xx - x * x;
+			return n >= 3 && d > 0 ? (n * xy - x * y) / d : 0;
+		}
+	} fit_;
+	// Keeping time: the header's frame interval, the capture times of the
+	// first and last frames written (0: none yet), the copies written.
+	uint64_t intervalNs_ = 0, firstWrittenNs_ = 0, lastWrittenNs_ = 0, repeats_ = 0, dropped_ = 0;
 };
 
 // Retries while the writer is (re)creating the object. A missing object is
@@ -152,6 +199,7 @@ bool ShmCat::writeHeader(FrameRate rate)
 	const char *colour = fourcc_ == DK_SHM_FORMAT_RGBA32 ? "C444alpha"
 			     : yuv420_			     ? "C420jpeg"
 							     : "C444";
+	intervalNs_ = static_cast<uint64_t>(rate.den) * 1000000000ull / rate.num;
 	return std::printf("YUV4MPEG2 W%u H%u F%u:%u Ip A1:1 %s XCOLORRANGE=FULL\n", width_,
 			   height_, rate.num, rate.den, colour) > 0;
 }
@@ -170,7 +218,9 @@ FrameRate ShmCat::measuredRate() const
 			     "writing %u fps (--fps sets it)\n", opts_.name.c_str(), kFallbackFps);
 		return { kFallbackFps, 1 };
 	}
-	const double fps = static_cast<double>(frames) * 1e9 / static_cast<double>(spanNs);
+	const double slopeNs = fit_.slope();
+	const double fps = slopeNs > 0 ? 1e9 / slopeNs
+				       : static_cast<double>(frames) * 1e9 / static_cast<double>(spanNs);
 	if (!(fps >= kMinFrameRate && fps <= kMaxFrameRate)) {
 		std::fprintf(stderr, "depthkey-shmcat: %s: measured %.3g fps from the capture "
 			     "timestamps, not believed: writing %u fps (--fps sets it)\n",
@@ -180,7 +230,7 @@ FrameRate ShmCat::measuredRate() const
 	return y4mFrameRate(fps);
 }
 
-int ShmCat::emit()
+void ShmCat::convert()
 {
 	const size_t plane = static_cast<size_t>(width_) * height_;
 	uint8_t *y = out_.data() + 6; // after "FRAME\n"
@@ -211,6 +261,35 @@ int ShmCat::emit()
 			subsampleChromaRow_C(v0, pair ? v1 : v0, width, v + off);
 		}
 	}
+}
+
+int64_t ShmCat::fillSlots(uint64_t ns, uint64_t written, uint64_t room)
+{
+	// Frames are counted from the first one's capture time, not from the
+	// last one's: per-gap rounding of a jittery camera's times would add
+	// or lose a frame now and then, and the duration would drift from the
+	// capture time. An outage longer than --timeout, or times going back,
+	// start the count again from here.
+	const uint64_t maxGapNs = static_cast<uint64_t>(opts_.timeoutSec * 1e9);
+	if (ns < lastWrittenNs_ || ns - lastWrittenNs_ > maxGapNs)
+		firstWrittenNs_ = ns - std::min(ns, written * intervalNs_);
+	const uint64_t due = (ns - firstWrittenNs_ + intervalNs_ / 2) / intervalNs_ + 1;
+	if (due <= written) {
+		dropped_++;
+		return -2;
+	}
+	const uint64_t slots = std::min(due - written - 1, room);
+	for (uint64_t i = 0; i < slots; i++)
+		if (writeOut())
+			return -1;
+	repeats_ += slots;
+	if (slots)
+		lastWrittenNs_ = firstWrittenNs_ + (written + slots - 1) * intervalNs_;
+	return static_cast<int64_t>(slots);
+}
+
+int ShmCat::writeOut()
+{
 	if (std::fwrite(out_.data(), 1, out_.size(), stdout) != out_.size() ||
 	    std::fflush(stdout) != 0) {
 		std::fprintf(stderr, "depthkey-shmcat: writing to stdout failed: %s\n",
@@ -252,15 +331,30 @@ int ShmCat::run()
 				lastFrame = info.frame;
 				lastNew = Clock::now();
 				if (!measuring) {
+					const int64_t filled = fillSlots(info.timestamp_ns, emitted,
+									 opts_.frames ? opts_.frames - emitted : UINT64_MAX);
+					if (filled == -2)
+						continue; // its slot is taken: time is kept
+					if (filled < 0)
+						return 1;
+					emitted += static_cast<uint64_t>(filled);
+					if (opts_.frames && emitted >= opts_.frames)
+						break;
 					if (emit())
 						return 1;
+					if (!firstWrittenNs_)
+						firstWrittenNs_ = info.timestamp_ns;
+					lastWrittenNs_ = info.timestamp_ns;
 					emitted++;
 					continue;
 				}
 				if (!held || info.frame <= first_.frame ||
 				    info.timestamp_ns <= first_.timestamp_ns) {
 					first_ = info; // the first, or numbers restarted: start again
+					fit_ = {};
 				}
+				fit_.add(static_cast<double>(info.frame - first_.frame),
+					 static_cast<double>(info.timestamp_ns - first_.timestamp_ns));
 				// The wall-time limit is not restarted with the numbers: a
 				// writer that restarts every few frames still gets a header.
 				if (measureStart == Clock::time_point{})
@@ -276,6 +370,7 @@ int ShmCat::run()
 			measuring = false;
 			if (!writeHeader(measuredRate()) || emit())
 				return 1;
+			firstWrittenNs_ = lastWrittenNs_ = newest_.timestamp_ns;
 			emitted++;
 			continue;
 		}
@@ -305,6 +400,12 @@ int ShmCat::run()
 		}
 		std::this_thread::sleep_for(kPollInterval);
 	}
+	if (emitted > 0)
+		std::fprintf(stderr, "depthkey-shmcat: %llu frames, %llu of them repeated for capture slots "
+			     "the stream skipped, over %.3f s of capture time (%llu left out: their slot was taken)\n",
+			     static_cast<unsigned long long>(emitted), static_cast<unsigned long long>(repeats_),
+			     static_cast<double>(lastWrittenNs_ - firstWrittenNs_ + intervalNs_) / 1e9,
+			     static_cast<unsigned long long>(dropped_));
 	return 0;
 }
 

@@ -42,9 +42,9 @@ inline void usage(FILE *out)
 		     "  --timeout SEC  fail when no new frame arrives for SEC s (default 5)\n"
 		     "  --fps N        frame rate written to the y4m header, 1..%u (default:\n"
 		     "                 measured: the frames the stream published over their\n"
-		     "                 capture timestamps during the first second, written as\n"
+		     "                 capture timestamps of the first two seconds, written as \n"
 		     "                 N:1, 30000:1001 style or to 1/1000 fps; %u when fewer\n"
-		     "                 than two frames come within 1.5 s)\n"
+		     "                 than two frames come within 2.5 s)\n"
 		     "  --yuv420       4:2:0 chroma (2x2 mean) for the composite, for H.264\n"
 		     "                 players: ... | ffmpeg -i - -pix_fmt yuv420p out.mp4\n"
 		     "  --chroma 444|420  the same choice spelt out (default 444)\n",
