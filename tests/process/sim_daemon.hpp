@@ -3,6 +3,7 @@
 #pragma once
 
 #include "tests/process/daemon_process.hpp"
+#include "tests/shm_test_util.hpp" // unlinkStreams
 
 #include <gtest/gtest.h>
 
@@ -24,12 +25,6 @@ inline ::testing::AssertionResult startSimDaemon(DaemonProcess &daemon, const st
 	if (!daemon.waitForNotify("READY=1", std::chrono::seconds(10)))
 		return ::testing::AssertionFailure() << "not ready: " << daemon.log();
 	return ::testing::AssertionSuccess();
-}
-
-inline void unlinkStreams(const std::string &prefix)
-{
-	shm_unlink((prefix + ".composite").c_str());
-	shm_unlink((prefix + ".lecturer").c_str());
 }
 
 } // namespace depthkey::test
