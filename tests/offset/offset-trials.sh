@@ -49,7 +49,7 @@ fi
 
 # The still scene: a short simulated sequence whose frames are all its first.
 still=$work/still
-"$bin/depthkey-eval" --config "$config" --sim 1 --frames 12 --method depth-only --save-sequence "$still" >/dev/null
+"$bin/depthkey-eval" --config "$config" --sim 1 --frames 100 --method depth-only --save-sequence "$still" >/dev/null
 for kind in rgb depth amplitude intensity; do
 	first=$(ls "$still/$kind" | head -n 1)
 	for f in "$still/$kind"/*; do
