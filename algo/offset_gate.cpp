@@ -58,8 +58,10 @@ bool OffsetGate::update(const LatencyEstimator::Estimate &e, uint64_t paired, ui
 			state_ = State::Measuring;
 		return haveApplied_ != haveAppliedBefore || appliedMs_ != appliedBefore;
 	}
-	haveMeasured_ = true;
-	measuredMs_ = e.offsetMs;
+	// An invalid estimate's lag is only where the search began (still room:
+	// -300 ms); it is not reported as measured.
+	haveMeasured_ = e.valid;
+	measuredMs_ = e.valid ? e.offsetMs : 0.0;
 	std::string problem = qualityProblem(e);
 	if (!problem.empty()) {
 		recentCount_ = 0; // stability counts consecutive good estimates
@@ -140,19 +142,23 @@ void OffsetGate::judge(uint64_t paired, uint64_t unpaired)
 
 std::string OffsetGate::describe() const
 {
-	if (!haveMeasured_)
-		return haveApplied_ ? "measuring" : "measuring, none applied";
-	char text[256];
 	char applied[48];
 	if (haveApplied_)
 		std::snprintf(applied, sizeof(applied), "applied %+.0f ms", appliedMs_);
 	else
 		std::snprintf(applied, sizeof(applied), "none applied");
-	if (state_ == State::Applied)
-		std::snprintf(text, sizeof(text), "measured %+.0f ms, %s", measuredMs_, applied);
+	if (state_ == State::Measuring)
+		return std::string("measuring, ") + applied;
+	char measured[48];
+	if (haveMeasured_)
+		std::snprintf(measured, sizeof(measured), "measured %+.0f ms", measuredMs_);
 	else
-		std::snprintf(text, sizeof(text), "measured %+.0f ms, %s, held: %s", measuredMs_, applied,
-			      reason_.c_str());
+		std::snprintf(measured, sizeof(measured), "not measured");
+	char text[256];
+	if (state_ == State::Applied)
+		std::snprintf(text, sizeof(text), "%s, %s", measured, applied);
+	else
+		std::snprintf(text, sizeof(text), "%s, %s, held: %s", measured, applied, reason_.c_str());
 	return text;
 }
 

@@ -96,6 +96,11 @@ TEST(OffsetGate, EachWeakEstimateHoldsWithItsReason)
 	e = good(-40);
 	e.correlation = 0.45;
 	cases.push_back({ "low correlation", e, "correlation 0.45" });
+	e = LatencyEstimator::Estimate{}; // a still room: no valid estimate at all
+	e.depthFrames = 120;
+	e.maxLagMs = 300;
+	e.offsetMs = -300;
+	cases.push_back({ "invalid", e, "too little motion" });
 	e = good(-40);
 	e.colourMotionPerS = 0.01;
 	cases.push_back({ "still", e, "too little motion" });
@@ -108,6 +113,7 @@ TEST(OffsetGate, EachWeakEstimateHoldsWithItsReason)
 			f.add(c.e);
 		EXPECT_FALSE(f.gate.haveApplied()) << c.what;
 		EXPECT_NE(f.gate.reason().find(c.reason), std::string::npos) << c.what << ": " << f.gate.reason();
+		EXPECT_EQ(f.gate.describe().find("measured -300"), std::string::npos) << f.gate.describe();
 	}
 }
 

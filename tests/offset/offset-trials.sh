@@ -75,11 +75,13 @@ trial_config() { # N FPS STILL
 	fi
 }
 
-in_cgroup() { # runs "$@" in the trial cgroup (exec: the pid stays)
+# Runs "$@" in the trial cgroup. exec throughout: started with &, the
+# subshell's pid ($!) becomes the command's, so that kill reaches it.
+in_cgroup() {
 	if [ -n "$cgroup" ]; then
-		sh -c 'echo $$ > "$0/cgroup.procs" && exec "$@"' "$cgroup" "$@"
+		exec sh -c 'echo $$ > "$0/cgroup.procs" && exec "$@"' "$cgroup" "$@"
 	else
-		"$@"
+		exec "$@"
 	fi
 }
 
@@ -126,9 +128,14 @@ while [ "$i" -le "$trials" ]; do
 	[ "$is_still" = 1 ] && note="$note, still scene"
 	in_cgroup "$bin/depthkeyd" --config "$work/trial$i.toml" > "$work/trial$i.log" 2>&1 &
 	daemon=$!
+	children="$children $daemon"
 	sleep "$seconds"
 	kill -TERM "$daemon" 2>/dev/null || true
 	wait "$daemon" 2>/dev/null || true
+	if kill -0 "$daemon" 2>/dev/null; then
+		echo "offset-trials: start $i's daemon (pid $daemon) did not stop" >&2
+		exit 1
+	fi
 	for pid in $hog $reader; do
 		kill -CONT "$pid" 2>/dev/null || true
 		kill "$pid" 2>/dev/null || true
@@ -136,7 +143,7 @@ while [ "$i" -le "$trials" ]; do
 	done
 	rm -f /dev/shm/offset-trial-$$-$i.*
 	# The last status line's offset: "depth offset measured X ms, applied Y ms[, held: ...]".
-	status=$(grep -o 'depth offset [^;]*' "$work/trial$i.log" | tail -n 1)
+	status=$(grep -o '; depth offset [^;]*' "$work/trial$i.log" | tail -n 1 | cut -c3-)
 	applied=$(echo "$status" | sed -n 's/.*applied \([-+][0-9]*\) ms.*/\1/p')
 	if [ "$is_still" = 1 ]; then
 		if [ -n "$applied" ]; then
