@@ -57,19 +57,36 @@ void LatencyEstimator::addColour(const RgbImage &rgb, uint64_t timestampNs)
 
 void LatencyEstimator::addDepth(const DepthFrame &depth, uint64_t timestampNs)
 {
-	const size_t n = depth.depthMm.size();
+	const Gray16Image &mm = depth.depthMm;
+	const int bw = mm.width() / kDepthBlock, bh = mm.height() / kDepthBlock;
+	const size_t n = size_t(std::max(bw, 0)) * size_t(std::max(bh, 0));
 	if (n != depthPixels_) {
 		depthPixels_ = n;
 		inRange_.assign(n, 0); // once per size
+		blockCounts_.assign(size_t(std::max(bw, 0)), 0);
 		haveDepth_ = false;
 	}
-	const uint16_t *d = depth.depthMm.data();
+	// Blocks of kDepthBlock^2 pixels, in range when most of their pixels
+	// are: the ToF's noise flips single pixels at the range's edges every
+	// frame, thousands of them, which would drown the lecturer's silhouette
+	// moving. (No hysteresis: it would delay the flips, a bias in time.)
 	const unsigned nearU = unsigned(nearMm_), span = unsigned(farMm_ - nearMm_);
+	constexpr int kArea = kDepthBlock * kDepthBlock;
 	uint32_t flipped = 0;
-	for (size_t i = 0; i < n; ++i) {
-		const uint8_t in = unsigned(d[i]) - nearU <= span;
-		flipped += in != inRange_[i];
-		inRange_[i] = in;
+	for (int by = 0; by < bh; ++by) {
+		std::fill(blockCounts_.begin(), blockCounts_.end(), uint16_t{ 0 });
+		for (int y = by * kDepthBlock; y < (by + 1) * kDepthBlock; ++y) {
+			const uint16_t *d = mm.row(y);
+			for (int x = 0; x < bw * kDepthBlock; ++x)
+				blockCounts_[size_t(x / kDepthBlock)] += unsigned(d[x]) - nearU <= span;
+		}
+		uint8_t *state = inRange_.data() + size_t(by) * size_t(bw);
+		for (int bx = 0; bx < bw; ++bx) {
+			const int count = blockCounts_[size_t(bx)];
+			const uint8_t in = count * 2 > kArea;
+			flipped += in != state[bx];
+			state[bx] = in;
+		}
 	}
 	if (!haveDepth_) {
 		haveDepth_ = true;
@@ -147,6 +164,33 @@ double LatencyEstimator::correlationAt(double lagNs, size_t &used) const
 	return (sxy - sx * sy / n) / std::sqrt(vx * vy);
 }
 
+double LatencyEstimator::rivalPeak(const std::vector<double> &r, size_t best)
+{
+	// Local maxima only: the peak's own slope, just outside its lobe, is no
+	// rival however high it is.
+	double rival = -1.0;
+	for (size_t k = 0; k < r.size(); ++k) {
+		const size_t distance = k > best ? k - best : best - k;
+		if (distance <= size_t(kPeakLobeMs))
+			continue;
+		const bool left = k == 0 || r[k - 1] <= r[k], right = k + 1 == r.size() || r[k + 1] <= r[k];
+		if (left && right)
+			rival = std::max(rival, r[k]);
+	}
+	return rival;
+}
+
+double LatencyEstimator::colourMotionPerSecond() const
+{
+	if (colourCount_ < 2 || lumaWidth_ <= 0 || lumaHeight_ <= 0)
+		return 0.0;
+	const size_t first = (colourNext_ + kColourHistory - colourCount_) % kColourHistory;
+	const Sample &oldest = colour_[first], &newest = colour_[(first + colourCount_ - 1) % kColourHistory];
+	const double seconds = double(newest.ns - oldest.ns) * 1e-9;
+	const double cells = double(lumaWidth_) * double(lumaHeight_);
+	return seconds > 0 ? double(newest.motion - oldest.motion) / cells / seconds : 0.0;
+}
+
 LatencyEstimator::Estimate LatencyEstimator::estimate() const
 {
 	Estimate e;
@@ -176,6 +220,9 @@ LatencyEstimator::Estimate LatencyEstimator::estimate() const
 			offset += 0.5 * (a - c) / denominator;
 	}
 	e.offsetMs = offset;
+	e.maxLagMs = maxLagMs_;
+	e.peakMargin = e.correlation - rivalPeak(r, size_t(best));
+	e.colourMotionPerS = colourMotionPerSecond();
 	e.valid = bestUsed + 1 >= kMinDepthFrames && e.correlation >= kMinCorrelation;
 	return e;
 }

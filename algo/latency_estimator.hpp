@@ -35,7 +35,10 @@ public:
 	static constexpr size_t kColourHistory = 512;  // 20 s at 25 fps
 	static constexpr size_t kDepthHistory = 128;   // 12.8 s at 10 fps
 	static constexpr size_t kMinDepthFrames = 30;
+	static constexpr int kDepthBlock = 4;          // depth pixels per block side
 	static constexpr double kMinCorrelation = 0.5;
+	// The peak's own lobe, ms either side: about half a depth period.
+	static constexpr int kPeakLobeMs = 50;
 
 	void configure(int nearMm, int farMm, int maxLagMs = 300);
 	void reset();
@@ -48,6 +51,15 @@ public:
 		double offsetMs = 0;     // add to depth timestamps
 		double correlation = 0;  // at the peak
 		size_t depthFrames = 0;  // used
+		// How clearly the peak beats the rest: the peak's correlation less
+		// the best correlation of any other local maximum further than
+		// kPeakLobeMs away (1 = no rival; small = an ambiguous lag).
+		double peakMargin = 0;
+		// Colour motion: the share of the grid whose luma changed, per
+		// second, over the colour history (too little: nothing to time;
+		// the depth's in-range flips are not used, its noise flips too).
+		double colourMotionPerS = 0;
+		int maxLagMs = 0;        // the search window, +-
 	};
 	Estimate estimate() const;
 
@@ -59,10 +71,15 @@ private:
 	// Cumulative colour motion at time t (ns), or false outside the history.
 	bool colourMotionAt(double t, double &cumulative) const;
 	double correlationAt(double lagNs, size_t &used) const;
+	// The best correlation among the local maxima outside the peak's lobe
+	// (-1 when there is none).
+	static double rivalPeak(const std::vector<double> &r, size_t best);
+	double colourMotionPerSecond() const;
 
 	int nearMm_ = 500, farMm_ = 1850, maxLagMs_ = 300;
 	std::vector<uint8_t> luma_;              // the last colour frame's grid
-	std::vector<uint8_t> inRange_;           // the last depth frame's in-range flags
+	std::vector<uint8_t> inRange_;           // the last depth frame's in-range blocks
+	std::vector<uint16_t> blockCounts_;      // in-range pixels per block of a block row
 	int lumaWidth_ = 0, lumaHeight_ = 0;
 	size_t depthPixels_ = 0;
 	bool haveLuma_ = false, haveDepth_ = false;

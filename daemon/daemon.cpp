@@ -297,6 +297,14 @@ StatusSnapshot Daemon::statusSnapshot() const
 	s.pairing = pairing_.queue().pairer().stats();
 	s.latency = pairing_.latency();
 	s.offsetAuto = settings_.pairing.offsetAuto;
+	s.offset = pairing_.offsetStatus();
+	const OffsetGate &gate = pairing_.offsetGate();
+	s.offsetApplied = s.offsetAuto && gate.haveApplied();
+	s.offsetAppliedMs = gate.appliedMs();
+	s.offsetState = !s.offsetAuto ? "set"
+		: gate.state() == OffsetGate::State::Applied ? "applied"
+		: gate.state() == OffsetGate::State::Held    ? "held"
+							     : "measuring";
 	s.readers = outputs_.readers();
 	s.calibrated = summary().calibrated;
 	s.calibrationLoaded = calibrated_;

@@ -27,25 +27,51 @@ int64_t FramePairing::offsetNs() const
 {
 	if (!settings_.offsetAuto)
 		return int64_t{ settings_.offsetMs } * 1'000'000;
-	return estimate_.valid ? int64_t(std::llround(estimate_.offsetMs * 1e6)) : 0;
+	return gate_.haveApplied() ? int64_t(std::llround(gate_.appliedMs() * 1e6)) : 0;
+}
+
+std::string FramePairing::offsetStatus() const
+{
+	if (settings_.offsetAuto)
+		return gate_.describe();
+	char text[96];
+	if (gate_.haveMeasured())
+		std::snprintf(text, sizeof(text), "set %+d ms (measured %+.0f ms, not applied)", settings_.offsetMs,
+			      gate_.measuredMs());
+	else
+		std::snprintf(text, sizeof(text), "set %+d ms", settings_.offsetMs);
+	return text;
 }
 
 void FramePairing::updateLatency(const std::string &depthName)
 {
 	estimate_ = latency_.estimate();
-	if (!estimate_.valid)
-		return;
-	if (settings_.offsetAuto)
+	const PairingStats stats = queue_.pairer().stats();
+	if (gate_.update(estimate_, stats.paired, stats.unpaired) && settings_.offsetAuto)
 		queue_.setOffset(offsetNs());
-	if (std::abs(estimate_.offsetMs - loggedMs_) >= 5.0) {
-		loggedMs_ = estimate_.offsetMs;
-		char text[160];
-		std::snprintf(text, sizeof(text), "depth offset measured: %+.0f ms (correlation %.2f)%s",
-			      estimate_.offsetMs, estimate_.correlation,
-			      settings_.offsetAuto ? ", applied" : "; pairing.offset_ms is set, not applied");
-		logger().info(text, { { "DEVICE", depthName },
-				      { "DEPTH_OFFSET_MS", std::to_string(std::lround(estimate_.offsetMs)) } });
+	// Journaled when what is applied, or why not, changes (not every
+	// estimate: they move by a few ms each second).
+	std::string line = gate_.state() == OffsetGate::State::Measuring ? std::string() : offsetStatus();
+	if (gate_.state() == OffsetGate::State::Applied || !settings_.offsetAuto) {
+		// Only the applied value matters while applied or set.
+		char text[64];
+		std::snprintf(text, sizeof(text), "%d %+.0f", int(gate_.haveApplied()), gate_.appliedMs());
+		if (line.empty() || logged_ == text)
+			return;
+		logged_ = text;
+	} else {
+		// The kind of reason, without its figures; counting towards
+		// stability ("3 of 5 steady estimates") is no news.
+		const std::string key = gate_.reason().substr(0, gate_.reason().find_first_of("(0123456789"));
+		if (line.empty() || key.empty() || logged_ == key)
+			return;
+		logged_ = key;
 	}
+	logger().info("depth offset " + line,
+		      { { "DEVICE", depthName },
+			{ "DEPTH_OFFSET_MS", std::to_string(std::lround(estimate_.offsetMs)) },
+			{ "DEPTH_OFFSET_APPLIED_MS",
+			  gate_.haveApplied() ? std::to_string(std::lround(gate_.appliedMs())) : std::string("none") } });
 }
 
 bool FramePairing::depthFresh(uint64_t nowNs) const

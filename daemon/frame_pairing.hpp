@@ -1,12 +1,15 @@
 // Which depth frames go with each colour frame: the pairing queue that holds
 // colour frames until depth from both sides of them has come
 // (pairing.delay_ms), and the depth camera's offset, measured once a second
-// by correlating motion (algo/latency_estimator.hpp): applied when
-// pairing.offset_ms is "auto", logged when it moved by 5 ms or more.
+// by correlating motion (algo/latency_estimator.hpp): when pairing.offset_ms
+// is "auto", applied once it deserves trust (algo/offset_gate.hpp), taken
+// back when it makes pairing worse; the journal says when the applied offset
+// or the reason for holding one changes.
 #pragma once
 
 #include "algo/frames.hpp"
 #include "algo/latency_estimator.hpp"
+#include "algo/offset_gate.hpp"
 #include "algo/pairing_queue.hpp"
 #include "settings/settings.hpp"
 
@@ -49,6 +52,11 @@ public:
 	PairingQueue &queue() { return queue_; }
 	const PairingQueue &queue() const { return queue_; }
 	const LatencyEstimator::Estimate &latency() const { return estimate_; }
+	const OffsetGate &offsetGate() const { return gate_; }
+	// For the status line and status.json: "measured -41 ms, applied -40 ms",
+	// "measured -215 ms, none applied, held: WHY", or with a set offset_ms,
+	// "set -40 ms (measured -41 ms)".
+	std::string offsetStatus() const;
 
 private:
 	int64_t offsetNs() const;
@@ -57,7 +65,8 @@ private:
 	PairingQueue queue_;
 	LatencyEstimator latency_;
 	LatencyEstimator::Estimate estimate_;
-	double loggedMs_ = 1e9;
+	OffsetGate gate_;
+	std::string logged_; // the last offset line journaled
 };
 
 } // namespace depthkey

@@ -95,13 +95,8 @@ std::optional<PreviewStatus> StatusReporter::report(const StatusSnapshot &snapsh
 std::string StatusReporter::statusLine(const StatusSnapshot &s, const Rates &rates) const
 {
 	const DeviceStatus &cs = s.colour.status, &ds = s.depth.status;
-	char offset[64];
-	if (s.latency.valid)
-		std::snprintf(offset, sizeof(offset), "depth offset %+.0f ms measured%s", s.latency.offsetMs,
-			      s.offsetAuto ? "" : " (not applied)");
-	else
-		std::snprintf(offset, sizeof(offset), "depth offset %s", s.offsetAuto ? "measuring" : "set");
-	char text[768];
+	const std::string offset = "depth offset " + s.offset;
+	char text[1024];
 	std::snprintf(text, sizeof(text),
 		      "colour %s %s %.1f fps %llu dropped; depth %s %s %.1f fps %llu dropped; "
 		      "paired %llu unpaired %llu; %s; output %.1f fps, keying %.1f ms (p99 %.1f), %llu shed; readers %d; %s; %s",
@@ -110,7 +105,7 @@ std::string StatusReporter::statusLine(const StatusSnapshot &s, const Rates &rat
 		      s.depth.present ? s.depth.name.c_str() : "-", deviceStateName(ds.state), rates.depthFps,
 		      static_cast<unsigned long long>(ds.droppedFrames),
 		      static_cast<unsigned long long>(s.pairing.paired),
-		      static_cast<unsigned long long>(s.pairing.unpaired), offset, rates.outputFps,
+		      static_cast<unsigned long long>(s.pairing.unpaired), offset.c_str(), rates.outputFps,
 		      double(keying_.quantileUs(0.5)) / 1000.0, double(keying_.quantileUs(0.99)) / 1000.0,
 		      static_cast<unsigned long long>(s.shed), s.readers.total(),
 		      s.calibrated		? "calibrated"
@@ -149,6 +144,13 @@ PreviewStatus StatusReporter::previewStatus(const StatusSnapshot &snapshot, cons
 	// The measured offset when there is one (pairing.offset_ms = "auto"
 	// applies it), else how long depth frames take to arrive after their stamp.
 	s.depthLatencyMs = snapshot.latency.valid ? -snapshot.latency.offsetMs : depthLatencyMs_;
+	s.depthOffset.state = snapshot.offsetState;
+	s.depthOffset.text = snapshot.offset;
+	s.depthOffset.measured = snapshot.latency.valid;
+	s.depthOffset.measuredMs = snapshot.latency.offsetMs;
+	s.depthOffset.correlation = snapshot.latency.correlation;
+	s.depthOffset.applied = snapshot.offsetApplied;
+	s.depthOffset.appliedMs = snapshot.offsetAppliedMs;
 	s.readersComposite = snapshot.readers.composite;
 	s.readersLecturer = snapshot.readers.lecturer;
 	s.readersBoardLecturer = snapshot.readers.boardLecturer;

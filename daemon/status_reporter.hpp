@@ -40,7 +40,11 @@ struct StatusSnapshot {
 	StatusCamera colour, depth;
 	PairingStats pairing;
 	LatencyEstimator::Estimate latency; // the depth offset measured
-	bool offsetAuto = false;            // pairing.offset_ms = "auto": it is applied
+	bool offsetAuto = false;            // pairing.offset_ms = "auto": applied once trusted
+	std::string offset;                 // FramePairing::offsetStatus(): measured, applied or held and why
+	std::string offsetState;            // "measuring", "applied", "held" or "set"
+	bool offsetApplied = false;         // an offset measured here is applied
+	double offsetAppliedMs = 0;
 	ReaderCounts readers;
 	bool calibrated = false;            // a calibration that fits the frames
 	bool calibrationLoaded = false;     // a calibration, maybe for other frame sizes

@@ -33,6 +33,22 @@ LatencyEstimator::Estimate estimateOnSim(double latencyMs, uint64_t seed, int se
 	return estimator.estimate();
 }
 
+// 16 s of a still room: the same colour and depth picture each frame.
+LatencyEstimator::Estimate stillEstimate()
+{
+	LatencyEstimator estimator;
+	estimator.configure(500, 1850);
+	RgbImage still(64, 48, Rgb8{ 30, 60, 40 });
+	DepthFrame depth;
+	depth.depthMm = Gray16Image(16, 12, 2000);
+	for (int n = 0; n < 400; ++n) {
+		estimator.addColour(still, uint64_t(n) * 40'000'000);
+		if (n % 4 == 0)
+			estimator.addDepth(depth, uint64_t(n) * 40'000'000 + 40'000'000);
+	}
+	return estimator.estimate();
+}
+
 } // namespace
 
 TEST(LatencyEstimator, FindsTheSimulatedDepthLatencyWithin10Ms)
@@ -49,15 +65,18 @@ TEST(LatencyEstimator, FindsTheSimulatedDepthLatencyWithin10Ms)
 
 TEST(LatencyEstimator, NoMotionNoEstimate)
 {
-	LatencyEstimator estimator;
-	estimator.configure(500, 1850);
-	RgbImage still(64, 48, Rgb8{ 30, 60, 40 });
-	DepthFrame depth;
-	depth.depthMm = Gray16Image(16, 12, 2000);
-	for (int n = 0; n < 400; ++n) {
-		estimator.addColour(still, uint64_t(n) * 40'000'000);
-		if (n % 4 == 0)
-			estimator.addDepth(depth, uint64_t(n) * 40'000'000 + 40'000'000);
-	}
-	EXPECT_FALSE(estimator.estimate().valid);
+	EXPECT_FALSE(stillEstimate().valid);
+}
+
+// What the trust gate (algo/offset_gate.hpp) reads besides the offset: on
+// the lecture the peak clearly beats the rest and there is motion; on a
+// still scene there is none.
+TEST(LatencyEstimator, ReportsPeakMarginAndMotion)
+{
+	const LatencyEstimator::Estimate e = estimateOnSim(40.0, 1, 12);
+	EXPECT_GT(e.peakMargin, 0.15);
+	EXPECT_GT(e.colourMotionPerS, 0.1);
+	EXPECT_EQ(e.maxLagMs, 300);
+
+	EXPECT_EQ(stillEstimate().colourMotionPerS, 0.0);
 }

@@ -27,6 +27,8 @@ PreviewStatus sample()
 	s.calibrated = true;
 	s.calibrationFile = "/var/lib/depthkey/calibration.toml";
 	s.depthLatencyMs = 40;
+	s.depthOffset = { "held", "measured -215 ms, none applied, held: 1 of 5 steady estimates", true, -215, 0.88,
+			  false, 0 };
 	s.readersComposite = 1;
 	s.readersBoardLecturer = 2;
 	s.previewClients = 2;
@@ -55,6 +57,10 @@ TEST(PreviewStatus, JsonCarriesEveryFigure)
 	EXPECT_EQ(j["pairing"]["unpaired"], 19);
 	EXPECT_EQ(j["calibration"]["calibrated"], true);
 	EXPECT_EQ(j["depth_latency_ms"], 40.0);
+	EXPECT_EQ(j["depth_offset"]["state"], "held");
+	EXPECT_EQ(j["depth_offset"]["measured_ms"], -215.0);
+	EXPECT_TRUE(j["depth_offset"]["applied_ms"].is_null()); // held: none applied
+	EXPECT_NE(j["depth_offset"]["text"].get<std::string>().find("held: 1 of 5"), std::string::npos);
 	EXPECT_EQ(j["readers"]["composite"], 1);
 	EXPECT_EQ(j["readers"]["lecturer"], 0);
 	EXPECT_EQ(j["readers"]["board_lecturer"], 2);

@@ -55,6 +55,7 @@ async function refresh() {
     body.append(row("calibration", s.calibration.calibrated ? "loaded " + s.calibration.file
                                                              : "not calibrated", s.calibration.calibrated));
     body.append(row("depth latency", s.depth_latency_ms.toFixed(1) + " ms"));
+    body.append(row("depth offset", s.depth_offset.text, s.depth_offset.state !== "held"));
     body.append(row("readers", "composite " + s.readers.composite + ", lecturer " + s.readers.lecturer +
                     ", board-geometry lecturer " + s.readers.board_lecturer,
                     s.readers.composite + s.readers.lecturer + s.readers.board_lecturer > 0));

@@ -37,6 +37,17 @@ struct PreviewKeying {
 	double medianMs = 0, p99Ms = 0, p999Ms = 0, maxMs = 0;
 };
 
+// The depth camera's offset (pairing.offset_ms): what was measured, what is
+// applied, and in words why not when it is held.
+struct PreviewDepthOffset {
+	std::string state = "measuring"; // "measuring", "applied", "held", "set"
+	std::string text;                // as on the status line
+	bool measured = false;
+	double measuredMs = 0, correlation = 0;
+	bool applied = false;
+	double appliedMs = 0;
+};
+
 struct PreviewStatus {
 	double uptimeS = 0;
 	std::vector<PreviewDevice> devices;
@@ -47,6 +58,7 @@ struct PreviewStatus {
 	bool calibrated = false;
 	std::string calibrationFile;
 	double depthLatencyMs = 0;       // arrival after the depth frame's capture time
+	PreviewDepthOffset depthOffset;
 	int readersComposite = 0, readersLecturer = 0, readersBoardLecturer = 0;
 	PreviewWebcam webcam;
 	// Filled in by the server when it formats.
