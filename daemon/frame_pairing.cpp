@@ -47,7 +47,10 @@ void FramePairing::updateLatency(const std::string &depthName)
 {
 	estimate_ = latency_.estimate();
 	const PairingStats stats = queue_.pairer().stats();
-	if (gate_.update(estimate_, stats.paired, stats.unpaired) && settings_.offsetAuto)
+	// A frame keyed with stale depth (beyond max_skew, issue 29 §4) is one a
+	// wrong offset left without a pair: it counts as unpaired for the
+	// take-back, as the board-only frames of depth truly lost do.
+	if (gate_.update(estimate_, stats.paired, stats.unpaired + stats.stale) && settings_.offsetAuto)
 		queue_.setOffset(offsetNs());
 	// Journaled when what is applied, or why not, changes (not every
 	// estimate: they move by a few ms each second).
