@@ -121,7 +121,8 @@ PKGS := libsystemd tomlplusplus libusb-1.0 libgpiodcxx libturbojpeg libpng eigen
 # link line has none and a cv:: call in its objects fails to link. Only
 # depthkey-calibrate fits homographies and finds circle grids (calib3d,
 # features2d), and only
-# the tests use imgcodecs: an independent PNG/JPEG codec to check
+# depthkey-siox (its still images in the formats image editors use, issue 30)
+# and the tests use imgcodecs, the tests as an independent PNG/JPEG codec to check
 # hal/png_codec against (Debian's imgcodecs maps GDAL, poppler, HDF5 and
 # ~130 more libraries: issue 15). Those go on the link lines that need them,
 # below; --as-needed records in each binary only the libraries it calls.
@@ -277,6 +278,13 @@ $(BIN)/depthkey-%: $(OBJ)/tools/%.o $(LIB)
 $(SR2EMU): $(call obj,$(SR2EMU_SRCS)) $(LIB)
 	@mkdir -p $(dir $@)
 	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -o $@
+
+# depthkey-siox reads what image editors read (PNG, JPEG, BMP, TIFF, PNM,
+# WebP) through imgcodecs: the one installed binary that links it (issue 30).
+SIOX_SRCS := $(wildcard tools/siox/*.cpp)
+$(BIN)/depthkey-siox: $(OBJ)/tools/siox.o $(call obj,$(SIOX_SRCS)) $(LIB)
+	@mkdir -p $(dir $@)
+	$(CXX) $(LDFLAGS) $^ $(OPENCV_CODEC_LIBS) $(LDLIBS) -o $@
 
 # depthkey-calibrate --board and --live live in their own folders.
 CALIBRATE_BOARD_SRCS := $(wildcard tools/calibrate_board/*.cpp) $(wildcard tools/calibrate_live/*.cpp)
