@@ -286,11 +286,15 @@ $(BIN)/depthkey-siox: $(OBJ)/tools/siox.o $(call obj,$(SIOX_SRCS)) $(LIB)
 	@mkdir -p $(dir $@)
 	$(CXX) $(LDFLAGS) $^ $(OPENCV_CODEC_LIBS) $(LDLIBS) -o $@
 
-# depthkey-calibrate --board and --live live in their own folders.
-CALIBRATE_BOARD_SRCS := $(wildcard tools/calibrate_board/*.cpp) $(wildcard tools/calibrate_live/*.cpp)
+# depthkey-calibrate --board, --live and --print-pattern live in their own
+# folders. --print-pattern draws the depth pattern as PDF or SVG with cairo,
+# which only this tool links (issue 30).
+CALIBRATE_BOARD_SRCS := $(wildcard tools/calibrate_board/*.cpp) $(wildcard tools/calibrate_live/*.cpp) \
+	$(wildcard tools/calibrate_print/*.cpp)
+$(call obj,$(wildcard tools/calibrate_print/*.cpp)): PKG_CFLAGS += $(shell $(PKG_CONFIG) --cflags cairo)
 $(BIN)/depthkey-calibrate: $(OBJ)/tools/calibrate.o $(call obj,$(CALIBRATE_BOARD_SRCS)) $(LIB)
 	@mkdir -p $(dir $@)
-	$(CXX) $(LDFLAGS) $^ $(OPENCV_CALIB_LIBS) $(LDLIBS) -o $@
+	$(CXX) $(LDFLAGS) $^ $(OPENCV_CALIB_LIBS) $(shell $(PKG_CONFIG) --libs cairo) $(LDLIBS) -o $@
 
 # Helpers of the HIL suite (tests/hil/NAME.cpp -> depthkey-hil-NAME, with _
 # as -): a bare libusb SR-2 client, a shared-memory flag watcher.
