@@ -348,6 +348,12 @@ install: all $(CONFIG_MAN)
 	install -D -m 0644 packaging/depthkey.tmpfiles $(DESTDIR)$(TMPFILESDIR)/depthkey.conf
 	install -D -m 0644 packaging/depthkey-v4l2loopback.conf \
 	    $(DESTDIR)$(PREFIX)/share/doc/depthkey/examples/depthkey-v4l2loopback.conf
+	# The documentation the man pages and the config point to (issue 30), in
+	# the tree's layout so that README's links hold; its pictures stay in
+	# the source (docs/accuracy/ is 6 MB of figures).
+	install -d $(DESTDIR)$(PREFIX)/share/doc/depthkey/docs
+	install -m 0644 README.md $(DESTDIR)$(PREFIX)/share/doc/depthkey/
+	install -m 0644 docs/*.md $(DESTDIR)$(PREFIX)/share/doc/depthkey/docs/
 	install -d $(DESTDIR)$(MANDIR)/man1 $(DESTDIR)$(MANDIR)/man5 $(DESTDIR)$(MANDIR)/man8
 	install -m 0644 $(CONFIG_MAN) $(DESTDIR)$(MANDIR)/man5/
 	for page in man/depthkeyd.8 $(TOOL_MANS); do \
