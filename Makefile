@@ -123,7 +123,8 @@ PKGS := libsystemd tomlplusplus libusb-1.0 libgpiodcxx libturbojpeg libpng eigen
 # link line has none and a cv:: call in its objects fails to link. Only
 # depthkey-calibrate fits homographies and finds circle grids (calib3d,
 # features2d), and only
-# the tests use imgcodecs: an independent PNG/JPEG codec to check
+# depthkey-siox (its still images in the formats image editors use, issue 30)
+# and the tests use imgcodecs, the tests as an independent PNG/JPEG codec to check
 # hal/png_codec against (Debian's imgcodecs maps GDAL, poppler, HDF5 and
 # ~130 more libraries: issue 15). Those go on the link lines that need them,
 # below; --as-needed records in each binary only the libraries it calls.
@@ -296,11 +297,22 @@ $(SR2EMU): $(call obj,$(SR2EMU_SRCS)) $(LIB)
 	@mkdir -p $(dir $@)
 	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -o $@
 
-# depthkey-calibrate --board and --live live in their own folders.
-CALIBRATE_BOARD_SRCS := $(wildcard tools/calibrate_board/*.cpp) $(wildcard tools/calibrate_live/*.cpp)
+# depthkey-siox reads what image editors read (PNG, JPEG, BMP, TIFF, PNM,
+# WebP) through imgcodecs: the one installed binary that links it (issue 30).
+SIOX_SRCS := $(wildcard tools/siox/*.cpp)
+$(BIN)/depthkey-siox: $(OBJ)/tools/siox.o $(call obj,$(SIOX_SRCS)) $(LIB)
+	@mkdir -p $(dir $@)
+	$(CXX) $(LDFLAGS) $^ $(OPENCV_CODEC_LIBS) $(LDLIBS) -o $@
+
+# depthkey-calibrate --board, --live and --print-pattern live in their own
+# folders. --print-pattern draws the depth pattern as PDF or SVG with cairo,
+# which only this tool links (issue 30).
+CALIBRATE_BOARD_SRCS := $(wildcard tools/calibrate_board/*.cpp) $(wildcard tools/calibrate_live/*.cpp) \
+	$(wildcard tools/calibrate_print/*.cpp)
+$(call obj,$(wildcard tools/calibrate_print/*.cpp)): PKG_CFLAGS += $(shell $(PKG_CONFIG) --cflags cairo)
 $(BIN)/depthkey-calibrate: $(OBJ)/tools/calibrate.o $(call obj,$(CALIBRATE_BOARD_SRCS)) $(LIB)
 	@mkdir -p $(dir $@)
-	$(CXX) $(LDFLAGS) $^ $(OPENCV_CALIB_LIBS) $(LDLIBS) -o $@
+	$(CXX) $(LDFLAGS) $^ $(OPENCV_CALIB_LIBS) $(shell $(PKG_CONFIG) --libs cairo) $(LDLIBS) -o $@
 
 # Helpers of the HIL suite (tests/hil/NAME.cpp -> depthkey-hil-NAME, with _
 # as -): a bare libusb SR-2 client, a shared-memory flag watcher.
@@ -354,6 +366,12 @@ install: all $(CONFIG_MAN)
 	install -D -m 0644 packaging/depthkey.tmpfiles $(DESTDIR)$(TMPFILESDIR)/depthkey.conf
 	install -D -m 0644 packaging/depthkey-v4l2loopback.conf \
 	    $(DESTDIR)$(PREFIX)/share/doc/depthkey/examples/depthkey-v4l2loopback.conf
+	# The documentation the man pages and the config point to (issue 30), in
+	# the tree's layout so that README's links hold; its pictures stay in
+	# the source (docs/accuracy/ is 6 MB of figures).
+	install -d $(DESTDIR)$(PREFIX)/share/doc/depthkey/docs
+	install -m 0644 README.md $(DESTDIR)$(PREFIX)/share/doc/depthkey/
+	install -m 0644 docs/*.md $(DESTDIR)$(PREFIX)/share/doc/depthkey/docs/
 	install -d $(DESTDIR)$(MANDIR)/man1 $(DESTDIR)$(MANDIR)/man5 $(DESTDIR)$(MANDIR)/man8
 	install -m 0644 $(CONFIG_MAN) $(DESTDIR)$(MANDIR)/man5/
 	for page in man/depthkeyd.8 $(TOOL_MANS); do \

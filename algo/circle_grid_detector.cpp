@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <limits>
 
 #include <opencv2/calib3d.hpp>
 #include <opencv2/features2d.hpp>
@@ -14,6 +15,12 @@
 namespace depthkey {
 
 namespace {
+
+// The smallest blob a circle may be, in the searched image's pixels: in the
+// colour image 12; in the amplitude image (scaled up kAmplitudeScale times)
+// a circle two ToF pixels across, the smallest that still has a centre.
+constexpr double kColourMinArea = 12.0;
+constexpr double kAmplitudeMinArea = 3.0 * kAmplitudeScale * kAmplitudeScale;
 
 // Blob limits for an image of the given size: a circle covers at least a
 // few pixels and at most the whole grid's share of the image. Circularity and
@@ -211,6 +218,81 @@ double median(std::vector<double> &values)
 	return *mid;
 }
 
+// The detector's blobs in the image it searched (scale: its size over the
+// camera's), classified against what findGrid wanted.
+// Distinct positions among values, those closer than gap counted as one:
+// the columns (or rows) of a grid held roughly upright.
+int distinctLines(std::vector<float> values, float gap)
+{
+	std::sort(values.begin(), values.end());
+	int lines = values.empty() ? 0 : 1;
+	for (size_t i = 1; i < values.size(); i++)
+		lines += values[i] - values[i - 1] > gap;
+	return lines;
+}
+
+GridMiss explainMiss(const cv::Mat &gray, GridSize grid, double minArea)
+{
+	GridMiss miss;
+	miss.expected = grid.count();
+	std::vector<cv::KeyPoint> blobs;
+	blobDetector(gray.cols, gray.rows, grid, minArea)->detect(gray, blobs);
+	miss.circles = static_cast<int>(blobs.size());
+	if (blobs.empty()) {
+		miss.kind = GridMiss::Kind::NoCircles;
+		return miss;
+	}
+	if (miss.circles > miss.expected) {
+		miss.kind = GridMiss::Kind::TooMany;
+		return miss;
+	}
+	if (miss.circles == miss.expected) {
+		miss.kind = GridMiss::Kind::NotAGrid;
+		return miss;
+	}
+	// The grid's spacing in this image: the median distance from a blob to
+	// its nearest neighbour (a lone blob: twice its size).
+	std::vector<double> nearest;
+	std::vector<float> xs, ys;
+	for (const cv::KeyPoint &a : blobs) {
+		double d = std::numeric_limits<double>::max();
+		for (const cv::KeyPoint &b : blobs)
+			if (&a != &b)
+				d = std::min(d, static_cast<double>(cv::norm(a.pt - b.pt)));
+		nearest.push_back(d);
+		xs.push_back(a.pt.x);
+		ys.push_back(a.pt.y);
+	}
+	double spacing = blobs.size() > 1 ? median(nearest) : 2.0 * blobs[0].size;
+	// Whole columns or rows missing, the rest a full rectangle, next to the
+	// image's border: the grid runs out of the picture there (a circle cut
+	// by the edge is no blob: it fails the circularity test). Missing
+	// circles anywhere else are hidden, or too small to be found.
+	int cols = distinctLines(xs, static_cast<float>(spacing / 2));
+	int rows = distinctLines(ys, static_cast<float>(spacing / 2));
+	bool rectangle = cols * rows == miss.circles && cols >= 2 && rows >= 2 && cols <= grid.cols && rows <= grid.rows;
+	float reach = static_cast<float>(1.5 * spacing);
+	bool left = false, right = false, top = false, bottom = false;
+	for (const cv::KeyPoint &b : blobs) {
+		left |= cols < grid.cols && b.pt.x < reach;
+		right |= cols < grid.cols && b.pt.x > gray.cols - 1 - reach;
+		top |= rows < grid.rows && b.pt.y < reach;
+		bottom |= rows < grid.rows && b.pt.y > gray.rows - 1 - reach;
+	}
+	std::vector<std::string> sides;
+	for (auto [cut, name] : { std::pair{ left, "left" }, { right, "right" }, { top, "top" }, { bottom, "bottom" } })
+		if (cut)
+			sides.push_back(name);
+	if (!rectangle || sides.empty()) {
+		miss.kind = GridMiss::Kind::Hidden;
+		return miss;
+	}
+	for (size_t i = 0; i < sides.size(); i++)
+		miss.edges += (i == 0 ? "" : i + 1 == sides.size() ? " and " : ", ") + sides[i];
+	miss.kind = GridMiss::Kind::Cut;
+	return miss;
+}
+
 } // namespace
 
 Gray8Image amplitudeForDetection(const Gray16Image &amplitude)
@@ -261,7 +343,7 @@ int findColourGrid(const RgbImage &rgb, GridSize grid, std::vector<ImagePoint> &
 	if (shrink > 1)
 		cv::resize(gray, small, cv::Size(gray.cols / shrink, gray.rows / shrink), 0, 0, cv::INTER_AREA);
 	const double scale = static_cast<double>(small.cols) / gray.cols;
-	if (int ret = findGrid(small, grid, 12.0 * scale * scale, scale, centres); ret < 0)
+	if (int ret = findGrid(small, grid, kColourMinArea * scale * scale, scale, centres); ret < 0)
 		return ret;
 	refineCentres<uint8_t>(gray, grid, centres);
 	return 0;
@@ -271,14 +353,58 @@ int findAmplitudeGrid(const Gray16Image &amplitude, GridSize grid, std::vector<I
 {
 	Gray8Image scaled = amplitudeForDetection(amplitude);
 	cv::Mat gray(scaled.height(), scaled.width(), CV_8UC1, scaled.data());
-	// A circle two ToF pixels across is the smallest that still has a centre.
-	constexpr double kMinArea = 3.0 * kAmplitudeScale * kAmplitudeScale;
-	if (int ret = findGrid(gray, grid, kMinArea, kAmplitudeScale, centres); ret < 0)
+	if (int ret = findGrid(gray, grid, kAmplitudeMinArea, kAmplitudeScale, centres); ret < 0)
 		return ret;
 	// Refined on the measured amplitudes, not the stretched 8-bit copy.
 	cv::Mat raw(amplitude.height(), amplitude.width(), CV_16UC1, const_cast<uint16_t *>(amplitude.data()));
 	refineCentres<uint16_t>(raw, grid, centres);
 	return 0;
+}
+
+std::string GridMiss::reason() const
+{
+	switch (kind) {
+	case Kind::Found:
+		return "the whole grid is seen";
+	case Kind::NoCircles:
+		return "no circle found: the pattern is out of view, too far, or too dark";
+	case Kind::Cut:
+		return "whole " + std::string(edges.find("left") != std::string::npos || edges.find("right") != std::string::npos
+						      ? "columns"
+						      : "rows") +
+		       " are missing at the image's " + edges + " edge: the grid runs out of the picture there, "
+		       "move the pattern towards the middle";
+	case Kind::Hidden:
+		return "not whole columns or rows at the image's edge: the rest are hidden (by the desk, a monitor, "
+		       "a hand?), or too small to see";
+	case Kind::TooMany:
+		return "other dark round things are in view, or the circles are too small to tell apart";
+	case Kind::NotAGrid:
+		return "but not as a grid: hold the pattern upright, facing the camera";
+	}
+	return {};
+}
+
+std::string GridMiss::describe() const
+{
+	if (kind == Kind::Found || kind == Kind::NoCircles)
+		return reason();
+	return std::to_string(circles) + " of " + std::to_string(expected) + " circles found, " + reason();
+}
+
+GridMiss explainColourMiss(const RgbImage &rgb, GridSize grid)
+{
+	cv::Mat src(rgb.height(), rgb.width(), CV_8UC3, const_cast<Rgb8 *>(rgb.data()));
+	cv::Mat gray;
+	cv::cvtColor(src, gray, cv::COLOR_RGB2GRAY);
+	return explainMiss(gray, grid, kColourMinArea);
+}
+
+GridMiss explainAmplitudeMiss(const Gray16Image &amplitude, GridSize grid)
+{
+	Gray8Image scaled = amplitudeForDetection(amplitude);
+	cv::Mat gray(scaled.height(), scaled.width(), CV_8UC1, scaled.data());
+	return explainMiss(gray, grid, kAmplitudeMinArea);
 }
 
 double depthAround(const DepthFrame &depth, ImagePoint centre, double radiusPx)
@@ -326,11 +452,15 @@ int pairView(const ColourFrame &colour, const DepthFrame &depth, GridSize grid,
 			" for each circle of the " + pattern + "): clutter or noise, not searched for the pattern";
 		return -E2BIG;
 	}
-	if (colourRet < 0 || tofRet < 0) {
-		error = colourRet < 0 && tofRet < 0 ? "neither camera sees the whole " + pattern
-			: colourRet < 0 ? "the colour camera does not see the whole " + pattern
-				      : "the ToF camera does not see the whole " + pattern +
-						" in its amplitude image";
+	const bool colourSees = colourRet == 0, tofSees = tofRet == 0;
+	if (!colourSees || !tofSees) {
+		std::string colourWhy = colourSees ? "" : explainColourMiss(colour.rgb, grid).describe();
+		std::string tofWhy = tofSees ? "" : explainAmplitudeMiss(depth.amplitude, grid).describe();
+		error = !colourSees && !tofSees ? "neither camera sees the whole " + pattern + ": colour: " + colourWhy +
+							  "; ToF amplitude: " + tofWhy
+			: !colourSees ? "the colour camera does not see the whole " + pattern + ": " + colourWhy
+				      : "the ToF camera does not see the whole " + pattern + " in its amplitude image: " +
+						tofWhy;
 		return -ENOENT;
 	}
 

@@ -42,6 +42,24 @@ Gray8Image amplitudeForDetection(const Gray16Image &amplitude);
 int findColourGrid(const RgbImage &rgb, GridSize grid, std::vector<ImagePoint> &centres);
 int findAmplitudeGrid(const Gray16Image &amplitude, GridSize grid, std::vector<ImagePoint> &centres);
 
+// Why the whole grid was not found in one camera's image, for the
+// technician: how many circles the detector saw; whether whole columns or
+// rows are missing beside the image's edge (the grid is cut there) or
+// circles are missing elsewhere (hidden, or too small); or whether all are
+// there but not in the grid's shape.
+struct GridMiss {
+	enum class Kind { Found, NoCircles, Cut, Hidden, TooMany, NotAGrid } kind = Kind::Found;
+	int circles = 0;             // dark round blobs the detector saw
+	int expected = 0;            // grid.count()
+	std::string edges;           // "left", "top and right"...: where blobs touch the border
+	// "25 of 35 circles found, whole columns are missing at the image's left edge: ...".
+	std::string describe() const;
+	// The same without the count: a live view says it again only when this changes.
+	std::string reason() const;
+};
+GridMiss explainColourMiss(const RgbImage &rgb, GridSize grid);
+GridMiss explainAmplitudeMiss(const Gray16Image &amplitude, GridSize grid);
+
 // The pattern's depth at a ToF circle centre: the median of the valid depths
 // around it (within radiusPx), taken from the bright paper between circles
 // when there is some, where the ToF measures best. 0 when none is valid.
@@ -49,8 +67,8 @@ double depthAround(const DepthFrame &depth, ImagePoint centre, double radiusPx);
 
 // Both cameras' view of the pattern as point pairs, labelled with depthM.
 // Returns -ENOENT with error naming the camera that did not see the whole
-// grid, -E2BIG naming the camera that sees too many blobs, or -EINVAL when
-// the depth image has no depth at the circles.
+// grid and why (GridMiss), -E2BIG naming the camera that sees too many
+// blobs, or -EINVAL when the depth image has no depth at the circles.
 int pairView(const ColourFrame &colour, const DepthFrame &depth, GridSize grid,
 	     CalibrationView &view, std::string &error);
 

@@ -87,6 +87,10 @@ int Daemon::start(const Settings &settings)
 		[this] { // the composite's geometry or size changed
 			outputs_.reopen(settings_, outputGeometry());
 		});
+	// A second instance on our preview port (with output names of its own):
+	// exit before creating anything, not serve no page (issue 30).
+	if (int ret = preview_.apply(settings_.preview, &startError_); ret == -EADDRINUSE)
+		return ret;
 	// Another writer on our names (a second depthkeyd): exit, not run at 0 fps.
 	if (int ret = openOutput(); ret == -EBUSY) {
 		startError_ = outputs_.describeError();
@@ -94,7 +98,6 @@ int Daemon::start(const Settings &settings)
 	}
 	startWebcam();
 	updateRecording();
-	preview_.apply(settings_.preview);
 	startCameras();
 
 	loop_.addPeriodic(1000000u / settings_.colour.fps, [this] { onFrameTick(); }, frameTick_);

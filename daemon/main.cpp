@@ -1,6 +1,7 @@
 // depthkeyd: captures the colour and depth cameras, keys the lecturer out and
 // publishes the composite and the lecturer layer to shared memory.
 #include "config/config_loader.hpp"
+#include "daemon/setup_report.hpp"
 #include "daemon/daemon.hpp"
 #include "daemon/log.hpp"
 #include "daemon/version.hpp"
@@ -38,7 +39,7 @@ int checkConfig(const std::string &path)
 		std::fprintf(stderr, "%s\n", e.toString().c_str());
 	if (!result.ok())
 		return 1;
-	std::printf("%s: ok\n", path.c_str());
+	std::printf("%s: ok\n%s", path.c_str(), describeSetup(result.settings).c_str());
 	return 0;
 }
 

@@ -2,6 +2,8 @@
 
 #include "daemon/log.hpp"
 
+#include <cerrno>
+
 namespace depthkey {
 
 namespace {
@@ -12,13 +14,13 @@ constexpr int kPreviewMaxFps = 15;
 
 } // namespace
 
-void PreviewFeed::apply(const PreviewSettings &settings)
+int PreviewFeed::apply(const PreviewSettings &settings, std::string *portInUse)
 {
 	// The same settings: a server that runs re-reads its password file; one
 	// that did not start (a bad password file, a port in use) tries again.
 	if (applied_ && settings == settings_ && (server_.running() || settings.listen.empty())) {
 		rereadPasswords();
-		return;
+		return 0;
 	}
 	stop();
 	settings_ = settings;
@@ -26,7 +28,7 @@ void PreviewFeed::apply(const PreviewSettings &settings)
 	if (settings.listen.empty()) {
 		logger().clearError("preview", "preview server off (preview.listen = \"\")", { { "DEVICE", "preview" } });
 		logger().info("preview server off (preview.listen = \"\")", { { "DEVICE", "preview" } });
-		return;
+		return 0;
 	}
 	PreviewServerOptions options;
 	std::string error = parseListenAddress(settings.listen, options.address);
@@ -39,15 +41,21 @@ void PreviewFeed::apply(const PreviewSettings &settings)
 	}
 	if (ret < 0) {
 		encoder_.stop();
+		if (ret == -EADDRINUSE && portInUse) {
+			*portInUse = "preview.listen " + settings.listen +
+				     ": the port is in use (another depthkeyd, or another program on it)";
+			return ret;
+		}
 		logger().errorOnce("preview", "preview server not started: " + error,
 				   { { "DEVICE", "preview" }, { "ERROR", errnoText(ret) } });
-		return;
+		return ret;
 	}
 	const ListenAddress &a = options.address;
 	std::string url = "http://" + (a.ipv6 ? "[" + a.ip + "]" : a.ip) + ":" + std::to_string(server_.port()) + "/";
 	const std::string text = "preview page at " + url + (options.passwordFile.empty() ? "" : " (basic authentication)");
 	logger().clearError("preview", "preview server started", { { "DEVICE", "preview" } });
 	logger().info(text, { { "DEVICE", "preview" }, { "PREVIEW_URL", url } });
+	return 0;
 }
 
 // A reload that keeps [preview] as it was still re-reads the password file:

@@ -19,7 +19,12 @@ class PreviewFeed
 public:
 	~PreviewFeed() { stop(); }
 
-	void apply(const PreviewSettings &settings);
+	// Starts, restarts or keeps the server as settings say; a server that
+	// cannot start is logged and tried again at the next apply. With
+	// portInUse (the daemon's start), a port another process listens on is
+	// not logged but returned, -EADDRINUSE with portInUse saying so: a
+	// second depthkeyd started by mistake exits (issue 30).
+	int apply(const PreviewSettings &settings, std::string *portInUse = nullptr);
 	void stop();
 	bool running() const { return server_.running(); }
 	int port() const { return server_.port(); }

@@ -52,6 +52,18 @@ if [ "${RUN_SIM_PREPARE_ONLY:-0}" = 1 ]; then
 	exit 0
 fi
 
+# The preview page's address, from [preview] listen ("" = off), and the
+# signal commands for this daemon alone: the script execs depthkeyd, so its
+# PID is this shell's ($$), whatever other depthkeyd runs on the machine.
+listen=$(awk '/^\[/ { section = $0 } section == "[preview]" && /^listen *=/ {
+	sub(/^listen *= *"/, ""); sub(/".*$/, ""); print; exit }' "$config")
+case $listen in
+"") preview="the preview page is off ([preview] listen = \"\")" ;;
+0.0.0.0:*) preview="the preview page: http://127.0.0.1:${listen#0.0.0.0:}/ (and this machine's other addresses)" ;;
+*) preview="the preview page: http://$listen/ (open it in a browser)" ;;
+esac
+pid=$$
+
 cat <<MSG
 depthkeyd is starting on simulated cameras with config $config:
 $source with [mapping] calibration_file = "$calibration"
@@ -59,11 +71,12 @@ and [board] homography_file = "$board"
 (both fitted to the simulator; make run writes $config afresh from $source each time).
 The composite is in the board's geometry: the simulated board's slide and strokes,
 the lecturer laid over them half transparent.
+Look at $preview.
 Look at its output from another terminal:
   $bin/depthkey-shmcat --frames 250 --yuv420 | ffmpeg -y -i - -pix_fmt yuv420p composite.mp4   # 250 frames, H.264 4:2:0, real time
   $bin/depthkey-shmcat --stream lecturer --frames 1 | ffmpeg -y -i - lecturer.png
-  kill -USR1 \$(pidof depthkeyd)    # stage snapshots (PNG) into $snapshots
-  kill -HUP \$(pidof depthkeyd)     # re-read $config (edit that file, not $source, for it)
+  kill -USR1 $pid    # stage snapshots (PNG) into $snapshots; this daemon only (PID $pid)
+  kill -HUP $pid     # re-read $config (edit that file, not $source, for it)
 Status lines below; Ctrl-C stops it.
 MSG
 exec "$bin/depthkeyd" --config "$config" --snapshot-dir "$snapshots"

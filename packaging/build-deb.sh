@@ -32,16 +32,29 @@ mkdir -p build/deb
 # What `dpkg-buildpackage -b -us -uc` does, less the .buildinfo/.changes that
 # it can only write next to the source tree (..): nothing is uploaded.
 # dh_builddeb --destdir (debian/rules) puts the .deb into build/deb/.
-{
-	$checkdeps &&
-	debian/rules clean &&
-	DEB_BUILD_OPTIONS="parallel=2 ${DEB_BUILD_OPTIONS:-}" debian/rules build &&
-	DEB_BUILD_OPTIONS="parallel=2 ${DEB_BUILD_OPTIONS:-}" debian/rules binary
-} >build/deb/build.log 2>&1 || {
-	tail -40 build/deb/build.log >&2
-	echo "make deb: the package build failed, full log in build/deb/build.log" >&2
-	exit 1
+# Each step says what it does (issue 30: the build is minutes of silence
+# otherwise); its output goes to the log, shown when it fails.
+log=build/deb/build.log
+: >"$log"
+step() {
+	what=$1
+	shift
+	echo "make deb: $what"
+	echo "=== $what: $*" >>"$log"
+	"$@" >>"$log" 2>&1 || {
+		tail -40 "$log" >&2
+		echo "make deb: $what failed, full log in $log" >&2
+		exit 1
+	}
 }
+echo "make deb: depthkey $pkg for $arch, log in $log"
+step "checking the build dependencies (debian/control)" $checkdeps
+step "cleaning the package build's folders" debian/rules clean
+step "compiling in build/deb/ with Debian's hardening flags (a few minutes on 2 cores)" \
+	env DEB_BUILD_OPTIONS="parallel=2 ${DEB_BUILD_OPTIONS:-}" debian/rules build
+step "installing into debian/depthkey/ and making the .deb" \
+	env DEB_BUILD_OPTIONS="parallel=2 ${DEB_BUILD_OPTIONS:-}" debian/rules binary
 deb="build/deb/depthkey_${pkg}_${arch}.deb"
 test -f "$deb"
+echo "make deb: wrote $deb ($(du -h "$deb" | cut -f1))"
 echo "$deb"

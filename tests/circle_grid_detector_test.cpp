@@ -80,7 +80,11 @@ TEST_F(CircleGridDetector, PatternOutOfViewNamesBothCameras)
 	CalibrationView view;
 	std::string error;
 	EXPECT_EQ(pairView(colour_, depth_, board_.grid, view, error), -ENOENT);
-	EXPECT_EQ(error, "neither camera sees the whole 7x5 grid");
+	EXPECT_EQ(error.rfind("neither camera sees the whole 7x5 grid: colour: no circle found", 0), 0u) << error;
+	// The ToF's noise makes a few dark spots, which the message does not
+	// take for a grid cut by an edge.
+	GridMiss tof = explainAmplitudeMiss(depth_.amplitude, board_.grid);
+	EXPECT_NE(tof.kind, GridMiss::Kind::Cut) << tof.describe();
 }
 
 TEST_F(CircleGridDetector, PatternSeenOnlyByTheWiderToFNamesTheColourCamera)
@@ -93,7 +97,16 @@ TEST_F(CircleGridDetector, PatternSeenOnlyByTheWiderToFNamesTheColourCamera)
 	CalibrationView view;
 	std::string error;
 	EXPECT_EQ(pairView(colour_, depth_, board_.grid, view, error), -ENOENT);
-	EXPECT_EQ(error, "the colour camera does not see the whole 7x5 grid");
+	// It says how much it saw and where the grid leaves the picture.
+	EXPECT_EQ(error.rfind("the colour camera does not see the whole 7x5 grid: ", 0), 0u) << error;
+	GridMiss miss = explainColourMiss(colour_.rgb, board_.grid);
+	EXPECT_EQ(miss.kind, GridMiss::Kind::Cut) << miss.describe();
+	EXPECT_EQ(miss.edges, "left");
+	EXPECT_GT(miss.circles, 0);
+	EXPECT_LT(miss.circles, 35);
+	EXPECT_NE(error.find(std::to_string(miss.circles) + " of 35 circles found, whole columns are missing at the image's left edge"),
+		  std::string::npos)
+		<< error;
 }
 
 TEST_F(CircleGridDetector, PatternHiddenFromTheToFNamesIt)
@@ -103,7 +116,37 @@ TEST_F(CircleGridDetector, PatternHiddenFromTheToFNamesIt)
 	CalibrationView view;
 	std::string error;
 	EXPECT_EQ(pairView(colour_, depth_, board_.grid, view, error), -ENOENT);
-	EXPECT_EQ(error, "the ToF camera does not see the whole 7x5 grid in its amplitude image");
+	EXPECT_EQ(error, "the ToF camera does not see the whole 7x5 grid in its amplitude image: no circle found: "
+			 "the pattern is out of view, too far, or too dark");
+}
+
+TEST_F(CircleGridDetector, PatternPartlyCoveredInTheMiddleIsCalledHidden)
+{
+	// The lower middle of the pattern behind something the paper's colour
+	// (a monitor's back, the desk): whole circles gone, none cut by an edge.
+	renderer_.render(renderer_.poseFor({ 1.6, 0, 0 }, 0), 1, colour_, depth_);
+	std::vector<ImagePoint> centres;
+	ASSERT_EQ(findColourGrid(colour_.rgb, board_.grid, centres), 0);
+	double half = (centres[9].x - centres[8].x) / 2;
+	double x0 = centres[8].x - half, x1 = centres[12].x + half, y0 = (centres[15].y + centres[22].y) / 2;
+	for (int y = static_cast<int>(y0); y < colour_.rgb.height(); y++)
+		for (int x = static_cast<int>(x0); x <= static_cast<int>(x1); x++)
+			colour_.rgb.at(x, y) = Rgb8{ 200, 200, 200 };
+	CalibrationView view;
+	std::string error;
+	EXPECT_EQ(pairView(colour_, depth_, board_.grid, view, error), -ENOENT);
+	GridMiss miss = explainColourMiss(colour_.rgb, board_.grid);
+	EXPECT_EQ(miss.kind, GridMiss::Kind::Hidden) << miss.describe();
+	EXPECT_EQ(miss.circles, 35 - 2 * 5); // rows 4 and 5, columns 2 to 6 (from 1)
+	EXPECT_NE(error.find("25 of 35 circles found, not whole columns or rows at the image's edge: the rest are hidden"), std::string::npos)
+		<< error;
+}
+
+TEST_F(CircleGridDetector, AWholeGridSaysSo)
+{
+	renderer_.render(renderer_.poseFor({ 1.6, 0, 0 }, 0), 1, colour_, depth_);
+	EXPECT_EQ(explainColourMiss(colour_.rgb, board_.grid).kind, GridMiss::Kind::NotAGrid); // all 35, as blobs
+	EXPECT_EQ(explainColourMiss(colour_.rgb, board_.grid).circles, 35);
 }
 
 TEST(DepthAround, TakesThePaperNotTheNoisyCircle)

@@ -2,6 +2,8 @@
 // circle pattern seen by both cameras and writes the calibration file.
 //
 //   depthkey-calibrate (--sim | --sequence DIR | --live [--config FILE]) --output FILE [options]
+//   depthkey-calibrate --print-pattern FILE.pdf|FILE.svg [--paper a4|a3|a2|a1]
+//   depthkey-calibrate --board ... (tools/calibrate_board/)
 //
 // For each step of the plan (or each frame of a sequence) it says where the
 // pattern should be, finds the grid in both cameras, and says whether the
@@ -33,6 +35,7 @@
 #include "hal/sim/calibration_pattern.hpp"
 #include "tools/calibrate_board/board_command.hpp"
 #include "tools/calibrate_live/live_view_source.hpp"
+#include "tools/calibrate_print/print_command.hpp"
 
 using namespace depthkey;
 
@@ -72,6 +75,8 @@ void usage(FILE *out)
 		     "                          [--hold-out-every K | --hold-out-depth METRES]\n"
 		     "                          [--depths M,M,...] [--grid COLSxROWS] [--max-rms PX]\n"
 		     "                          [--preview DIR] [--record DIR] [--interactive]\n");
+	printPatternUsage(out);
+	printBoardUsage(out);
 }
 
 bool parseDepths(const char *text, std::vector<double> &out)
@@ -338,6 +343,9 @@ int main(int argc, char **argv)
 	// --board: the board calibration, a mode of its own.
 	if (wantsBoardCalibration(argc, argv))
 		return runBoardCalibration(argc, argv);
+	// --print-pattern: the depth pattern as a PDF or SVG to print.
+	if (wantsPatternPrint(argc, argv))
+		return runPatternPrint(argc, argv);
 	Options o;
 	if (int ret = parseOptions(argc, argv, o); ret)
 		return ret;

@@ -2,11 +2,13 @@
 //
 //   depthkey-siox IMAGE TRIMAP OUT_MASK [--alpha OUT_ALPHA] [--smoothing N] [--hard]
 //
-// TRIMAP is 8-bit grey of IMAGE's size: 0 = background (board), 255 =
+// IMAGE and TRIMAP may be PNG, JPEG, BMP, TIFF, PNM or WebP
+// (tools/siox/still_image_reader.hpp). TRIMAP is 8-bit grey of IMAGE's size: 0 = background (board), 255 =
 // foreground (lecturer), any other value = undecided. OUT_MASK is an 8-bit
 // PNG, 0 / 255; OUT_ALPHA the soft matte 0..255. Exit 0, or 1 with a message.
 #include "algo/still_siox.hpp"
 #include "hal/image_file.hpp"
+#include "tools/siox/still_image_reader.hpp"
 
 #include <cerrno>
 #include <cstdio>
@@ -21,7 +23,8 @@ namespace {
 int usage()
 {
 	std::fprintf(stderr, "usage: depthkey-siox IMAGE TRIMAP OUT_MASK [--alpha OUT_ALPHA] "
-			     "[--smoothing 0..8] [--hard]\n");
+			     "[--smoothing 0..8] [--hard]\n"
+			     "IMAGE and TRIMAP: PNG, JPEG, BMP, TIFF, PNM (PBM/PGM/PPM) or WebP\n");
 	return 1;
 }
 
@@ -67,7 +70,7 @@ int main(int argc, char **argv)
 	RgbImage image;
 	Gray8Image trimap, mask, alpha;
 	std::string error;
-	if (readRgbImage(positional[0], image, error) < 0 || readGray8Image(positional[1], trimap, error) < 0)
+	if (readStillRgb(positional[0], image, error) < 0 || readStillTrimap(positional[1], trimap, error) < 0)
 		return fail(error);
 	if (trimap.width() != image.width() || trimap.height() != image.height())
 		return fail(positional[1] + ": trimap is " + std::to_string(trimap.width()) + "x" +

@@ -128,6 +128,12 @@ check "stopped cleanly: Result=success, exit status 0" \
 	bash -c '[ "$(systemctl show -P Result depthkeyd)" = success ] && [ "$(systemctl show -P ExecMainStatus depthkeyd)" = 0 ]'
 systemctl start depthkeyd
 
+echo "== the technician's first steps (issue 30)"
+check "the docs are in /usr/share/doc/depthkey/docs, readable as Markdown" test -f /usr/share/doc/depthkey/docs/tools.md
+check "the docs the man pages name are installed (sequences.md)" test -f /usr/share/doc/depthkey/docs/sequences.md
+check "depthkey-calibrate --print-pattern writes a PDF" \
+	bash -c 'depthkey-calibrate --print-pattern /tmp/pattern.pdf --paper a4 >/dev/null && [ "$(head -c 5 /tmp/pattern.pdf)" = "%PDF-" ]'
+
 echo "== package upgrade, remove, purge"
 echo "# changed by the technician" >>"$config"
 t=$(now)

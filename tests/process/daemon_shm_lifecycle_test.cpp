@@ -10,6 +10,7 @@
 
 #include <csignal>
 #include <fcntl.h>
+#include <cstdio>
 #include <sys/mman.h>
 #include <sys/wait.h>
 
@@ -74,6 +75,44 @@ TEST(DaemonShmLifecycle, ASecondDaemonOnTheSameNamesExitsWithOneLine)
 	ASSERT_EQ(first.signal(SIGTERM), 0);
 	EXPECT_NE(first.waitExit(5s), -1);
 	depthkey::test::unlinkStreams(prefix);
+}
+
+// Issue 30: a second daemon with its own output names but the first one's
+// preview port exits at once, status 1, one line naming the port.
+TEST(DaemonShmLifecycle, ASecondDaemonOnTheSamePreviewPortExitsWithOneLine)
+{
+	const std::string prefix = "/depthkey-port-" + std::to_string(getpid());
+	DaemonProcess first, second;
+	ASSERT_TRUE(first.start({ "--config", first.writeFile("depthkey.toml", outputConfig(prefix + "-a")) }));
+	ASSERT_TRUE(first.waitForNotify("READY=1", 10s)) << first.log();
+	int port = 0;
+	ASSERT_TRUE(depthkey::test::waitUntil(
+		[&] {
+			size_t at = first.log().find("preview page at http://127.0.0.1:");
+			return at != std::string::npos &&
+			       std::sscanf(first.log().c_str() + at, "preview page at http://127.0.0.1:%d/", &port) == 1;
+		},
+		5s))
+		<< first.log();
+
+	const std::string listen = "127.0.0.1:" + std::to_string(port);
+	ASSERT_TRUE(second.start({ "--config", second.writeFile("depthkey.toml", outputConfig(prefix + "-b") +
+									 "[preview]\nlisten = \"" + listen + "\"\n") }));
+	const int status = second.waitExit(10s);
+	ASSERT_NE(status, -1) << "the second daemon runs on: " << second.log();
+	ASSERT_TRUE(WIFEXITED(status)) << second.log();
+	EXPECT_EQ(WEXITSTATUS(status), 1) << second.log();
+	EXPECT_EQ(second.countNotify("READY=1"), 0);
+	const std::string log = second.log();
+	EXPECT_EQ(countLines(log, "cannot start: preview.listen " + listen + ": the port is in use"), 1) << log;
+	EXPECT_EQ(countLines(log, "in use"), 1) << "one line, not two: " << log;
+	// It left nothing of its own names behind; the first runs on.
+	EXPECT_EQ(openStatus((prefix + "-b.composite").c_str()), -ENOENT);
+	EXPECT_TRUE(first.running());
+	ASSERT_EQ(first.signal(SIGTERM), 0);
+	EXPECT_NE(first.waitExit(5s), -1);
+	depthkey::test::unlinkStreams(prefix + "-a");
+	depthkey::test::unlinkStreams(prefix + "-b");
 }
 
 TEST(DaemonShmLifecycle, RenamesAndACleanStopLeaveNothingInDevShm)

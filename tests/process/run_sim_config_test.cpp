@@ -171,5 +171,28 @@ TEST_F(RunSimConfigErrors, MissingBoardCalibrationSaysHowToMakeIt)
 	EXPECT_FALSE(std::filesystem::exists(dir_ + "/run.toml"));
 }
 
+// Issue 30: the banner names the preview page and signals this daemon by its
+// own PID. A stand-in depthkeyd (the script execs it, so it has the
+// script's PID) prints its PID, which the banner's kill lines must name.
+TEST_F(RunSimConfigErrors, BannerNamesThePreviewAndThisDaemonsPid)
+{
+	write("sim-calibration.toml", "");
+	write("sim-board.toml", "");
+	std::filesystem::create_directories(dir_ + "/bin");
+	write("bin/depthkeyd", "#!/bin/sh\necho \"stand-in pid $$\"\n");
+	std::filesystem::permissions(dir_ + "/bin/depthkeyd", std::filesystem::perms::owner_all);
+	int status = 0;
+	std::string out = test::run("cd '" + test::sourceDir() + "' && sh daemon/run-sim.sh '" + dir_ + "/bin' '" + dir_ + "'",
+				    status);
+	ASSERT_EQ(status, 0) << out;
+	size_t at = out.find("stand-in pid ");
+	ASSERT_NE(at, std::string::npos) << out;
+	std::string pid = out.substr(at + 13, out.find('\n', at) - at - 13);
+	EXPECT_NE(out.find("the preview page: http://127.0.0.1:8080/"), std::string::npos) << out;
+	EXPECT_NE(out.find("  kill -USR1 " + pid + " "), std::string::npos) << out;
+	EXPECT_NE(out.find("  kill -HUP " + pid + " "), std::string::npos) << out;
+	EXPECT_EQ(out.find("pidof"), std::string::npos) << out;
+}
+
 } // namespace
 } // namespace depthkey

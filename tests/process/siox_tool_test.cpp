@@ -37,7 +37,7 @@ int runTool(const std::string &args)
 
 int writeRgbPng(const std::string &path, const RgbImage &image)
 {
-	// The tool reads PNG and JPEG (hal/image_file_reader.hpp).
+	// A PNG through imgcodecs; tests/process/siox_formats_test.cpp has the other formats.
 	cv::Mat rgb(image.height(), image.width(), CV_8UC3, const_cast<Rgb8 *>(image.data())), bgr;
 	cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
 	return cv::imwrite(path, bgr) ? 0 : -1;

@@ -56,13 +56,23 @@ struct BoardOptions {
 
 void usage(FILE *out)
 {
+	std::fprintf(out, "usage (depthkey-calibrate --help has every form):\n");
+	printBoardUsage(out);
+}
+
+} // namespace
+
+void printBoardUsage(FILE *out)
+{
 	std::fprintf(out,
-		     "usage: depthkey-calibrate --board --write-board-pattern FILE [--board-size WxH]\n"
+		     "       depthkey-calibrate --board --write-board-pattern FILE [--board-size WxH]\n"
 		     "       depthkey-calibrate --board (--sim [--seed N] [--no-distortion] [--colour-size WxH]\n"
 		     "                                   | --image COLOUR.png)\n"
 		     "                          [--board-size WxH] [--grid COLSxROWS] [--fill F]\n"
 		     "                          [--output FILE] [--max-rms PX]\n");
 }
+
+namespace {
 
 int parse(int argc, char **argv, BoardOptions &o)
 {

@@ -5,12 +5,16 @@
 #include "config/board_calibration_file.hpp"
 
 #include <cstdint>
+#include <cstdio>
 #include <string>
 
 namespace depthkey {
 
 // Parses "WxH" (either x), each side at least 16 and at most maxW / maxH.
 bool parseSize(const char *text, int &w, int &h, int maxW, int maxH);
+// The --board forms' usage lines (each indented as a continuation of
+// "usage:"), for depthkey-calibrate --help and --board --help.
+void printBoardUsage(FILE *out);
 // True when argv asks for --board.
 bool wantsBoardCalibration(int argc, char **argv);
 // The whole command; returns the exit status.

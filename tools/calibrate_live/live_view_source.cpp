@@ -17,6 +17,11 @@ namespace {
 constexpr double kStillS = 0.5;
 constexpr double kColourStillPx = 1.0;
 constexpr double kTofStillPx = 0.5;
+// A camera that has not seen the whole grid this long into a view says why
+// (issue 30: within 2 s, not at the timeout), and again when the reason
+// changes; the reason is looked at no more often than kExplainEveryUs.
+constexpr uint64_t kExplainAfterUs = 1'500'000;
+constexpr uint64_t kExplainEveryUs = 500'000;
 
 double largestMove(const std::vector<ImagePoint> &a, const std::vector<ImagePoint> &b)
 {
@@ -132,6 +137,20 @@ void LiveViewSource::onStatus(const char *role, const std::string &name, const D
 	std::fflush(stdout);
 }
 
+void LiveViewSource::MissReport::report(uint64_t startUs, uint64_t nowUs, const std::function<GridMiss()> &explain)
+{
+	if (nowUs < nextUs)
+		return;
+	nextUs = nowUs + kExplainEveryUs;
+	GridMiss miss = explain();
+	if (miss.reason() == lastReason)
+		return;
+	lastReason = miss.reason();
+	std::printf("        %s camera, %.1f s into the view: %s\n", camera, (nowUs - startUs) / 1e6,
+		    miss.describe().c_str());
+	std::fflush(stdout);
+}
+
 int LiveViewSource::read(size_t i, ColourFrame &colour, DepthFrame &depth, std::string &error)
 {
 	const uint64_t startUs = loop_.nowUs();
@@ -141,6 +160,7 @@ int LiveViewSource::read(size_t i, ColourFrame &colour, DepthFrame &depth, std::
 	Stillness colourGrid, tofGrid;
 	ColourFrame searchedColour;
 	DepthFrame searchedDepth;
+	MissReport colourMiss{ "colour", {}, 0 }, tofMiss{ "depth (amplitude)", {}, 0 };
 	while (loop_.nowUs() < deadlineUs) {
 		// Short waits: a search's end is seen within 10 ms.
 		int ret = sd_event_run(loop_.handle(), 10'000);
@@ -172,6 +192,13 @@ int LiveViewSource::read(size_t i, ColourFrame &colour, DepthFrame &depth, std::
 			colourGrid.update(found && timeNs >= startUs * 1000u, timeNs, kColourStillPx);
 		if (tofSearch_.done(found, tofGrid.centres, timeNs))
 			tofGrid.update(found && timeNs >= startUs * 1000u, timeNs, kTofStillPx); // ToF pixels
+		uint64_t nowUs = loop_.nowUs();
+		if (nowUs >= startUs + kExplainAfterUs) {
+			if (!colourGrid.seen && haveColour_)
+				colourMiss.report(startUs, nowUs, [&] { return explainColourMiss(lastColour_.rgb, options_.grid); });
+			if (!tofGrid.seen && haveDepth_)
+				tofMiss.report(startUs, nowUs, [&] { return explainAmplitudeMiss(lastDepth_.amplitude, options_.grid); });
+		}
 		if (colourGrid.stillS() >= kStillS && tofGrid.stillS() >= kStillS) {
 			// The frames whose grids were still: the last searched.
 			colour = searchedColour;

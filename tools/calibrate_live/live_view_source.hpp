@@ -19,6 +19,7 @@
 #include "settings/settings.hpp"
 #include "tools/calibrate_live/background_grid_search.hpp"
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -60,6 +61,13 @@ private:
 		bool seen = false;
 		void update(bool found, uint64_t timeNs, double limitPx);
 		double stillS() const { return seen ? (lastNs - sinceNs) / 1e9 : 0; }
+	};
+	// Says once, and again when it changes, why a camera does not see the grid.
+	struct MissReport {
+		const char *camera;
+		std::string lastReason;
+		uint64_t nextUs = 0;
+		void report(uint64_t startUs, uint64_t nowUs, const std::function<GridMiss()> &explain);
 	};
 	void onStatus(const char *role, const std::string &name, const DeviceStatus &status);
 
