@@ -236,7 +236,7 @@ GridMiss explainMiss(const cv::Mat &gray, GridSize grid, double minArea)
 	GridMiss miss;
 	miss.expected = grid.count();
 	std::vector<cv::KeyPoint> blobs;
-	blobDetector(gray.cols, gray.rows, grid, minArea)->detect(gray, blobs);
+	cv::SimpleBlobDetector::create(blobParams(gray.cols, gray.rows, grid, minArea))->detect(gray, blobs);
 	miss.circles = static_cast<int>(blobs.size());
 	if (blobs.empty()) {
 		miss.kind = GridMiss::Kind::NoCircles;
