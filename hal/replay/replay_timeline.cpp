@@ -149,7 +149,13 @@ void ReplayTimeline::emitNext()
 			onDepth_(depth_);
 		}
 	} else if (colourLeft) {
-		ret = reader_.readColour(nextColour_++, colour_);
+		ret = reader_.readColour(nextColour_, colour_);
+		// A sequence with mask/ is scored live as the simulator is (issue 29).
+		if (ret >= 0 && reader_.hasMask())
+			ret = reader_.readMask(nextColour_, colour_.truth);
+		else if (ret >= 0)
+			colour_.truth.resize(0, 0);
+		nextColour_++;
 		if (ret >= 0) {
 			colour_.timestampNs = localNs(colour_.timestampNs);
 			colour_.sequence += loops_ * reader_.colour().size();

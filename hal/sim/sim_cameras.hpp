@@ -95,6 +95,7 @@ private:
 	ColourCameraSettings settings_;
 	SimSettings sim_;
 	LectureSimulator simulator_;
+	GroundTruth truth_; // reused; its alpha is copied into each frame (same size: no allocation)
 	std::shared_ptr<const sim::SimTechnician> technician_;
 };
 
