@@ -38,8 +38,9 @@ private:
 	std::string path_;
 };
 
-// A short simulated sequence: colour frames with truth, the depth frames
-// paired with them (each once).
+// A short simulated sequence: colour frames with truth (in the frame, as
+// the simulated camera gives it, and beside it), the depth frames paired
+// with them (each once).
 struct Recorded {
 	std::vector<ColourFrame> colour;
 	std::vector<Gray8Image> masks;
@@ -55,6 +56,7 @@ Recorded simulate(int frames)
 	GroundTruth t;
 	for (uint64_t n = 0; static_cast<int>(r.colour.size()) < frames; ++n) {
 		sequence.frame(n, c, t, [&](const DepthFrame &f) { r.depth.push_back(f); });
+		c.truth = t.alpha;
 		r.colour.push_back(c);
 		r.masks.push_back(t.alpha);
 	}
@@ -111,9 +113,30 @@ TEST(Recording, WriteThenReadIsBitExact)
 	SequenceWriter writer;
 	ASSERT_EQ(writer.open(dir), 0) << writer.describeError();
 	for (size_t i = 0; i < sim.colour.size(); ++i) {
-		ASSERT_EQ(writer.writeColour(sim.colour[i]), 0);
+		ColourFrame withoutTruth = sim.colour[i];
+		withoutTruth.truth = Gray8Image{};
+		ASSERT_EQ(writer.writeColour(withoutTruth), 0);
 		ASSERT_EQ(writer.writeMask(sim.masks[i], sim.colour[i].timestampNs, sim.colour[i].sequence), 0);
 	}
+	for (const DepthFrame &d : sim.depth)
+		ASSERT_EQ(writer.writeDepth(d), 0);
+	writer.close();
+	SequenceReader reader;
+	ASSERT_EQ(reader.open(dir), 0) << reader.describeError();
+	expectSame(sim, reader, reader);
+}
+
+// A colour frame that carries its truth (the simulated camera's) is written
+// with it: a recording of the simulator replays scored live (issue 29).
+TEST(Recording, ColourFrameWithTruthWritesItsMask)
+{
+	Recorded sim = simulate(6);
+	TempDir temp;
+	std::string dir = temp;
+	SequenceWriter writer;
+	ASSERT_EQ(writer.open(dir), 0) << writer.describeError();
+	for (const ColourFrame &c : sim.colour)
+		ASSERT_EQ(writer.writeColour(c), 0) << writer.describeError();
 	for (const DepthFrame &d : sim.depth)
 		ASSERT_EQ(writer.writeDepth(d), 0);
 	writer.close();
@@ -224,6 +247,8 @@ TEST(Recording, ReplayCamerasPlayTheRecordingInOrder)
 	ASSERT_EQ(gotDepth.size(), sim.depth.size());
 	for (size_t i = 0; i < sim.colour.size(); ++i) {
 		EXPECT_TRUE(gotColour[i].rgb == sim.colour[i].rgb);
+		// mask/ was written beside the frames: each comes with its truth.
+		EXPECT_TRUE(gotColour[i].truth == sim.masks[i]) << i;
 		// Re-stamped onto this run's clock, the offsets exactly as recorded.
 		EXPECT_EQ(gotColour[i].timestampNs - gotColour[0].timestampNs,
 			  sim.colour[i].timestampNs - sim.colour[0].timestampNs);
