@@ -77,6 +77,7 @@ backend = "replay"
 [replay]
 path = "$work/seq"
 realtime = true
+loop = false
 [output]
 composite_name = "/depthkey-live-$$.composite"
 lecturer_name = "/depthkey-live-$$.lecturer"
@@ -90,9 +91,9 @@ for percent in $percents; do
 	sh -c 'echo $$ > "$1/cgroup.procs" && exec "$2/depthkeyd" --config "$3"' sh "$share" "$bin" "$work/replay.toml" \
 		2> "$work/daemon.log" &
 	daemon=$!
-	# The replay starts over after its last frame: stop within the first pass
-	# (the status line is logged every 5 s).
-	sleep $((seconds + 1))
+	# The replay plays once: the status line (logged every 5 s) after its
+	# end scores exactly the frames depthkey-eval scored, those published.
+	sleep $((seconds + 7))
 	kill "$daemon"
 	wait "$daemon" || true
 	daemon=
