@@ -9,6 +9,7 @@ void LiveScore::add(const Gray8Image &lecturer, const Gray8Image &truth, uint64_
 	if (truth.empty())
 		return;
 	record(scorer_.score(lecturer, truth), captureNs);
+	lastLayer_ = lecturer; // same size: the vector reuses its storage
 }
 
 void LiveScore::addWithoutLecturer(const Gray8Image &truth, uint64_t captureNs)
@@ -18,6 +19,14 @@ void LiveScore::addWithoutLecturer(const Gray8Image &truth, uint64_t captureNs)
 	if (blank_.width() != truth.width() || blank_.height() != truth.height())
 		blank_ = Gray8Image(truth.width(), truth.height(), 0); // once per frame size
 	record(scorer_.score(blank_, truth), captureNs);
+	lastLayer_ = blank_;
+}
+
+void LiveScore::addRepeated(const Gray8Image &truth, uint64_t captureNs)
+{
+	if (truth.empty() || lastLayer_.empty())
+		return;
+	record(scorer_.score(lastLayer_, truth), captureNs);
 }
 
 void LiveScore::record(const SegmentationScore &s, uint64_t captureNs)
@@ -63,6 +72,7 @@ LiveScoreFigures LiveScore::sinceStart() const
 void LiveScore::reset()
 {
 	held_ = next_ = 0;
+	lastLayer_ = Gray8Image{};
 	newestNs_ = 0;
 	total_ = {};
 	iouSum_ = boundaryFSum_ = 0;

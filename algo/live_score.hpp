@@ -32,6 +32,10 @@ public:
 	// A frame that went out with no lecturer in it (the board's picture
 	// alone): scored as an empty layer.
 	void addWithoutLecturer(const Gray8Image &truth, uint64_t captureNs);
+	// A frame not published (shed: the box was too slow): the student goes
+	// on seeing the last layer that went out, scored against the truth of
+	// the time the lost frame stands for. Nothing before a first layer.
+	void addRepeated(const Gray8Image &truth, uint64_t captureNs);
 
 	// The frames captured within kWindowNs of the newest scored one.
 	LiveScoreFigures recent() const;
@@ -48,6 +52,7 @@ private:
 
 	SegmentationScorer scorer_{ 2 };
 	Gray8Image blank_;
+	Gray8Image lastLayer_; // what went out last (a same-size copy a frame)
 	// 1024 frames: 5 s at up to 200 fps; at a faster rate the window is shorter.
 	std::array<Entry, 1024> ring_{};
 	size_t next_ = 0, held_ = 0;

@@ -24,11 +24,15 @@ void Daemon::keyDueFrames(bool makeRoom)
 	submitting_ = true;
 	while (queue.next(nowNs, keying, makeRoom)) {
 		makeRoom = false; // one frame's room
+		const uint64_t shedBefore = keyer_.dropped();
 		KeyingJob *job = keyer_.nextJob(mayDrop);
 		if (!job) { // the worker is stopped: the daemon is stopping
 			queue.pop();
 			continue;
 		}
+		// A frame shed: the student keeps seeing the last one out (issue 29).
+		if (keyer_.dropped() != shedBefore)
+			liveScore_.addRepeated(job->colour.truth, job->colour.timestampNs);
 		job->setDepth(keying.depth);
 		job->makeComposite = compositeReadHere(nowNs);
 		queue.popInto(job->colour); // a swap: no copy

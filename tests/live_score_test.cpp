@@ -100,3 +100,27 @@ TEST(LiveScore, NoAllocationPerFrameOnceSized)
 	}
 	EXPECT_EQ(counter.count(), 0u);
 }
+
+// A shed frame: the last layer that went out stays on screen, scored
+// against the lost frame's truth.
+TEST(LiveScore, ShedFrameScoresTheLastLayerAgainstItsOwnTruth)
+{
+	LiveScore live;
+	const Gray8Image here = maskRect(40, 30, 5, 5, 15, 25);
+	const Gray8Image movedOn = maskRect(40, 30, 10, 5, 20, 25); // the lecturer moved 5 px
+	live.addRepeated(movedOn, kSecond); // nothing went out yet: nothing to repeat
+	EXPECT_EQ(live.sinceStart().frames, 0u);
+	live.add(here, here, kSecond);
+	live.addRepeated(movedOn, kSecond + kSecond / 25);
+	SegmentationScorer offline(2);
+	const SegmentationScore stale = offline.score(here, movedOn);
+	EXPECT_EQ(live.sinceStart().frames, 2u);
+	EXPECT_DOUBLE_EQ(live.sinceStart().iou, (1.0 + stale.iou) / 2);
+	EXPECT_LT(stale.iou, 1.0);
+	// After a board-only frame the board alone stays on screen.
+	live.reset();
+	live.add(here, here, kSecond);
+	live.addWithoutLecturer(here, 2 * kSecond);
+	live.addRepeated(here, 3 * kSecond);
+	EXPECT_DOUBLE_EQ(live.sinceStart().iou, 1.0 / 3);
+}
