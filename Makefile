@@ -163,7 +163,7 @@ JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 # Keep tool objects (intermediates of the pattern rule) so nothing rebuilds twice.
 .SECONDARY:
 
-.PHONY: all run test check process-check accuracy-sizes recording-minute offset-trials hil hil-campaign bench bench-process soak frame-instructions deps deb deb-deps package-test boot-test install clean fuzz fuzz-build
+.PHONY: all run test check process-check accuracy-sizes recording-minute offset-trials live-share live-table hil hil-campaign bench bench-process soak frame-instructions deps deb deb-deps package-test boot-test install clean fuzz fuzz-build
 .DEFAULT_GOAL := all
 
 # The SR-2 emulator is built (for the HIL tests) but not installed.
@@ -239,6 +239,18 @@ recording-minute: deps
 	@$(MAKE) --no-print-directory -j$(JOBS) all $(PROCESS_TESTS)
 	@DEPTHKEY_RECORDING_SECONDS=60 $(PROCESS_RUN) $(PROCESS_TESTS) \
 	    --gtest_filter='ShmCatRateTest.PrintedRecordingKeepsWallTimeOnASlowBox'
+
+# Issue 29: the daemon on 35 % of one core (a cgroup CPU quota) for 60 s,
+# its live score against depthkey-eval's; and the note's table (seeds 1-3
+# at 100/50/35 %, 640x480 25 fps and 1280x720 30 fps; LIVE_SECONDS a run).
+live-share: deps
+	@$(MAKE) --no-print-directory -j$(JOBS) all $(PROCESS_TESTS)
+	@DEPTHKEY_LIVE_SHARE=1 $(PROCESS_RUN) $(PROCESS_TESTS) --gtest_filter='LiveScoreDaemon.UnderACpuShareLiveIsOffline'
+
+LIVE_SECONDS ?= 60
+live-table: deps
+	@$(MAKE) --no-print-directory -j$(JOBS) all
+	@sh tests/process/live_vs_offline.sh --table $(BIN) $(LIVE_SECONDS)
 
 bench: deps
 	@$(MAKE) --no-print-directory -j$(JOBS) $(BENCH)

@@ -20,6 +20,11 @@ struct DepthFrame {
 
 struct ColourFrame {
 	RgbImage rgb;
+	// What the frame shows, when something knows it: the lecturer's coverage
+	// (0..255, lecturer where >= 128, as depthkey-eval scores it), filled by
+	// the simulated camera and by a replay of a sequence with mask/ (issue
+	// 29). Empty from a real camera: the daemon then scores nothing.
+	Gray8Image truth;
 	uint64_t timestampNs = 0; // capture time, CLOCK_MONOTONIC
 	uint64_t sequence = 0;
 };

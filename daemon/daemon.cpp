@@ -315,6 +315,10 @@ StatusSnapshot Daemon::statusSnapshot() const
 	s.board = board_.statusText();
 	s.webcam = { webcam_.path(), webcam_.status(), webcam_.framesWritten() };
 	s.shed = keyer_.dropped();
+	s.boardOnly = boardOnlyFrames_;
+	if (liveScore_.scoring()) {
+		s.liveScore = { liveScore_.recent(), liveScore_.sinceStart() };
+	}
 	return s;
 }
 

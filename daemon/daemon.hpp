@@ -5,6 +5,7 @@
 // of dying.
 #pragma once
 
+#include "algo/live_score.hpp"
 #include "algo/pipeline.hpp"
 #include "daemon/board_output.hpp"
 #include "daemon/command_line_overrides.hpp"
@@ -92,6 +93,7 @@ private:
 	// colour: the frame, the lecturer layer's colours; null for NO SIGNAL.
 	// parts: the keyed frame's composite parts; null when it went out
 	// without depth (the colour frame is the composite) and for NO SIGNAL.
+	void scorePublished(const ColourFrame &frame, bool keyed);
 	void publish(const RgbImage *colour, const CompositeInputs *parts, uint64_t captureNs, uint32_t flags);
 	// Whether the pipeline's composite image is read by more than the
 	// recorder's shared memory this frame (preview, virtual webcam, stage dumps).
@@ -132,6 +134,11 @@ private:
 	bool calibrated_ = false;
 	int colourWidth_ = 0, colourHeight_ = 0, depthWidth_ = 0, depthHeight_ = 0; // last frames
 	PipelineOutput output_;
+	// Each published frame against its truth, when the colour source knows
+	// it (issue 29); the board-only frames published after depth first came.
+	LiveScore liveScore_;
+	uint64_t boardOnlyFrames_ = 0;
+	bool depthKeyed_ = false;
 	FramePairing pairing_;     // colour frames waiting for depth, the depth camera's offset
 	PipelineStatus pipelineStatus_; // the pipeline's, as of the last keyed frame (loop's copy)
 	// A reload that came while a frame was being keyed, applied between frames.

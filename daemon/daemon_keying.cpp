@@ -26,11 +26,15 @@ void Daemon::keyDueFrames(bool makeRoom)
 	submitting_ = true;
 	while (queue.next(nowNs, keying, makeRoom)) {
 		makeRoom = false; // one frame's room
+		const uint64_t shedBefore = keyer_.dropped();
 		KeyingJob *job = keyer_.nextJob(mayDrop);
 		if (!job) { // the worker is stopped: the daemon is stopping
 			queue.pop();
 			continue;
 		}
+		// A frame shed: the student keeps seeing the last one out (issue 29).
+		if (keyer_.dropped() != shedBefore)
+			liveScore_.addRepeated(job->colour.truth, job->colour.timestampNs);
 		job->setDepth(keying.depth);
 		job->makeComposite = compositeReadHere(nowNs);
 		queue.popInto(job->colour); // a swap: no copy
@@ -95,6 +99,7 @@ void Daemon::onKeyed(KeyingJob &job)
 	if (depth)
 		parts = pipeline_.compositeInputs(frame.rgb, output_.alpha);
 	publish(&frame.rgb, depth ? &parts : nullptr, frame.timestampNs, flags);
+	scorePublished(frame, depth != nullptr);
 	pipelineStatus_ = pipeline_.status();
 	// The frame's work, wherever it ran: the pipeline on the worker and
 	// the rest here; not the time it waited for the worker.
@@ -118,6 +123,26 @@ void Daemon::betweenFrames()
 		pendingReload_.reset();
 		applyNow(reload.first, reload.second);
 	}
+}
+
+// What went out against the truth of the time it stands for (issue 29),
+// here on the loop where every published frame is known, not on the
+// keying worker. Without a truth (a real camera) nothing is done.
+void Daemon::scorePublished(const ColourFrame &frame, bool keyed)
+{
+	const bool boardOnly = !keyed && board_.boardGeometry();
+	depthKeyed_ = depthKeyed_ || keyed;
+	if (boardOnly && depthKeyed_)
+		boardOnlyFrames_++;
+	if (frame.truth.empty())
+		return;
+	// The lecturer layer in camera geometry: the keyed alpha, the colour
+	// frame unkeyed (all lecturer) in camera geometry, none at all when the
+	// board's picture went out alone.
+	if (boardOnly)
+		liveScore_.addWithoutLecturer(frame.truth, frame.timestampNs);
+	else
+		liveScore_.add(output_.alpha, frame.truth, frame.timestampNs);
 }
 
 bool Daemon::compositeReadHere(uint64_t nowNs) const

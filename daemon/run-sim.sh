@@ -77,6 +77,10 @@ Look at its output from another terminal:
   $bin/depthkey-shmcat --stream lecturer --frames 1 | ffmpeg -y -i - lecturer.png
   kill -USR1 $pid    # stage snapshots (PNG) into $snapshots; this daemon only (PID $pid)
   kill -HUP $pid     # re-read $config (edit that file, not $source, for it)
-Status lines below; Ctrl-C stops it.
+Status lines below (every 5 s); each ends with the live score, what the student sees
+against the simulator's truth: "live IoU . BF . (5 s), . . over N frames" (IoU and
+boundary F at 2 px of the lecturer layer, over the last 5 s and since the start,
+as depthkey-eval scores them), and the frames that showed the board alone.
+Ctrl-C stops it.
 MSG
 exec "$bin/depthkeyd" --config "$config" --snapshot-dir "$snapshots"

@@ -112,13 +112,23 @@ std::string StatusReporter::statusLine(const StatusSnapshot &s, const Rates &rat
 		      : s.calibrationLoaded ? "calibration for other frame sizes (identity mapping)"
 					    : "not calibrated (identity mapping)",
 		      s.board.c_str());
+	std::string line = text;
+	if (s.liveScore) {
+		// The simulator's (or a replay's) truth: what the student sees, scored.
+		const LiveScoreFigures &r = s.liveScore->recent, &a = s.liveScore->sinceStart;
+		char live[160];
+		std::snprintf(live, sizeof(live), "; live IoU %.3f BF %.3f (5 s), %.3f %.3f over %llu frames, %llu board-only",
+			      r.iou, r.boundaryF, a.iou, a.boundaryF, static_cast<unsigned long long>(a.frames),
+			      static_cast<unsigned long long>(s.boardOnly));
+		line += live;
+	}
 	if (s.webcam.device.empty())
-		return text;
+		return line;
 	char webcam[256];
 	std::snprintf(webcam, sizeof(webcam), "; webcam %s %s %llu dropped", s.webcam.device.c_str(),
 		      v4l2OutputStateName(s.webcam.status.state),
 		      static_cast<unsigned long long>(s.webcam.status.droppedFrames));
-	return std::string(text) + webcam;
+	return line + webcam;
 }
 
 // What the preview page (/status.json, /metrics) shows: the figures of the
@@ -137,6 +147,11 @@ PreviewStatus StatusReporter::previewStatus(const StatusSnapshot &snapshot, cons
 	s.keying.p99Ms = double(keying_.quantileUs(0.99)) / 1000.0;
 	s.keying.p999Ms = double(keying_.quantileUs(0.999)) / 1000.0;
 	s.keying.maxMs = double(keying_.maxUs()) / 1000.0;
+	s.boardOnly = snapshot.boardOnly;
+	if (snapshot.liveScore) {
+		const LiveScoreFigures &r = snapshot.liveScore->recent, &a = snapshot.liveScore->sinceStart;
+		s.liveScore = { true, r.frames, r.iou, r.boundaryF, a.frames, a.iou, a.boundaryF };
+	}
 	s.paired = snapshot.pairing.paired;
 	s.unpaired = snapshot.pairing.unpaired;
 	s.calibrated = snapshot.calibrated;

@@ -7,6 +7,7 @@
 
 #include "algo/frame_pairer.hpp"
 #include "algo/latency_estimator.hpp"
+#include "algo/live_score.hpp"
 #include "daemon/keying_times.hpp"
 #include "daemon/service_notifier.hpp"
 #include "hal/camera.hpp"
@@ -52,6 +53,12 @@ struct StatusSnapshot {
 	std::string board;                  // BoardOutput::statusText()
 	StatusWebcam webcam;
 	uint64_t shed = 0;                  // colour frames not keyed: the box is too slow
+	uint64_t boardOnly = 0;             // the board's picture alone, after depth first came
+	// Issue 29: the published frames against their truth; absent without one.
+	struct LiveScores {
+		LiveScoreFigures recent, sinceStart;
+	};
+	std::optional<LiveScores> liveScore;
 };
 
 class StatusReporter

@@ -119,3 +119,30 @@ TEST(PreviewStatus, TheVirtualWebcamIsReportedWhenConfigured)
 	EXPECT_NE(text.find("depthkey_webcam_dropped_frames_total{device=\"/dev/video10\"} 7\n"), std::string::npos);
 	EXPECT_NE(text.find("depthkey_webcam_up{device=\"/dev/video10\"} 0\n"), std::string::npos);
 }
+
+// Issue 29: the live score, when the frames have a truth (the simulator, a
+// replayed sequence's mask/); nothing of it from a real camera.
+TEST(PreviewStatus, LiveScoreIsReportedOnlyWhenScored)
+{
+	PreviewStatus s = sample();
+	s.boardOnly = 3;
+	EXPECT_FALSE(nlohmann::json::parse(previewStatusJson(s)).contains("live_score"));
+	EXPECT_EQ(previewStatusMetrics(s).find("depthkey_live_"), std::string::npos);
+	s.liveScore = { true, 125, 0.9375, 0.75, 1500, 0.96875, 0.8125 }; // exact binary fractions
+	nlohmann::json j = nlohmann::json::parse(previewStatusJson(s));
+	EXPECT_EQ(j["output"]["board_only"], 3);
+	EXPECT_EQ(j["live_score"]["recent"]["window_s"], 5);
+	EXPECT_EQ(j["live_score"]["recent"]["frames"], 125);
+	EXPECT_EQ(j["live_score"]["recent"]["iou"], 0.9375);
+	EXPECT_EQ(j["live_score"]["recent"]["bf"], 0.75);
+	EXPECT_EQ(j["live_score"]["since_start"]["frames"], 1500);
+	EXPECT_EQ(j["live_score"]["since_start"]["iou"], 0.96875);
+	EXPECT_EQ(j["live_score"]["since_start"]["bf"], 0.8125);
+	const std::string text = previewStatusMetrics(s);
+	EXPECT_NE(text.find("depthkey_live_iou{window=\"5s\"} 0.9375\n"), std::string::npos) << text;
+	EXPECT_NE(text.find("depthkey_live_iou{window=\"start\"} 0.96875\n"), std::string::npos);
+	EXPECT_NE(text.find("depthkey_live_boundary_f{window=\"5s\"} 0.75\n"), std::string::npos);
+	EXPECT_NE(text.find("depthkey_live_boundary_f{window=\"start\"} 0.8125\n"), std::string::npos);
+	EXPECT_NE(text.find("depthkey_live_scored_frames_total 1500\n"), std::string::npos);
+	EXPECT_NE(text.find("depthkey_board_only_frames_total 3\n"), std::string::npos);
+}

@@ -38,8 +38,9 @@ private:
 	std::string path_;
 };
 
-// A short simulated sequence: colour frames with truth, the depth frames
-// paired with them (each once).
+// A short simulated sequence: colour frames with truth (in the frame, as
+// the simulated camera gives it, and beside it), the depth frames paired
+// with them (each once).
 struct Recorded {
 	std::vector<ColourFrame> colour;
 	std::vector<Gray8Image> masks;
@@ -55,6 +56,7 @@ Recorded simulate(int frames)
 	GroundTruth t;
 	for (uint64_t n = 0; static_cast<int>(r.colour.size()) < frames; ++n) {
 		sequence.frame(n, c, t, [&](const DepthFrame &f) { r.depth.push_back(f); });
+		c.truth = t.alpha;
 		r.colour.push_back(c);
 		r.masks.push_back(t.alpha);
 	}
@@ -103,16 +105,22 @@ TEST(Recording, TimestampsRoundTripToTheNanosecond)
 	EXPECT_FALSE(recording::parseTimestamp("", ns));
 }
 
-TEST(Recording, WriteThenReadIsBitExact)
+// Writes sim into dir and reads it back, each mask written by writeMask
+// (the masks apart) or by writeColour from the frame's truth.
+static void writeThenRead(const Recorded &sim, bool masksApart)
 {
-	Recorded sim = simulate(12);
 	TempDir temp;
 	std::string dir = temp;
 	SequenceWriter writer;
 	ASSERT_EQ(writer.open(dir), 0) << writer.describeError();
 	for (size_t i = 0; i < sim.colour.size(); ++i) {
-		ASSERT_EQ(writer.writeColour(sim.colour[i]), 0);
-		ASSERT_EQ(writer.writeMask(sim.masks[i], sim.colour[i].timestampNs, sim.colour[i].sequence), 0);
+		ColourFrame colour = sim.colour[i];
+		if (masksApart)
+			colour.truth = Gray8Image{};
+		ASSERT_EQ(writer.writeColour(colour), 0) << writer.describeError();
+		if (masksApart) {
+			ASSERT_EQ(writer.writeMask(sim.masks[i], colour.timestampNs, colour.sequence), 0);
+		}
 	}
 	for (const DepthFrame &d : sim.depth)
 		ASSERT_EQ(writer.writeDepth(d), 0);
@@ -120,6 +128,18 @@ TEST(Recording, WriteThenReadIsBitExact)
 	SequenceReader reader;
 	ASSERT_EQ(reader.open(dir), 0) << reader.describeError();
 	expectSame(sim, reader, reader);
+}
+
+TEST(Recording, WriteThenReadIsBitExact)
+{
+	writeThenRead(simulate(12), true);
+}
+
+// A colour frame that carries its truth (the simulated camera's) is written
+// with it: a recording of the simulator replays scored live (issue 29).
+TEST(Recording, ColourFrameWithTruthWritesItsMask)
+{
+	writeThenRead(simulate(6), false);
 }
 
 TEST(Recording, DaemonRecorderWritesEverythingItWasGiven)
@@ -224,6 +244,8 @@ TEST(Recording, ReplayCamerasPlayTheRecordingInOrder)
 	ASSERT_EQ(gotDepth.size(), sim.depth.size());
 	for (size_t i = 0; i < sim.colour.size(); ++i) {
 		EXPECT_TRUE(gotColour[i].rgb == sim.colour[i].rgb);
+		// mask/ was written beside the frames: each comes with its truth.
+		EXPECT_TRUE(gotColour[i].truth == sim.masks[i]) << i;
 		// Re-stamped onto this run's clock, the offsets exactly as recorded.
 		EXPECT_EQ(gotColour[i].timestampNs - gotColour[0].timestampNs,
 			  sim.colour[i].timestampNs - sim.colour[0].timestampNs);

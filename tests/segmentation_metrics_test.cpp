@@ -1,30 +1,19 @@
 #include "algo/segmentation_metrics.hpp"
 #include "algo/trimap.hpp"
 #include "algo/trimap_attribution.hpp"
+#include "mask_rect.hpp"
 
 #include <gtest/gtest.h>
 
 using namespace depthkey;
-
-namespace {
-
-Gray8Image rect(int w, int h, int x0, int y0, int x1, int y1) // [x0, x1) x [y0, y1)
-{
-	Gray8Image m(w, h, 0);
-	for (int y = y0; y < y1; ++y)
-		for (int x = x0; x < x1; ++x)
-			m.at(x, y) = 255;
-	return m;
-}
-
-} // namespace
+using depthkey::test::maskRect;
 
 TEST(SegmentationMetrics, ShiftedSquareHasKnownIouFnrFpr)
 {
 	// Truth 4x4 at (2,2); prediction the same square one pixel right:
 	// overlap 3x4 = 12, union 20, 4 lost of 16, 4 taken of 84 board pixels.
-	Gray8Image truth = rect(10, 10, 2, 2, 6, 6);
-	Gray8Image pred = rect(10, 10, 3, 2, 7, 6);
+	Gray8Image truth = maskRect(10, 10, 2, 2, 6, 6);
+	Gray8Image pred = maskRect(10, 10, 3, 2, 7, 6);
 	SegmentationScorer scorer;
 	SegmentationScore s = scorer.score(pred, truth);
 	EXPECT_DOUBLE_EQ(s.iou, 12.0 / 20.0);
@@ -38,9 +27,9 @@ TEST(SegmentationMetrics, BoundaryBeyondToleranceScoresZero)
 {
 	// Left part up to column 9 vs up to column 12: edges 3 px apart.
 	SegmentationScorer scorer(2);
-	SegmentationScore s = scorer.score(rect(20, 10, 0, 0, 13, 10), rect(20, 10, 0, 0, 10, 10));
+	SegmentationScore s = scorer.score(maskRect(20, 10, 0, 0, 13, 10), maskRect(20, 10, 0, 0, 10, 10));
 	EXPECT_DOUBLE_EQ(s.boundaryF, 0.0);
-	s = scorer.score(rect(20, 10, 0, 0, 11, 10), rect(20, 10, 0, 0, 10, 10));
+	s = scorer.score(maskRect(20, 10, 0, 0, 11, 10), maskRect(20, 10, 0, 0, 10, 10));
 	EXPECT_DOUBLE_EQ(s.boundaryF, 1.0);
 	EXPECT_DOUBLE_EQ(s.iou, 10.0 / 11.0);
 }
@@ -53,8 +42,8 @@ TEST(SegmentationMetrics, PartlyMatchedBoundaryHasHandCountedF)
 	// 11 within 2 px of (9,5)), column 14 rows 6..9 (no): precision 7/14.
 	// Truth's: rows 0..4 (match), (9,5) and (9,6) near (10,5) (1, sqrt 2),
 	// rows 7..9 not: recall 7/10.
-	Gray8Image truth = rect(20, 10, 0, 0, 10, 10);
-	Gray8Image pred = rect(20, 10, 0, 0, 10, 10);
+	Gray8Image truth = maskRect(20, 10, 0, 0, 10, 10);
+	Gray8Image pred = maskRect(20, 10, 0, 0, 10, 10);
 	for (int y = 5; y < 10; ++y)
 		for (int x = 10; x < 15; ++x)
 			pred.at(x, y) = 255;

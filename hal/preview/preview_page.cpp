@@ -51,6 +51,12 @@ async function refresh() {
                       d.frames + " frames, " + d.dropped + " dropped, " + d.faults + " faults, " +
                       d.reconnects + " reconnects", d.state === "streaming"));
     body.append(row("output", s.output.fps.toFixed(1) + " fps, " + s.output.frames + " frames"));
+    if (s.live_score)
+      body.append(row("live score (against the truth)",
+                      "IoU " + s.live_score.recent.iou.toFixed(3) + ", BF " + s.live_score.recent.bf.toFixed(3) +
+                      " over 5 s; IoU " + s.live_score.since_start.iou.toFixed(3) + ", BF " +
+                      s.live_score.since_start.bf.toFixed(3) + " since start (" + s.live_score.since_start.frames +
+                      " frames); " + s.output.board_only + " board-only frames", s.output.board_only === 0));
     body.append(row("pairing", s.pairing.paired + " paired, " + s.pairing.unpaired + " unpaired"));
     body.append(row("calibration", s.calibration.calibrated ? "loaded " + s.calibration.file
                                                              : "not calibrated", s.calibration.calibrated));

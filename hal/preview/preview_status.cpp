@@ -20,7 +20,7 @@ std::string previewStatusJson(const PreviewStatus &s)
 	nlohmann::json j = {
 		{ "uptime_s", s.uptimeS },
 		{ "devices", devices },
-		{ "output", { { "fps", s.outputFps }, { "frames", s.published } } },
+		{ "output", { { "fps", s.outputFps }, { "frames", s.published }, { "board_only", s.boardOnly } } },
 		{ "pairing", { { "paired", s.paired }, { "unpaired", s.unpaired } } },
 		{ "keying",
 		  { { "frames", s.keying.count },
@@ -55,6 +55,14 @@ std::string previewStatusJson(const PreviewStatus &s)
 		    { "auth_blocks", s.previewAuthBlocks },
 		    { "slow_requests_cut", s.previewSlowRequestsCut } } },
 	};
+	if (s.liveScore.scored)
+		j["live_score"] = { { "recent", { { "window_s", 5 },
+						  { "frames", s.liveScore.recentFrames },
+						  { "iou", s.liveScore.recentIou },
+						  { "bf", s.liveScore.recentBoundaryF } } },
+				    { "since_start", { { "frames", s.liveScore.frames },
+						       { "iou", s.liveScore.iou },
+						       { "bf", s.liveScore.boundaryF } } } };
 	// Names come from config and devices: replace anything not UTF-8.
 	return j.dump(1, '\t', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
@@ -132,6 +140,20 @@ std::string previewStatusMetrics(const PreviewStatus &s)
 	e.sample("depthkey_keying_seconds_count", "", static_cast<double>(s.keying.count));
 	e.family("depthkey_keying_max_seconds", "gauge", "The longest keying of a frame since the start.");
 	e.sample("depthkey_keying_max_seconds", "", s.keying.maxMs / 1000.0);
+	e.family("depthkey_board_only_frames_total", "counter",
+		 "Frames that showed the board's picture alone after depth first came.");
+	e.sample("depthkey_board_only_frames_total", "", static_cast<double>(s.boardOnly));
+	if (s.liveScore.scored) {
+		e.family("depthkey_live_iou", "gauge", "Published lecturer layer against the truth: mean IoU per frame.");
+		e.sample("depthkey_live_iou", "window=\"5s\"", s.liveScore.recentIou);
+		e.sample("depthkey_live_iou", "window=\"start\"", s.liveScore.iou);
+		e.family("depthkey_live_boundary_f", "gauge",
+			 "Published lecturer layer against the truth: mean boundary F (2 px) per frame.");
+		e.sample("depthkey_live_boundary_f", "window=\"5s\"", s.liveScore.recentBoundaryF);
+		e.sample("depthkey_live_boundary_f", "window=\"start\"", s.liveScore.boundaryF);
+		e.family("depthkey_live_scored_frames_total", "counter", "Published frames scored against a truth.");
+		e.sample("depthkey_live_scored_frames_total", "", static_cast<double>(s.liveScore.frames));
+	}
 	e.family("depthkey_paired_frames_total", "counter", "Colour frames keyed with a depth frame.");
 	e.sample("depthkey_paired_frames_total", "", static_cast<double>(s.paired));
 	e.family("depthkey_unpaired_frames_total", "counter", "Colour frames without a depth frame near in time.");

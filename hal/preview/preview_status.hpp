@@ -48,6 +48,17 @@ struct PreviewDepthOffset {
 	double appliedMs = 0;
 };
 
+// Issue 29: the published frames scored against their truth (the
+// simulator's, a replayed sequence's mask/), over the last 5 s and since
+// the start; not scored from a real camera.
+struct PreviewLiveScore {
+	bool scored = false;
+	uint64_t recentFrames = 0;
+	double recentIou = 0, recentBoundaryF = 0;
+	uint64_t frames = 0;
+	double iou = 0, boundaryF = 0;
+};
+
 struct PreviewStatus {
 	double uptimeS = 0;
 	std::vector<PreviewDevice> devices;
@@ -55,6 +66,8 @@ struct PreviewStatus {
 	uint64_t published = 0;          // frames published to shared memory
 	PreviewKeying keying;
 	uint64_t paired = 0, unpaired = 0;
+	uint64_t boardOnly = 0;          // the board's picture alone, after depth first came
+	PreviewLiveScore liveScore;
 	bool calibrated = false;
 	std::string calibrationFile;
 	double depthLatencyMs = 0;       // arrival after the depth frame's capture time

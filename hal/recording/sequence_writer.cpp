@@ -156,7 +156,12 @@ int SequenceWriter::writeImage(Stream stream, const Image<Pixel> &image, uint64_
 
 int SequenceWriter::writeColour(const ColourFrame &frame)
 {
-	return writeImage(Rgb, frame.rgb, frame.timestampNs, frame.sequence);
+	int ret = writeImage(Rgb, frame.rgb, frame.timestampNs, frame.sequence);
+	// A simulated camera's truth goes beside it: a replay of the recording
+	// is scored live as the simulator is (issue 29).
+	if (ret >= 0 && !frame.truth.empty())
+		ret = writeMask(frame.truth, frame.timestampNs, frame.sequence);
+	return ret;
 }
 
 int SequenceWriter::writeDepth(const DepthFrame &frame)

@@ -34,7 +34,7 @@ public:
 	const std::string &folder() const { return dir_; }
 	void close();
 
-	int writeColour(const ColourFrame &frame);
+	int writeColour(const ColourFrame &frame); // and its truth, when it has one, into mask/
 	int writeDepth(const DepthFrame &frame);
 	// Ground truth for the colour frame with this timestamp and sequence.
 	int writeMask(const Gray8Image &mask, uint64_t timestampNs, uint64_t sequence);

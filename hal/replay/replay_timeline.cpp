@@ -218,6 +218,11 @@ void ReplayTimeline::emitNext()
 int ReplayTimeline::readColour(size_t i)
 {
 	int ret = reader_.readColour(i, colourFrame_);
+	// A sequence with mask/ is scored live as the simulator is (issue 29).
+	if (ret >= 0 && reader_.hasMask())
+		ret = reader_.readMask(i, colourFrame_.truth);
+	else if (ret >= 0)
+		colourFrame_.truth.resize(0, 0);
 	if (ret < 0) {
 		error_ = reader_.describeError();
 		return ret;

@@ -17,7 +17,9 @@ void SimColourCamera::render(uint64_t nowUs, ColourFrame &frame)
 {
 	if (technician_)
 		simulator_.setCalibrationTarget(technician_->targetAt(nowUs / 1e6));
-	simulator_.renderColour(nowUs / 1e6, frame);
+	simulator_.renderColour(nowUs / 1e6, frame, &truth_);
+	// The daemon's live score (issue 29) reads it where the frame is published.
+	frame.truth = truth_.alpha;
 }
 
 void SimDepthCamera::prepare()

@@ -107,6 +107,7 @@ private:
 	SimSettings sim_;
 	LectureSimulator simulator_;
 	sim::SimTiming timing_;
+	GroundTruth truth_; // reused; its alpha is copied into each frame (same size: no allocation)
 	std::shared_ptr<const sim::SimTechnician> technician_;
 };
 

@@ -169,6 +169,12 @@ TEST_F(PreviewDaemon, PageStreamStatusAndMetrics)
 	}
 	EXPECT_EQ(j["readers"]["composite"], 0);
 	EXPECT_GT(j["preview"]["encoded"].get<int>(), 3);
+	// Issue 29: the simulated colour camera's truth scores what went out.
+	ASSERT_TRUE(j.contains("live_score")) << status.body;
+	EXPECT_GT(j["live_score"]["since_start"]["frames"].get<int>(), 0);
+	EXPECT_GT(j["live_score"]["since_start"]["iou"].get<double>(), 0.5);
+	EXPECT_LE(j["live_score"]["since_start"]["iou"].get<double>(), 1.0);
+	EXPECT_GT(j["live_score"]["recent"]["frames"].get<int>(), 0);
 
 	depthkey::test::HttpReply metrics = curlGet(url + "/metrics");
 	EXPECT_EQ(metrics.code, 200);
@@ -180,6 +186,7 @@ TEST_F(PreviewDaemon, PageStreamStatusAndMetrics)
 	EXPECT_TRUE(firstDigit >= '1' && firstDigit <= '9') << metrics.body;
 	EXPECT_NE(metrics.body.find("# TYPE depthkey_device_reconnects_total counter"), std::string::npos);
 	EXPECT_NE(metrics.body.find("depthkey_readers{stream=\"lecturer\"} 0"), std::string::npos);
+	EXPECT_NE(metrics.body.find("\ndepthkey_live_iou{window=\"5s\"} 0."), std::string::npos) << metrics.body;
 }
 
 TEST_F(PreviewDaemon, ClientsThatStopReadingDoNotSlowTheFrameRate)
