@@ -235,8 +235,17 @@ GridMiss explainMiss(const cv::Mat &gray, GridSize grid, double minArea)
 {
 	GridMiss miss;
 	miss.expected = grid.count();
+	// Bounded as the search is (issue 31 point 12): --live asks on its loop
+	// every half second, whatever the frame shows.
+	const cv::SimpleBlobDetector::Params params = blobParams(gray.cols, gray.rows, grid, minArea);
+	if (tooManyPatches(gray, params, grid)) {
+		miss.kind = GridMiss::Kind::TooMany;
+		miss.circles = kCandidatesPerCircle * grid.count();
+		miss.countIsFloor = true;
+		return miss;
+	}
 	std::vector<cv::KeyPoint> blobs;
-	cv::SimpleBlobDetector::create(blobParams(gray.cols, gray.rows, grid, minArea))->detect(gray, blobs);
+	cv::SimpleBlobDetector::create(params)->detect(gray, blobs);
 	miss.circles = static_cast<int>(blobs.size());
 	if (blobs.empty()) {
 		miss.kind = GridMiss::Kind::NoCircles;
@@ -389,6 +398,9 @@ std::string GridMiss::describe() const
 {
 	if (kind == Kind::Found || kind == Kind::NoCircles)
 		return reason();
+	if (kind == Kind::TooMany)
+		return (countIsFloor ? "over " : "") + std::to_string(circles) + " circle-like blobs for the " +
+		       std::to_string(expected) + " circles, " + reason();
 	return std::to_string(circles) + " of " + std::to_string(expected) + " circles found, " + reason();
 }
 
@@ -397,7 +409,12 @@ GridMiss explainColourMiss(const RgbImage &rgb, GridSize grid)
 	cv::Mat src(rgb.height(), rgb.width(), CV_8UC3, const_cast<Rgb8 *>(rgb.data()));
 	cv::Mat gray;
 	cv::cvtColor(src, gray, cv::COLOR_RGB2GRAY);
-	return explainMiss(gray, grid, kColourMinArea);
+	// As findColourGrid searches: at most kMaxDetectionWidth wide. Where
+	// blobs touch the border is the same at any scale.
+	const int shrink = (gray.cols + kMaxDetectionWidth - 1) / kMaxDetectionWidth;
+	if (shrink > 1)
+		cv::resize(gray, gray, cv::Size(gray.cols / shrink, gray.rows / shrink), 0, 0, cv::INTER_AREA);
+	return explainMiss(gray, grid, kColourMinArea / (shrink * shrink));
 }
 
 GridMiss explainAmplitudeMiss(const Gray16Image &amplitude, GridSize grid)

@@ -50,6 +50,7 @@ int findAmplitudeGrid(const Gray16Image &amplitude, GridSize grid, std::vector<I
 struct GridMiss {
 	enum class Kind { Found, NoCircles, Cut, Hidden, TooMany, NotAGrid } kind = Kind::Found;
 	int circles = 0;             // dark round blobs the detector saw
+	bool countIsFloor = false;   // TooMany counted no further than circles
 	int expected = 0;            // grid.count()
 	std::string edges;           // "left", "top and right"...: where blobs touch the border
 	// "25 of 35 circles found, whole columns are missing at the image's left edge: ...".

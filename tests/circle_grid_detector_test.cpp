@@ -192,6 +192,24 @@ TEST(CircleGridClutter, LargeNoiseAndDotFramesAreRefusedAsClutter)
 	EXPECT_EQ(timedFind("1920x1080, 4800 dots", test::dotField(1920, 1080, 4800), GridSize{}), -E2BIG);
 }
 
+// The reason a live view gives (issue 30) is asked on depthkey-calibrate
+// --live's loop every half second: bounded as the search is, it calls such a
+// frame too many, not after seconds of blob detection at full size.
+TEST(CircleGridClutter, TheMissReasonOfNoiseAndDotsIsTooMany)
+{
+	for (const auto &[what, rgb] : { std::pair{ "1920x1080 noise", test::noiseImage(1920, 1080) },
+					 { "640x480, 2100 dots", test::dotField(640, 480, 2100) } }) {
+		auto start = std::chrono::steady_clock::now();
+		const GridMiss miss = explainColourMiss(rgb, GridSize{});
+		std::printf("%s: explained in %.3f s: %s\n", what,
+			    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+			    miss.describe().c_str());
+		EXPECT_EQ(miss.kind, GridMiss::Kind::TooMany) << what;
+		EXPECT_GT(miss.circles, GridSize{}.count()) << what;
+		EXPECT_NE(miss.describe().find("circle-like blobs for the 35 circles"), std::string::npos) << what;
+	}
+}
+
 TEST_F(CircleGridDetector, ClutterIsNamedWithItsCamera)
 {
 	renderer_.render(renderer_.poseFor({ 1.6, 0, 0 }, 0), 1, colour_, depth_);
