@@ -68,7 +68,7 @@ size_t maxBlobs(GridSize grid)
 // a circle's size for each circle is clutter or noise, refused before the
 // detector runs. The middle thresholds go first: there such a frame shows
 // the most patches, so it is refused after one or two.
-constexpr int kCandidatesPerCircle = 16;
+constexpr int kCandidatesPerCircle = 64;
 
 bool tooManyPatches(const cv::Mat &gray, const cv::SimpleBlobDetector::Params &p, GridSize grid)
 {

@@ -184,6 +184,7 @@ TEST(CircleGridClutter, AFieldOfDotsIsRefusedAsClutter)
 {
 	EXPECT_EQ(timedFind("640x480, 2100 dots", test::dotField(640, 480, 2100), GridSize{}), -E2BIG);
 	EXPECT_EQ(timedFind("640x480, 520 dots", test::dotField(640, 480, 520), GridSize{}), -E2BIG);
+	EXPECT_EQ(timedFind("640x480 noise", test::noiseImage(640, 480), GridSize{}), -E2BIG);
 }
 
 TEST(CircleGridClutter, LargeNoiseAndDotFramesAreRefusedAsClutter)

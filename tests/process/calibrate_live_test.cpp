@@ -64,7 +64,9 @@ TEST_F(CalibrateLive, SimulatedCamerasGiveACalibrationCloseToTheTruth)
 	const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 	std::printf("[ live     ] %.1f s for 15 views\n", seconds);
 	ASSERT_EQ(status, 0) << out;
-	EXPECT_EQ(count(out, "/15: hold the pattern") // the views, not a reason why one is not seen yet, 15) << out;
+	// The views' instructions, not a reason why one is not seen yet ("hold
+	// the pattern upright", said 1.5 s into a slow view).
+	EXPECT_EQ(count(out, "/15: hold the pattern"), 15) << out;
 	EXPECT_NE(out.find("view  2/15: hold the pattern 0.9 m from the camera, top left of the image"),
 		  std::string::npos)
 		<< out;
