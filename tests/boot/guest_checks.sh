@@ -59,8 +59,10 @@ check "calibration folder /var/lib/depthkey owned by depthkey" test "$(stat -c %
 
 echo "== shared memory for the depthkey group"
 ls -l /dev/shm | sed 's/^/  /'
-check "/dev/shm/depthkey.composite is depthkey:depthkey 0660 (the group writes only reader heartbeats)" \
-	test "$(stat -c %U:%G:%a /dev/shm/depthkey.composite)" = depthkey:depthkey:660
+check "/dev/shm/depthkey.composite is depthkey:depthkey 0640 (the group reads frames, cannot write them)" \
+	test "$(stat -c %U:%G:%a /dev/shm/depthkey.composite)" = depthkey:depthkey:640
+check "/dev/shm/depthkey.composite.readers is depthkey:depthkey 0660 (the group writes only reader heartbeats)" \
+	test "$(stat -c %U:%G:%a /dev/shm/depthkey.composite.readers)" = depthkey:depthkey:660
 useradd --system --no-create-home --groups depthkey recorder
 useradd --system --no-create-home stranger
 t=$(now)
