@@ -100,6 +100,8 @@ BUILDROOT ?= build
 ifeq ($(SAN),1)
 BUILD := $(BUILDROOT)/san
 SANFLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+# fontconfig's process-long cache, reached through cairo (tests/lsan-suppressions.txt).
+export LSAN_OPTIONS ?= suppressions=$(CURDIR)/tests/lsan-suppressions.txt
 else ifeq ($(SAN),thread)
 # ThreadSanitizer: every part with a thread (the recorder's worker, the
 # reload worker). halt_on_error: a race fails the test run.
