@@ -54,14 +54,14 @@ TEST(LiveScoreDaemon, SimulatedCamerasAreScoredInTheStatusLine)
 			const auto &all = daemon.notifications();
 			for (auto it = all.rbegin(); it != all.rend(); ++it)
 				if (it->find("STATUS=") != std::string::npos)
-					return parseLive(*it, f) && f.frames >= 60;
+					return parseLive(*it, f) && f.frames >= 150;
 			return false;
 		},
-		40s, 100ms);
-	// 60 frames: the last 5 s then lie past the first second, where the
+		60s, 100ms);
+	// 150 frames: the last 5 s then lie past the first seconds, where the
 	// colour models are still being learnt (a slow build, SAN=1, keys few
-	// frames a second, and a window of only those scored 0.34).
-	ASSERT_GE(f.frames, 60) << daemon.log();
+	// frames a second; a window of the first 60 scored 0.35 in 1 of 4 runs).
+	ASSERT_GE(f.frames, 150) << daemon.log();
 	// The simulated lecturer keyed by the shipped pipeline: far from
 	// nothing, below perfection (a figure that is computed, not copied).
 	EXPECT_GT(f.iou, 0.5);
