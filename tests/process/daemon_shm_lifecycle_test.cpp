@@ -50,6 +50,20 @@ int countLines(const std::string &log, const std::string &text)
 
 } // namespace
 
+// A second daemon that must not run: it exits at once, status 1, never
+// ready, with exactly one line saying why (and no other line on it).
+static void expectExitedWithOneLine(DaemonProcess &second, const std::string &line, const std::string &keyword)
+{
+	const int status = second.waitExit(10s);
+	ASSERT_NE(status, -1) << "the second daemon runs on: " << second.log();
+	ASSERT_TRUE(WIFEXITED(status)) << second.log();
+	EXPECT_EQ(WEXITSTATUS(status), 1) << second.log();
+	EXPECT_EQ(second.countNotify("READY=1"), 0);
+	const std::string log = second.log();
+	EXPECT_EQ(countLines(log, line), 1) << log;
+	EXPECT_EQ(countLines(log, keyword), 1) << "one line, not two: " << log;
+}
+
 TEST(DaemonShmLifecycle, ASecondDaemonOnTheSameNamesExitsWithOneLine)
 {
 	const std::string prefix = "/depthkey-two-" + std::to_string(getpid());
@@ -58,15 +72,8 @@ TEST(DaemonShmLifecycle, ASecondDaemonOnTheSameNamesExitsWithOneLine)
 	ASSERT_TRUE(first.waitForNotify("READY=1", 10s)) << first.log();
 
 	ASSERT_TRUE(second.start({ "--config", second.writeFile("depthkey.toml", outputConfig(prefix)) }));
-	const int status = second.waitExit(10s);
-	ASSERT_NE(status, -1) << "the second daemon runs on: " << second.log();
-	ASSERT_TRUE(WIFEXITED(status)) << second.log();
-	EXPECT_EQ(WEXITSTATUS(status), 1) << second.log();
-	EXPECT_EQ(second.countNotify("READY=1"), 0);
-	const std::string log = second.log();
-	EXPECT_EQ(countLines(log, "cannot start: " + prefix + ".composite: lock: another writer has it open"), 1)
-		<< log;
-	EXPECT_EQ(countLines(log, "another writer"), 1) << "one line, not two: " << log;
+	expectExitedWithOneLine(second, "cannot start: " + prefix + ".composite: lock: another writer has it open",
+				"another writer");
 
 	// The first keeps publishing under its names, untouched.
 	EXPECT_TRUE(first.running());
@@ -98,14 +105,7 @@ TEST(DaemonShmLifecycle, ASecondDaemonOnTheSamePreviewPortExitsWithOneLine)
 	const std::string listen = "127.0.0.1:" + std::to_string(port);
 	ASSERT_TRUE(second.start({ "--config", second.writeFile("depthkey.toml", outputConfig(prefix + "-b") +
 									 "[preview]\nlisten = \"" + listen + "\"\n") }));
-	const int status = second.waitExit(10s);
-	ASSERT_NE(status, -1) << "the second daemon runs on: " << second.log();
-	ASSERT_TRUE(WIFEXITED(status)) << second.log();
-	EXPECT_EQ(WEXITSTATUS(status), 1) << second.log();
-	EXPECT_EQ(second.countNotify("READY=1"), 0);
-	const std::string log = second.log();
-	EXPECT_EQ(countLines(log, "cannot start: preview.listen " + listen + ": the port is in use"), 1) << log;
-	EXPECT_EQ(countLines(log, "in use"), 1) << "one line, not two: " << log;
+	expectExitedWithOneLine(second, "cannot start: preview.listen " + listen + ": the port is in use", "in use");
 	// It left nothing of its own names behind; the first runs on.
 	EXPECT_EQ(openStatus((prefix + "-b.composite").c_str()), -ENOENT);
 	EXPECT_TRUE(first.running());
