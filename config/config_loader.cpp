@@ -127,7 +127,12 @@ void bindDaemon(TomlSection &sec, DaemonSettings &s)
 	sec.string("snapshot_dir", s.snapshotDir, checkOptionalAbsolutePath);
 	sec.string("record_dir", s.recordDir, checkOptionalAbsolutePath);
 	sec.integer("record_compression", s.recordCompression, 0, 9);
-	sec.integer("keying_share", s.keyingShare, 10, 100); // ignored since issue 28; old configs load
+	// Retired with the token bucket when keying left the loop (issue 28):
+	// still accepted (10..100) so that a kept /etc config loads, bound only
+	// when present so that it is no longer listed as a default.
+	int retiredKeyingShare = 0;
+	if (sec.has("keying_share"))
+		sec.integer("keying_share", retiredKeyingShare, 10, 100);
 }
 
 void bindColour(TomlSection &sec, ColourCameraSettings &s)

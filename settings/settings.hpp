@@ -20,7 +20,6 @@ struct DaemonSettings {
 	std::string snapshotDir = "";       // where SIGUSR1 stage snapshots go; "" = off
 	std::string recordDir = "";         // record the camera inputs here; "" = off
 	int recordCompression = 1;          // PNG zlib level 0..9 of the recording
-	int keyingShare = 75;               // ignored since keying left the loop (issue 28); accepted so old configs load
 	bool operator==(const DaemonSettings &) const = default;
 };
 

@@ -80,7 +80,6 @@ log_level = "debug"
 snapshot_dir = "/var/lib/depthkey/snapshots"
 record_dir = "/srv/recordings/today"
 record_compression = 6
-keying_share = 40
 [colour]
 backend = "v4l2"
 device = "/dev/v4l/by-id/usb-cam"
@@ -185,7 +184,7 @@ loop = false
 		ADD_FAILURE() << e.toString();
 
 	Settings expected;
-	expected.daemon = { "debug", "/var/lib/depthkey/snapshots", "/srv/recordings/today", 6, 40 };
+	expected.daemon = { "debug", "/var/lib/depthkey/snapshots", "/srv/recordings/today", 6 };
 	expected.colour = { "v4l2", "/dev/v4l/by-id/usb-cam", 1280, 720, 30, "mjpeg", 2000 };
 	expected.depth = { "sr2", 15, 500, 400, 5000, "1-2.3", 90, true, 12000, 20000,
 			   { { 0x0A, 7 }, { 0x0B, 255 } }, "usb-Intel_RealSense-video-index0",
@@ -217,8 +216,10 @@ loop = false
 	EXPECT_NE(expected.replay, defaults.replay);
 }
 
-TEST(ConfigLoader, KeyingShareIsAPercentFrom10)
+TEST(ConfigLoader, RetiredKeyingShareStillLoadsAndIsRangeChecked)
 {
+	// Retired (issue 28), but a config kept in /etc that still has it loads.
+	EXPECT_TRUE(parseConfig("[daemon]\nkeying_share = 75\n", kFile).errors.empty());
 	ConfigError e = onlyError("[daemon]\nkeying_share = 5\n");
 	EXPECT_EQ(e.key, "daemon.keying_share");
 	EXPECT_NE(e.message.find("10..100"), std::string::npos) << e.message;

@@ -23,13 +23,6 @@ LED_POWER=0 LED_DEPTH=1 LED_COLOUR=2 LED_CALIBRATION=3 LED_READER=4 LED_ERROR=5 
 LED_LINES="$LED_POWER $LED_DEPTH $LED_COLOUR $LED_CALIBRATION $LED_READER $LED_ERROR $LED_BOARD"
 
 cat >"$DK_CONFIG" <<TOML
-[daemon]
-# Under TCG keying takes 150-190 ms a frame. When it ran on the event loop
-# the SR-2's transfers waited a keyed frame at each step and it delivered
-# 0.5-1.5 of its 10 fps (CI, stop 22); keying now has a thread of its own
-# (issue 28) and this key is ignored, kept until the suite is re-measured.
-keying_share = 40
-
 [colour]
 backend = "v4l2"
 device = "/dev/video0"
