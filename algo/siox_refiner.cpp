@@ -8,37 +8,6 @@
 
 namespace depthkey {
 
-namespace {
-
-// Temporary marks inside work_ while flooding; seeds are only ever 0 or 255.
-constexpr uint8_t kUnreachedLecturer = 1;
-constexpr uint8_t kUnreachedBoard = 2;
-// The frame around the image: neither lecturer nor board, and for the hole
-// filling the way out to the border.
-constexpr uint8_t kOutside = 3;
-constexpr uint8_t kCounting = 4;
-
-// Floods from the pixels on the stack through 4-neighbours marked `from`,
-// re-marking them `to`. Every pixel is pushed at most once.
-void flood(uint8_t *m, int stride, int32_t *stack, size_t top, uint8_t from, uint8_t to)
-{
-	while (top) {
-		const int p = stack[--top];
-		auto visit = [&](int q) {
-			if (m[q] == from) {
-				m[q] = to;
-				stack[top++] = q;
-			}
-		};
-		visit(p - 1);
-		visit(p + 1);
-		visit(p - stride);
-		visit(p + stride);
-	}
-}
-
-} // namespace
-
 void SioxRefiner::refine(const RgbImage &colour, const Gray8Image &trimap, const Roi &roi, BandEvidence &evidence,
 			 Gray8Image &alpha)
 {
@@ -47,13 +16,13 @@ void SioxRefiner::refine(const RgbImage &colour, const Gray8Image &trimap, const
 		height_ = colour.height();
 		stride_ = width_ + 2;
 		work_.resize(stride_, height_ + 2);
-		std::memset(work_.data(), kOutside, work_.size());
+		std::memset(work_.data(), kBandOutside, work_.size());
 		const size_t pixels = size_t(width_) * height_;
 		// Grows only when the image grows; steady state never gets here.
 		spans_.reserve(size_t(width_ / 2 + 1) * height_);
 		colourConfidence_.reserve(pixels);
 		next_.reserve(pixels);
-		stack_.reserve(pixels);
+		components_.reserve(pixels);
 	}
 	alpha.resize(width_, height_);
 	std::memset(alpha.data(), 0, alpha.size());
@@ -66,8 +35,9 @@ void SioxRefiner::refine(const RgbImage &colour, const Gray8Image &trimap, const
 		decideByCut(colour, trimap);
 	else if (settings_.smoothing > 0)
 		smooth();
-	keepComponentsTouchingLecturer();
-	fillHoles();
+	const size_t minKeep = std::max(kFreeComponentMinPx, size_t(width_) * size_t(height_) / kFreeComponentDivisor);
+	components_.keepTouchingLecturer(work_.data(), stride_, spans_, lecturerBeyondBorder_, minKeep);
+	components_.fillHoles(work_.data(), stride_, spans_, colourConfidence_.data(), kClearlyBoard);
 	writeAlpha(roi, alpha);
 }
 
@@ -139,75 +109,6 @@ void SioxRefiner::smooth()
 	forEachBandPixel([&](int p, int) { m[p] = m[p] >= 128 ? 255 : 0; });
 }
 
-void SioxRefiner::keepComponentsTouchingLecturer()
-{
-	const int stride = stride_;
-	uint8_t *m = work_.data();
-	forEachBandPixel([&](int p, int) {
-		if (m[p])
-			m[p] = kUnreachedLecturer;
-	});
-	size_t top = 0;
-	stack_.resize(bandPixels_);
-	forEachBandPixel([&](int p, int) {
-		auto anchor = [&](uint8_t n) { return n == 255 || (n == kOutside && lecturerBeyondBorder_); };
-		if (m[p] == kUnreachedLecturer &&
-		    (anchor(m[p - 1]) || anchor(m[p + 1]) || anchor(m[p - stride]) || anchor(m[p + stride]))) {
-			m[p] = 255;
-			stack_[top++] = p;
-		}
-	});
-	flood(m, stride, stack_.data(), top, kUnreachedLecturer, 255);
-	// The rest: kept if large (an arm cut from the body by clothes of the
-	// board's colour, which SIOX calls board), else dropped (specks, chalk
-	// writing the colour of a shirt).
-	const size_t minKeep = std::max(kFreeComponentMinPx, size_t(width_) * size_t(height_) / kFreeComponentDivisor);
-	forEachBandPixel([&](int p, int) {
-		if (m[p] != kUnreachedLecturer)
-			return;
-		// Collect the component breadth-first in stack_ (as a list).
-		size_t head = 0, tail = 0;
-		m[p] = kCounting;
-		stack_[tail++] = p;
-		while (head < tail) {
-			const int q = stack_[head++];
-			for (int r : { q - 1, q + 1, q - stride, q + stride })
-				if (m[r] == kUnreachedLecturer) {
-					m[r] = kCounting;
-					stack_[tail++] = r;
-				}
-		}
-		const uint8_t keep = tail >= minKeep ? 255 : 0;
-		for (size_t k = 0; k < tail; ++k)
-			m[stack_[k]] = keep;
-	});
-}
-
-void SioxRefiner::fillHoles()
-{
-	const int stride = stride_;
-	uint8_t *m = work_.data();
-	forEachBandPixel([&](int p, int) {
-		if (!m[p])
-			m[p] = kUnreachedBoard;
-	});
-	// Board seeds and the image border (kOutside) are where the board goes on.
-	auto open = [](uint8_t v) { return v == 0 || v == kOutside; };
-	size_t top = 0;
-	forEachBandPixel([&](int p, int) {
-		if (m[p] == kUnreachedBoard &&
-		    (open(m[p - 1]) || open(m[p + 1]) || open(m[p - stride]) || open(m[p + stride]))) {
-			m[p] = 0;
-			stack_[top++] = p;
-		}
-	});
-	flood(m, stride, stack_.data(), top, kUnreachedBoard, 0);
-	forEachBandPixel([&](int p, int k) {
-		if (m[p] == kUnreachedBoard)
-			m[p] = colourConfidence_[k] < kClearlyBoard ? 0 : 255;
-	});
-}
-
 void SioxRefiner::writeAlpha(const Roi &roi, Gray8Image &alpha) const
 {
 	for (int y = roi.y0; y < roi.y1; ++y)
@@ -221,7 +122,7 @@ void SioxRefiner::writeAlpha(const Roi &roi, Gray8Image &alpha) const
 		for (int x = s.x0, p = at(s.x0, s.y), k = s.first; x < s.x1; ++x, ++p, ++k) {
 			// An edge: a 4-neighbour inside the image on the other side.
 			const uint8_t v = m[p];
-			auto differs = [&](uint8_t n) { return n != v && n != kOutside; };
+			auto differs = [&](uint8_t n) { return n != v && n != kBandOutside; };
 			if (!differs(m[p - 1]) && !differs(m[p + 1]) && !differs(m[p - stride]) && !differs(m[p + stride]))
 				continue;
 			const uint8_t c = colourConfidence_[k];

@@ -27,10 +27,11 @@
 // The band is kept as a list of horizontal spans (row, first, last), found
 // once per frame (algo/band_scan.hpp skips the seeds between them, 16 labels
 // at a time on the SIMD paths); every later step walks the spans. The working mask has a
-// one-pixel frame of kOutside around the image, so neighbours are read
+// one-pixel frame of kBandOutside around the image, so neighbours are read
 // without bounds checks and no pixel index is ever divided back into x, y.
 #pragma once
 
+#include "algo/band_components.hpp"
 #include "algo/band_evidence.hpp"
 #include "algo/band_graph_cut.hpp"
 #include "algo/image.hpp"
@@ -90,8 +91,6 @@ private:
 	void collectAndClassify(const Gray8Image &trimap, const Roi &roi, BandEvidence &evidence);
 	void smooth();
 	void decideByCut(const RgbImage &colour, const Gray8Image &trimap);
-	void keepComponentsTouchingLecturer();
-	void fillHoles();
 	void writeAlpha(const Roi &roi, Gray8Image &alpha) const;
 
 	// Index of image pixel (x, y) in work_.
@@ -109,13 +108,13 @@ private:
 	bool lecturerBeyondBorder_ = false;
 	KernelPath kernelPath_ = bestKernelPath();
 	int width_ = 0, height_ = 0, stride_ = 0;
-	Gray8Image work_;             // (w+2) x (h+2): seeds, band pixels 0 / 255, kOutside around
+	Gray8Image work_;             // (w+2) x (h+2): seeds, band pixels 0 / 255, kBandOutside around
 	std::vector<Span> spans_;
 	BandGraphCut cut_;
 	size_t cutMaxBandPixels_ = 0;
 	size_t bandPixels_ = 0;
 	std::vector<uint8_t> colourConfidence_, next_;
-	std::vector<int32_t> stack_;
+	BandComponents components_; // steps 3 and 4
 };
 
 } // namespace depthkey
