@@ -26,7 +26,13 @@ void Pipeline::configure(const PipelineSettings &settings, const MappingModel &m
 	for (SeededDepth &s : seeded_)
 		s.valid = false; // new settings: seed the next frames again
 	learner_.configure(settings.learning);
-	refiner_.configure(settings.siox);
+	// With the guided filter on, the soft edge is the filter's: it rewrites
+	// the whole ROI from the hard decision (alpha >= kConfidenceLecturer), and
+	// the refiner's soft alpha keeps that side, so making it would be wasted.
+	SioxSettings refinerSettings = settings.siox;
+	if (settings.siox.guidedRadius > 0)
+		refinerSettings.softAlpha = false;
+	refiner_.configure(refinerSettings);
 	refiner_.setGraphCut(settings.decision.cutSmoothness, settings.decision.cutEdgeSigma,
 			     size_t(settings.decision.cutMaxBandPixels), settings.decision.cutLevels,
 			     settings.decision.cutMargin);
