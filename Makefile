@@ -276,9 +276,14 @@ soak: deps
 # READY=1 and its VmRSS (anonymous / file-backed / shared memory) on the
 # simulated cameras, depthkey-siox's process start; medians, no verdict.
 #   make bench-process [BENCH_PROCESS_ARGS="--seconds 10 --runs 3 --siox IMAGE TRIMAP --breakdown --blocks"]
+# Then (issue 28) the keying worker's share of one core live, apart from the
+# loop and the simulator's rendering, the keying time and the frames shed, at
+# 640x480 25 fps and 1280x720 30 fps (tests/bench/keying_share.py):
+#   [KEYING_SHARE_ARGS="--seconds 10 --runs 3"]
 bench-process: deps
 	@$(MAKE) --no-print-directory -j$(JOBS) all $(SIM_CALIBRATION) $(SIM_BOARD_CALIBRATION)
 	@python3 tests/bench/process_bench.py $(BIN) $(BUILD) $(BENCH_PROCESS_ARGS)
+	@python3 tests/bench/keying_share.py $(BIN) $(BUILD) $(KEYING_SHARE_ARGS)
 
 # The instructions of one whole pipeline frame (640x480), callgrind on the
 # native build: the stand-in for `make bench` where its times mean nothing

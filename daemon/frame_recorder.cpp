@@ -1,5 +1,7 @@
 #include "daemon/frame_recorder.hpp"
 
+#include <pthread.h>
+
 namespace depthkey {
 
 int FrameRecorder::start(const std::string &dir, int pngCompression, std::string &error, int colourWidth,
@@ -81,6 +83,7 @@ std::string FrameRecorder::takeError()
 
 void FrameRecorder::run()
 {
+	pthread_setname_np(pthread_self(), "dk-record"); // for top -H and make bench-process
 	for (;;) {
 		Job job;
 		{

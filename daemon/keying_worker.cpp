@@ -1,5 +1,6 @@
 #include "daemon/keying_worker.hpp"
 
+#include <pthread.h>
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
@@ -63,6 +64,8 @@ void KeyingWorker::stop()
 
 void KeyingWorker::run()
 {
+	// Named, so that top -H and make bench-process tell keying from the loop.
+	pthread_setname_np(pthread_self(), "dk-keying");
 	std::unique_lock lock(mutex_);
 	for (;;) {
 		// The next waiting job, the oldest, once the loop took the last result.

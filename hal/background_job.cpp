@@ -1,5 +1,6 @@
 #include "hal/background_job.hpp"
 
+#include <pthread.h>
 #include <cerrno>
 #include <sys/epoll.h>
 #include <sys/eventfd.h>
@@ -33,6 +34,7 @@ int BackgroundJob::start(EventLoop &loop, std::function<void()> work, std::funct
 	try {
 		// The eventfd write is the release: done() sees all work() wrote.
 		thread_ = std::thread([this, work = std::move(work)] {
+			pthread_setname_np(pthread_self(), "dk-job"); // for top -H and make bench-process
 			work();
 			uint64_t one = 1;
 			(void)!::write(eventFd_.get(), &one, sizeof(one));

@@ -3,6 +3,7 @@
 #include "hal/preview/jpeg_encoder.hpp"
 #include "hal/preview/stage_picture.hpp"
 
+#include <pthread.h>
 #include <ctime>
 
 namespace depthkey {
@@ -166,6 +167,7 @@ void PreviewEncoder::encode(Slot &slot, const Work &work, JpegEncoder &jpeg)
 
 void PreviewEncoder::run()
 {
+	pthread_setname_np(pthread_self(), "dk-preview"); // for top -H and make bench-process
 	JpegEncoder jpeg;
 	Work work;
 	while (!stopping_) {

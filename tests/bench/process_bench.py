@@ -76,22 +76,28 @@ def bench_config(build, bin_dir, work, colour_board=False, replay=None):
     if replay:
         sections["colour"] = sections["depth"] = {"backend": '"replay"'}
         sections["replay"] = {"path": '"%s"' % replay}
+    name = "bench-replay.toml" if replay else "bench-colour-board.toml" if colour_board else "bench.toml"
+    path = os.path.join(work, name)
+    rewrite_config(config, path, sections, replace)
+    return path, tag
+
+
+def rewrite_config(source, path, sections, replace=None):
+    """SOURCE with sections[section][key] and replace[key] (any section)
+    written over those keys' values, into PATH."""
     lines, section = [], None
-    with open(config) as f:
+    with open(source) as f:
         for line in f:
             if line.startswith("["):
                 section = line.strip().strip("[]")
             key = line.split("=", 1)[0].strip()
             if "=" in line and key in sections.get(section, {}):
                 line = "%s = %s\n" % (key, sections[section][key])
-            elif "=" in line and key in replace:
+            elif "=" in line and key in (replace or {}):
                 line = "%s = %s\n" % (key, replace[key])
             lines.append(line)
-    name = "bench-replay.toml" if replay else "bench-colour-board.toml" if colour_board else "bench.toml"
-    path = os.path.join(work, name)
     with open(path, "w") as f:
         f.writelines(lines)
-    return path, tag
 
 
 def replay_sequence(build, bin_dir):
@@ -176,7 +182,9 @@ def drain_for(sock, seconds):
             return
 
 
-def run_daemon(bin_dir, config, work, seconds, extra_env=None):
+def start_daemon(bin_dir, config, work, extra_env=None):
+    """depthkeyd with a notify socket of ours (as systemd's) and its log in
+    WORK/daemon.log: (process, socket, log)."""
     sock_path = os.path.join(work, "notify.sock")
     if os.path.exists(sock_path):
         os.unlink(sock_path)
@@ -185,9 +193,25 @@ def run_daemon(bin_dir, config, work, seconds, extra_env=None):
     env = dict(os.environ, NOTIFY_SOCKET=sock_path, DEPTHKEY_LOG="stderr", **(extra_env or {}))
     env.pop("WATCHDOG_USEC", None)
     log = open(os.path.join(work, "daemon.log"), "w")
-    start = time.monotonic()
     proc = subprocess.Popen([os.path.join(bin_dir, "depthkeyd"), "--config", config], env=env,
                             stdin=subprocess.DEVNULL, stdout=log, stderr=log)
+    return proc, sock, log
+
+
+def stop_daemon(proc, sock, log):
+    proc.terminate()
+    try:
+        proc.wait(timeout=10)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        proc.wait()
+    sock.close()
+    log.close()
+
+
+def run_daemon(bin_dir, config, work, seconds, extra_env=None):
+    start = time.monotonic()
+    proc, sock, log = start_daemon(bin_dir, config, work, extra_env)
     ready_ms = None
     try:
         sock.settimeout(10.0)
@@ -212,14 +236,7 @@ def run_daemon(bin_dir, config, work, seconds, extra_env=None):
         status["VmRSSLeast"] = min(samples)
         breakdown = smaps_breakdown(proc.pid)
     finally:
-        proc.terminate()
-        try:
-            proc.wait(timeout=10)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait()
-        sock.close()
-        log.close()
+        stop_daemon(proc, sock, log)
     return ready_ms, status, breakdown
 
 
@@ -284,12 +301,28 @@ def spread(values, unit, digits=1):
         digits, statistics.median(values), unit, digits, min(values), digits, max(values), len(values))
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+def base_arguments(doc):
+    """BIN BUILD [--seconds N] [--runs N], the arguments every process bench takes."""
+    parser = argparse.ArgumentParser(description=doc.split("\n")[0])
     parser.add_argument("bin")
     parser.add_argument("build")
     parser.add_argument("--seconds", type=float, default=10.0)
     parser.add_argument("--runs", type=int, default=3)
+    return parser
+
+
+def remove_shm(tag):
+    """The shared-memory objects of a config of bench_config's, if left."""
+    for name in ("composite", "lecturer", "lecturer.board", "composite.readers", "lecturer.readers",
+                 "lecturer.board.readers"):
+        try:
+            os.unlink("/dev/shm/depthkey-%s.%s" % (tag, name))
+        except FileNotFoundError:
+            pass
+
+
+def main():
+    parser = base_arguments(__doc__)
     parser.add_argument("--siox", nargs=2, metavar=("IMAGE", "TRIMAP"))
     parser.add_argument("--breakdown", action="store_true", help="VmRSS per mapping (smaps) of each config's last run")
     parser.add_argument("--blocks", action="store_true", help="resident heap blocks >= 64 KiB by allocation site")
@@ -316,11 +349,7 @@ def main():
                 for key in ("VmRSS", "VmRSSMedian", "VmRSSLeast", "VmRSSLargest", "VmHWM", "RssAnon", "RssFile",
                             "RssShmem"):
                     rss.setdefault(key, []).append(status.get(key, 0) / 1024.0)
-            for name in ("composite", "lecturer", "lecturer.board"):
-                try:
-                    os.unlink("/dev/shm/depthkey-%s.%s" % (tag, name))
-                except FileNotFoundError:
-                    pass
+            remove_shm(tag)
             print("depthkeyd on %s:" % title)
             print("  exec to READY=1: %s" % spread(ready, "ms"))
             for key, label in (("VmRSS", "VmRSS after %gs" % args.seconds),
@@ -346,11 +375,7 @@ def main():
                 for site, (resident, asked, count) in sorted(sites.items(), key=lambda item: -item[1][0]):
                     print("    %8d %8d  x%-2d %s" % (resident, asked // 1024, count, site[:150]))
                 print("    %8d %8d  in all" % (sum(v[0] for v in sites.values()), sum(v[1] for v in sites.values()) // 1024))
-            for name in ("composite", "lecturer", "lecturer.board"):
-                try:
-                    os.unlink("/dev/shm/depthkey-%s.%s" % (tag, name))
-                except FileNotFoundError:
-                    pass
+            remove_shm(tag)
 
         siox = os.path.join(bin_dir, "depthkey-siox")
         wall_ms([siox, "--help"], 3)  # warm the page cache
