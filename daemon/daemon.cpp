@@ -316,6 +316,7 @@ StatusSnapshot Daemon::statusSnapshot() const
 	s.webcam = { webcam_.path(), webcam_.status(), webcam_.framesWritten() };
 	s.shed = keyer_.dropped();
 	s.boardOnly = boardOnlyFrames_;
+	s.repeated = outputs_.repeated();
 	if (liveScore_.scoring()) {
 		s.liveScore = { liveScore_.recent(), liveScore_.sinceStart() };
 	}

@@ -52,6 +52,16 @@ void FramePairing::updateLatency(const std::string &depthName)
 	// take-back, as the board-only frames of depth truly lost do.
 	if (gate_.update(estimate_, stats.paired, stats.unpaired + stats.stale) && settings_.offsetAuto)
 		queue_.setOffset(offsetNs());
+	{
+		// Every estimate (once a second), for working out why a start
+		// applied what it did (make offset-trials runs at log_level = "debug").
+		char text[320];
+		std::snprintf(text, sizeof(text),
+			      "offset estimate %+.1f ms: correlation %.2f, margin %.2f, %zu depth frames, motion %.2f/s; %s",
+			      estimate_.offsetMs, estimate_.correlation, estimate_.peakMargin, estimate_.depthFrames,
+			      estimate_.colourMotionPerS, gate_.describe().c_str());
+		logger().debug(text, { { "DEVICE", depthName } });
+	}
 	// Journaled when what is applied, or why not, changes (not every
 	// estimate: they move by a few ms each second).
 	std::string line = gate_.state() == OffsetGate::State::Measuring ? std::string() : offsetStatus();

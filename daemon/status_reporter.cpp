@@ -99,15 +99,17 @@ std::string StatusReporter::statusLine(const StatusSnapshot &s, const Rates &rat
 	char text[1024];
 	std::snprintf(text, sizeof(text),
 		      "colour %s %s %.1f fps %llu dropped; depth %s %s %.1f fps %llu dropped; "
-		      "paired %llu unpaired %llu; %s; output %.1f fps, keying %.1f ms (p99 %.1f), %llu shed; readers %d; %s; %s",
+		      "paired %llu unpaired %llu stale %llu; %s; output %.1f fps, keying %.1f ms (p99 %.1f), %llu repeated, "
+		      "%llu shed; readers %d; %s; %s",
 		      s.colour.present ? s.colour.name.c_str() : "-", deviceStateName(cs.state), rates.colourFps,
 		      static_cast<unsigned long long>(cs.droppedFrames),
 		      s.depth.present ? s.depth.name.c_str() : "-", deviceStateName(ds.state), rates.depthFps,
 		      static_cast<unsigned long long>(ds.droppedFrames),
 		      static_cast<unsigned long long>(s.pairing.paired),
-		      static_cast<unsigned long long>(s.pairing.unpaired), offset.c_str(), rates.outputFps,
+		      static_cast<unsigned long long>(s.pairing.unpaired),
+		      static_cast<unsigned long long>(s.pairing.stale), offset.c_str(), rates.outputFps,
 		      double(keying_.quantileUs(0.5)) / 1000.0, double(keying_.quantileUs(0.99)) / 1000.0,
-		      static_cast<unsigned long long>(s.shed), s.readers.total(),
+		      static_cast<unsigned long long>(s.repeated), static_cast<unsigned long long>(s.shed), s.readers.total(),
 		      s.calibrated		? "calibrated"
 		      : s.calibrationLoaded ? "calibration for other frame sizes (identity mapping)"
 					    : "not calibrated (identity mapping)",
@@ -148,6 +150,8 @@ PreviewStatus StatusReporter::previewStatus(const StatusSnapshot &snapshot, cons
 	s.keying.p999Ms = double(keying_.quantileUs(0.999)) / 1000.0;
 	s.keying.maxMs = double(keying_.maxUs()) / 1000.0;
 	s.boardOnly = snapshot.boardOnly;
+	s.repeated = snapshot.repeated;
+	s.stale = snapshot.pairing.stale;
 	if (snapshot.liveScore) {
 		const LiveScoreFigures &r = snapshot.liveScore->recent, &a = snapshot.liveScore->sinceStart;
 		s.liveScore = { true, r.frames, r.iou, r.boundaryF, a.frames, a.iou, a.boundaryF };

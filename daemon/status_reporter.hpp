@@ -54,6 +54,7 @@ struct StatusSnapshot {
 	StatusWebcam webcam;
 	uint64_t shed = 0;                  // colour frames not keyed: the box is too slow
 	uint64_t boardOnly = 0;             // the board's picture alone, after depth first came
+	uint64_t repeated = 0;              // capture slots filled with the last output (shed or late)
 	// Issue 29: the published frames against their truth; absent without one.
 	struct LiveScores {
 		LiveScoreFigures recent, sinceStart;

@@ -24,6 +24,8 @@ PreviewStatus sample()
 	s.keying = { 299, 1.0465, 3.5, 15.625, 31.25, 62.5 }; // ms that are exact binary fractions in s
 	s.paired = 280;
 	s.unpaired = 19;
+	s.stale = 7;
+	s.repeated = 11;
 	s.calibrated = true;
 	s.calibrationFile = "/var/lib/depthkey/calibration.toml";
 	s.depthLatencyMs = 40;
@@ -55,6 +57,8 @@ TEST(PreviewStatus, JsonCarriesEveryFigure)
 	EXPECT_EQ(j["keying"]["max_ms"], 62.5);
 	EXPECT_EQ(j["pairing"]["paired"], 280);
 	EXPECT_EQ(j["pairing"]["unpaired"], 19);
+	EXPECT_EQ(j["pairing"]["stale"], 7);
+	EXPECT_EQ(j["output"]["repeated"], 11);
 	EXPECT_EQ(j["calibration"]["calibrated"], true);
 	EXPECT_EQ(j["depth_latency_ms"], 40.0);
 	EXPECT_EQ(j["depth_offset"]["state"], "held");
@@ -78,6 +82,10 @@ TEST(PreviewStatus, MetricsAreInTheExpositionFormat)
 		<< text;
 	EXPECT_NE(text.find("depthkey_device_up{device=\"depth\",name=\"sr2 \\\"usb\\\"\\\\1\"} 0\n"), std::string::npos);
 	EXPECT_NE(text.find("# TYPE depthkey_output_fps gauge\ndepthkey_output_fps 24.5\n"), std::string::npos);
+	EXPECT_NE(text.find("# TYPE depthkey_stale_frames_total counter\ndepthkey_stale_frames_total 7\n"),
+		  std::string::npos);
+	EXPECT_NE(text.find("# TYPE depthkey_repeated_frames_total counter\ndepthkey_repeated_frames_total 11\n"),
+		  std::string::npos);
 	EXPECT_NE(text.find("# TYPE depthkey_keying_seconds summary\n"), std::string::npos);
 	EXPECT_NE(text.find("depthkey_keying_seconds{quantile=\"0.99\"} 0.015625\n"), std::string::npos) << text;
 	EXPECT_NE(text.find("depthkey_keying_seconds_count 299\n"), std::string::npos);

@@ -29,6 +29,12 @@
 // faster than the header) is left out.
 // At the end one line on stderr says how many frames cover how much
 // capture time.
+//
+// Sound (docs/recording.md): ffmpeg stamps ALSA and PulseAudio/PipeWire
+// audio with CLOCK_REALTIME; the header's capture times are
+// CLOCK_MONOTONIC. --anchor FILE writes the first written frame's capture
+// time converted to CLOCK_REALTIME (seconds), once, so that the video can be
+// placed against audio recorded with -copyts (-itsoffset).
 #include "algo/y4m_rows.hpp"
 #include "hal/depthkey_shm.h"
 #include "hal/shm_header_fault.hpp"
@@ -42,6 +48,7 @@
 #include <cstring>
 #include <string>
 #include <thread>
+#include <time.h>
 #include <vector>
 
 using namespace depthkey;
@@ -84,6 +91,9 @@ private:
 	// many, -1 when writing failed, or -2 when the frame's slot is taken
 	// (the stream runs faster than the header says): it is left out.
 	int64_t fillSlots(uint64_t ns, uint64_t written, uint64_t room);
+	// --anchor: the first frame's capture time (CLOCK_MONOTONIC ns) as
+	// CLOCK_REALTIME seconds into the file, and a line on stderr.
+	int writeAnchor(uint64_t monotonicNs) const;
 
 	const Options &opts_;
 	dk_shm_reader reader_{};
@@ -288,6 +298,31 @@ int64_t ShmCat::fillSlots(uint64_t ns, uint64_t written, uint64_t room)
 	return static_cast<int64_t>(slots);
 }
 
+int ShmCat::writeAnchor(uint64_t monotonicNs) const
+{
+	if (opts_.anchor.empty())
+		return 0;
+	// The clocks' difference now: NTP slews CLOCK_REALTIME by parts per
+	// million, nothing over the frame's few milliseconds of age.
+	timespec mono{}, real{};
+	clock_gettime(CLOCK_MONOTONIC, &mono);
+	clock_gettime(CLOCK_REALTIME, &real);
+	const double realS = double(real.tv_sec) + double(real.tv_nsec) * 1e-9 -
+			     (double(mono.tv_sec) + double(mono.tv_nsec) * 1e-9 - double(monotonicNs) * 1e-9);
+	FILE *file = std::fopen(opts_.anchor.c_str(), "w");
+	const bool ok = file && std::fprintf(file, "%.6f\n", realS) > 0;
+	if (file && std::fclose(file) != 0)
+		file = nullptr;
+	if (!ok || !file) {
+		std::fprintf(stderr, "depthkey-shmcat: cannot write the anchor to %s: %s\n", opts_.anchor.c_str(),
+			     std::strerror(errno));
+		return -EIO;
+	}
+	std::fprintf(stderr, "depthkey-shmcat: first frame captured at %.6f s CLOCK_REALTIME (%llu ns CLOCK_MONOTONIC)\n",
+		     realS, static_cast<unsigned long long>(monotonicNs));
+	return 0;
+}
+
 int ShmCat::writeOut()
 {
 	if (std::fwrite(out_.data(), 1, out_.size(), stdout) != out_.size() ||
@@ -342,6 +377,8 @@ int ShmCat::run()
 						break;
 					if (emit())
 						return 1;
+					if (!emitted && writeAnchor(info.timestamp_ns))
+						return 1;
 					if (!firstWrittenNs_)
 						firstWrittenNs_ = info.timestamp_ns;
 					lastWrittenNs_ = info.timestamp_ns;
@@ -368,7 +405,7 @@ int ShmCat::run()
 		     newest_.timestamp_ns - first_.timestamp_ns >= kMeasureSpanNs ||
 		     Clock::now() - measureStart >= std::min<Clock::duration>(kMeasureWall, timeout))) {
 			measuring = false;
-			if (!writeHeader(measuredRate()) || emit())
+			if (!writeHeader(measuredRate()) || emit() || writeAnchor(newest_.timestamp_ns))
 				return 1;
 			firstWrittenNs_ = lastWrittenNs_ = newest_.timestamp_ns;
 			emitted++;

@@ -28,6 +28,7 @@ struct Options {
 	double timeoutSec = 5.0;
 	uint32_t fps = 0;          // 0 = measured
 	bool yuv420 = false;
+	std::string anchor;        // "" = none; else the file for the first frame's capture time
 };
 
 inline void usage(FILE *out)
@@ -35,7 +36,7 @@ inline void usage(FILE *out)
 	std::fprintf(out,
 		     "usage: depthkey-shmcat [--stream composite|lecturer] [--name /obj]\n"
 		     "                       [--frames N] [--timeout SEC] [--fps N]\n"
-		     "                       [--yuv420 | --chroma 444|420]\n"
+		     "                       [--yuv420 | --chroma 444|420] [--anchor FILE]\n"
 		     "Writes YUV4MPEG2 (full-range BT.601) to stdout: C444, or C420jpeg with\n"
 		     "--yuv420, for the composite; C444alpha for the lecturer layer.\n"
 		     "  --frames N     stop after N frames (default 0: run until killed)\n"
@@ -47,7 +48,10 @@ inline void usage(FILE *out)
 		     "                 than two frames come within 2.5 s)\n"
 		     "  --yuv420       4:2:0 chroma (2x2 mean) for the composite, for H.264\n"
 		     "                 players: ... | ffmpeg -i - -pix_fmt yuv420p out.mp4\n"
-		     "  --chroma 444|420  the same choice spelt out (default 444)\n",
+		     "  --chroma 444|420  the same choice spelt out (default 444)\n"
+		     "  --anchor FILE  write the first written frame's capture time to FILE as\n"
+		     "                 CLOCK_REALTIME seconds (what ffmpeg stamps ALSA and Pulse\n"
+		     "                 audio with), for -itsoffset when muxing sound\n",
 		     kMaxFps, kFallbackFps);
 }
 
@@ -100,6 +104,8 @@ inline int parseOptions(int argc, char **argv, Options *opts)
 			opts->stream = value;
 		} else if (arg == "--name" && !value.empty() && value[0] == '/') {
 			opts->name = value;
+		} else if (arg == "--anchor" && !value.empty()) {
+			opts->anchor = value;
 		} else if (arg == "--chroma" && (value == "444" || value == "420")) {
 			opts->yuv420 = value == "420";
 		} else if (arg == "--frames") {

@@ -20,8 +20,9 @@ std::string previewStatusJson(const PreviewStatus &s)
 	nlohmann::json j = {
 		{ "uptime_s", s.uptimeS },
 		{ "devices", devices },
-		{ "output", { { "fps", s.outputFps }, { "frames", s.published }, { "board_only", s.boardOnly } } },
-		{ "pairing", { { "paired", s.paired }, { "unpaired", s.unpaired } } },
+		{ "output", { { "fps", s.outputFps }, { "frames", s.published }, { "board_only", s.boardOnly },
+				{ "repeated", s.repeated } } },
+		{ "pairing", { { "paired", s.paired }, { "unpaired", s.unpaired }, { "stale", s.stale } } },
 		{ "keying",
 		  { { "frames", s.keying.count },
 		    { "median_ms", s.keying.medianMs },
@@ -158,6 +159,12 @@ std::string previewStatusMetrics(const PreviewStatus &s)
 	e.sample("depthkey_paired_frames_total", "", static_cast<double>(s.paired));
 	e.family("depthkey_unpaired_frames_total", "counter", "Colour frames without a depth frame near in time.");
 	e.sample("depthkey_unpaired_frames_total", "", static_cast<double>(s.unpaired));
+	e.family("depthkey_stale_frames_total", "counter",
+		 "Colour frames keyed with the nearest depth frame beyond pairing.max_skew_ms.");
+	e.sample("depthkey_stale_frames_total", "", static_cast<double>(s.stale));
+	e.family("depthkey_repeated_frames_total", "counter",
+		 "Capture slots filled with the last output, flagged repeated (a frame shed or keyed late).");
+	e.sample("depthkey_repeated_frames_total", "", static_cast<double>(s.repeated));
 	e.family("depthkey_depth_latency_seconds", "gauge", "Depth frame arrival after its capture time.");
 	e.sample("depthkey_depth_latency_seconds", "", s.depthLatencyMs / 1000.0);
 	e.family("depthkey_calibrated", "gauge", "1 when a calibration fitting the cameras is loaded.");

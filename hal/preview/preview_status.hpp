@@ -67,6 +67,8 @@ struct PreviewStatus {
 	PreviewKeying keying;
 	uint64_t paired = 0, unpaired = 0;
 	uint64_t boardOnly = 0;          // the board's picture alone, after depth first came
+	uint64_t repeated = 0;           // capture slots filled with the last output (shed or late)
+	uint64_t stale = 0;              // keyed with the nearest depth beyond max_skew_ms
 	PreviewLiveScore liveScore;
 	bool calibrated = false;
 	std::string calibrationFile;

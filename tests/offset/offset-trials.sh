@@ -61,7 +61,8 @@ done
 # running), no preview port.
 trial_config() { # N FPS STILL
 	sed -e "s|\"/depthkey\\.|\"/offset-trial-$$-$1.|" \
-	    -e 's|^listen = .*|listen = ""|' "$config" > "$work/trial$1.toml"
+	    -e 's|^listen = .*|listen = ""|' -e 's|^log_level = .*|log_level = "debug"|' \
+	    "$config" > "$work/trial$1.toml"
 	# [colour] fps is the first "fps =" line of the file.
 	sed -i "0,/^fps = [0-9]*/s//fps = $2/" "$work/trial$1.toml"
 	if [ "$3" = 1 ]; then
@@ -172,6 +173,8 @@ while [ "$i" -le "$trials" ]; do
 		fi
 	fi
 	echo "start $i ($note): $status -> $verdict"
+	# Why: the newest estimate (log_level = "debug" logs each, once a second).
+	grep -o 'offset estimate [^;]*' "$work/trial$i.log" | tail -n 1 | sed 's/^/    last /'
 	i=$((i + 1))
 done
 echo "offset-trials: $within10 of $moving moving starts within 10 ms of the truth, $over30 more than 30 ms away or none applied; still scene: $([ $still_ok = 1 ] && echo nothing applied || echo APPLIED)"
