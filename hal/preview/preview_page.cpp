@@ -32,13 +32,13 @@ td, th { padding: 3px 10px; border-bottom: 1px solid #333; text-align: left; }
 <body>
 <h1>depthkey preview</h1>
 <div id="stages">
-<figure><img id="img-composite" src="/stream/composite.mjpg" alt="composite"><figcaption>recorded composite <span id="cap-composite" class="quiet"></span></figcaption></figure>
-<figure><img id="img-lecturer" src="/stream/lecturer.mjpg" alt="lecturer layer"><figcaption>lecturer layer (transparent over the checkerboard)</figcaption></figure>
-<figure><img id="img-board" src="/stream/board.mjpg" alt="board picture"><figcaption>board picture <span id="cap-board" class="quiet"></span></figcaption></figure>
-<figure><img id="img-colour" src="/stream/colour.mjpg" alt="colour"><figcaption>colour camera</figcaption></figure>
-<figure><img id="img-depth" src="/stream/depth.mjpg" alt="depth"><figcaption>depth (false colour, 0.5 m red .. 4 m blue)</figcaption></figure>
-<figure><img id="img-seeds" src="/stream/seeds.mjpg" alt="seeds"><figcaption>seeds (lecturer orange, board blue, undecided grey)</figcaption></figure>
-<figure><img id="img-alpha" src="/stream/alpha.mjpg" alt="alpha"><figcaption>alpha matte</figcaption></figure>
+<figure><img id="img-composite" src="/snapshot/composite.jpg" alt="composite"><figcaption>recorded composite <span id="cap-composite" class="quiet"></span></figcaption></figure>
+<figure><img id="img-lecturer" src="/snapshot/lecturer.jpg" alt="lecturer layer"><figcaption>lecturer layer (transparent over the checkerboard)</figcaption></figure>
+<figure><img id="img-board" src="/snapshot/board.jpg" alt="board picture"><figcaption>board picture <span id="cap-board" class="quiet"></span></figcaption></figure>
+<figure><img id="img-colour" src="/snapshot/colour.jpg" alt="colour"><figcaption>colour camera</figcaption></figure>
+<figure><img id="img-depth" src="/snapshot/depth.jpg" alt="depth"><figcaption>depth (false colour, 0.5 m red .. 4 m blue)</figcaption></figure>
+<figure><img id="img-seeds" src="/snapshot/seeds.jpg" alt="seeds"><figcaption>seeds (lecturer orange, board blue, undecided grey)</figcaption></figure>
+<figure><img id="img-alpha" src="/snapshot/alpha.jpg" alt="alpha"><figcaption>alpha matte</figcaption></figure>
 </div>
 <div id="actions"><button id="snapshot" type="button">Save stage pictures</button> <span id="snapshot-result" class="quiet"></span></div>
 <table id="status"><tbody><tr><td>status</td><td>loading…</td></tr></tbody></table>
@@ -53,6 +53,16 @@ function row(name, value, ok) {
   else if (ok !== undefined) b.className = ok ? "good" : "bad";
   tr.append(a, b);
   return tr;
+}
+// Each tile asks for its stage's next JPEG once the last has come, not for
+// an endless MJPEG stream: a browser opens at most 6 connections to a host,
+// and seven streams left none for status.json (issue 30).
+for (const img of document.querySelectorAll("#stages img")) {
+  const stage = img.id.slice(4);
+  let n = 0;
+  const next = () => { img.src = "/snapshot/" + stage + ".jpg?n=" + (++n); };
+  img.addEventListener("load", () => setTimeout(next, 100));
+  img.addEventListener("error", () => setTimeout(next, 1000));
 }
 for (const figure of document.querySelectorAll("#stages figure"))
   figure.querySelector("img").addEventListener("click", () => figure.classList.toggle("enlarged"));

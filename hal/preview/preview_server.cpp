@@ -379,8 +379,18 @@ int PreviewServer::handle(MHD_Connection *connection, const char *urlText, const
 		if (!frame)
 			return queueText(*mhd_, connection, MHD_HTTP_SERVICE_UNAVAILABLE,
 					 "no " + std::string(previewStageName(stage)) + " frame within 3 s") == MHD_YES;
-		return queue(*mhd_, connection, MHD_HTTP_OK,
-			     std::string(frame->jpeg.begin(), frame->jpeg.end()), "image/jpeg") == MHD_YES;
+		// The capture time (µs), as each part of a stream has it: the
+		// shared memory's timestamp_ns / 1000 of the same frame.
+		MHD_Response *response = mhd_->createResponseFromBuffer(
+			frame->jpeg.size(), const_cast<uint8_t *>(frame->jpeg.data()), MHD_RESPMEM_MUST_COPY);
+		if (!response)
+			return false;
+		mhd_->addResponseHeader(response, "Content-Type", "image/jpeg");
+		mhd_->addResponseHeader(response, "Cache-Control", "no-store");
+		mhd_->addResponseHeader(response, "X-Timestamp", std::to_string(frame->captureNs / 1000).c_str());
+		const MHD_Result ret = mhd_->queueResponse(connection, MHD_HTTP_OK, response);
+		mhd_->destroyResponse(response);
+		return ret == MHD_YES;
 	}
 	if (stageUrl(url, "/stream/", ".mjpg", stage)) {
 		if (++streams_ > maxClients_) {
