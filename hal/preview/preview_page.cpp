@@ -32,13 +32,13 @@ td, th { padding: 3px 10px; border-bottom: 1px solid #333; text-align: left; }
 <body>
 <h1>depthkey preview</h1>
 <div id="stages">
-<figure><img id="img-composite" src="/snapshot/composite.jpg" alt="composite"><figcaption>recorded composite <span id="cap-composite" class="quiet"></span></figcaption></figure>
-<figure><img id="img-lecturer" src="/snapshot/lecturer.jpg" alt="lecturer layer"><figcaption>lecturer layer (transparent over the checkerboard)</figcaption></figure>
-<figure><img id="img-board" src="/snapshot/board.jpg" alt="board picture"><figcaption>board picture <span id="cap-board" class="quiet"></span></figcaption></figure>
-<figure><img id="img-colour" src="/snapshot/colour.jpg" alt="colour"><figcaption>colour camera</figcaption></figure>
-<figure><img id="img-depth" src="/snapshot/depth.jpg" alt="depth"><figcaption>depth (false colour, 0.5 m red .. 4 m blue)</figcaption></figure>
-<figure><img id="img-seeds" src="/snapshot/seeds.jpg" alt="seeds"><figcaption>seeds (lecturer orange, board blue, undecided grey)</figcaption></figure>
-<figure><img id="img-alpha" src="/snapshot/alpha.jpg" alt="alpha"><figcaption>alpha matte</figcaption></figure>
+<figure><img id="img-composite" src="/snapshot/composite.jpg" data-src="/snapshot/composite.jpg" alt="composite"><figcaption>recorded composite <span id="cap-composite" class="quiet"></span></figcaption></figure>
+<figure><img id="img-lecturer" src="/snapshot/lecturer.jpg" data-src="/snapshot/lecturer.jpg" alt="lecturer layer"><figcaption>lecturer layer (transparent over the checkerboard)</figcaption></figure>
+<figure><img id="img-board" src="/snapshot/board.jpg" data-src="/snapshot/board.jpg" alt="board picture"><figcaption>board picture <span id="cap-board" class="quiet"></span></figcaption></figure>
+<figure><img id="img-colour" src="/snapshot/colour.jpg" data-src="/snapshot/colour.jpg" alt="colour"><figcaption>colour camera</figcaption></figure>
+<figure><img id="img-depth" src="/snapshot/depth.jpg" data-src="/snapshot/depth.jpg" alt="depth"><figcaption>depth (false colour, 0.5 m red .. 4 m blue)</figcaption></figure>
+<figure><img id="img-seeds" src="/snapshot/seeds.jpg" data-src="/snapshot/seeds.jpg" alt="seeds"><figcaption>seeds (lecturer orange, board blue, undecided grey)</figcaption></figure>
+<figure><img id="img-alpha" src="/snapshot/alpha.jpg" data-src="/snapshot/alpha.jpg" alt="alpha"><figcaption>alpha matte</figcaption></figure>
 </div>
 <div id="actions"><button id="snapshot" type="button">Save stage pictures</button> <span id="snapshot-result" class="quiet"></span></div>
 <table id="status"><tbody><tr><td>status</td><td>loading…</td></tr></tbody></table>
@@ -56,13 +56,42 @@ function row(name, value, ok) {
 }
 // Each tile asks for its stage's next JPEG once the last has come, not for
 // an endless MJPEG stream: a browser opens at most 6 connections to a host,
-// and seven streams left none for status.json (issue 30).
+// and seven streams left none for status.json (issue 30). The JPEG is shown
+// once whole (a blob), so a request cut short leaves the last picture up.
+// At most 4 tiles wait for their JPEG at once: 2 connections stay free for
+// status.json and the snapshot button.
+let freeConnections = 4;
+const waitingTiles = [];
+async function withConnection(work) {
+  while (freeConnections === 0) await new Promise((resolve) => waitingTiles.push(resolve));
+  freeConnections--;
+  try { return await work(); } finally {
+    freeConnections++;
+    const wake = waitingTiles.shift();
+    if (wake) wake();
+  }
+}
 for (const img of document.querySelectorAll("#stages img")) {
-  const stage = img.id.slice(4);
-  let n = 0;
-  const next = () => { img.src = "/snapshot/" + stage + ".jpg?n=" + (++n); };
-  img.addEventListener("load", () => setTimeout(next, 100));
-  img.addEventListener("error", () => setTimeout(next, 1000));
+  let n = 0, shown = null;
+  const next = async () => {
+    try {
+      const blob = await withConnection(async () => {
+        const r = await fetch(img.dataset.src + "?n=" + (++n), { cache: "no-store" });
+        if (!r.ok) throw new Error(r.status);
+        return await r.blob();
+      });
+      const url = URL.createObjectURL(blob);
+      img.src = url;
+      if (shown) URL.revokeObjectURL(shown);
+      shown = url;
+      setTimeout(next, 100);
+    } catch (e) {
+      setTimeout(next, 1000);
+    }
+  };
+  // The first picture is the <img>'s own (the page's load waits for it).
+  img.addEventListener("load", () => setTimeout(next, 100), { once: true });
+  img.addEventListener("error", () => setTimeout(next, 1000), { once: true });
 }
 for (const figure of document.querySelectorAll("#stages figure"))
   figure.querySelector("img").addEventListener("click", () => figure.classList.toggle("enlarged"));
@@ -129,7 +158,10 @@ async function refresh() {
       body.append(row("error at " + new Date(e.unix_time_s * 1000).toLocaleTimeString(),
                       e.message + (e.count > 1 ? " (" + e.count + " times)" : ""), false));
   } catch (e) {
-    body.append(row("status", "unreachable: " + e, false));
+    // Keep the last figures, marked stale.
+    const last = document.getElementById("status").tBodies[0];
+    body.append(row("status", "unreachable: " + e + " (the figures below are the last ones)", false));
+    if (last) for (const tr of [...last.rows].filter((r) => r.cells[0].textContent !== "status")) body.append(tr);
   }
   document.getElementById("status").replaceChildren(body);
 }

@@ -44,7 +44,7 @@ constexpr int kServerNice = 10;
 // What a client backing off is told to wait (FailureLimits::backOffNs).
 constexpr const char *kRetryAfterS = "60";
 constexpr const char *kSecurityPolicy =
-	"default-src 'self'; script-src 'self' 'unsafe-inline'; style-src 'unsafe-inline'; img-src 'self'";
+	"default-src 'self'; script-src 'self' 'unsafe-inline'; style-src 'unsafe-inline'; img-src 'self' blob:";
 
 uint64_t monotonicNs()
 {

@@ -89,7 +89,7 @@ TEST_F(PreviewDaemon, PageStreamStatusAndMetrics)
 	depthkey::test::HttpReply page = curlGet(url + "/");
 	EXPECT_EQ(page.code, 200);
 	EXPECT_NE(page.body.find("<title>depthkey preview</title>"), std::string::npos);
-	EXPECT_NE(page.body.find("src=\"/snapshot/composite.jpg\""), std::string::npos);
+	EXPECT_NE(page.body.find("data-src=\"/snapshot/composite.jpg\""), std::string::npos);
 
 	depthkey::test::HttpReply stream = curlGet(url + "/stream/composite.mjpg", "--max-time 2");
 	EXPECT_EQ(stream.code, 200);

@@ -249,18 +249,19 @@ TimedJpeg fetchTimed(const std::string &url)
 	return out;
 }
 
-// The tiles' image URLs as the page sets them, from Chromium's DOM.
+// The URLs the page's script fetches each tile's JPEG from (data-src, to
+// which it adds ?n=N), from Chromium's DOM.
 std::map<std::string, std::string> tileSources(const std::string &dom)
 {
 	std::map<std::string, std::string> sources;
 	size_t at = 0;
 	while ((at = dom.find("<img id=\"img-", at)) != std::string::npos) {
 		const size_t idEnd = dom.find('"', at + 13);
-		const size_t src = dom.find("src=\"", idEnd);
-		const size_t srcEnd = dom.find('"', src + 5);
+		const size_t src = dom.find("data-src=\"", idEnd);
+		const size_t srcEnd = dom.find('"', src + 10);
 		if (idEnd == std::string::npos || src == std::string::npos || srcEnd == std::string::npos)
 			break;
-		sources[dom.substr(at + 13, idEnd - at - 13)] = dom.substr(src + 5, srcEnd - src - 5);
+		sources[dom.substr(at + 13, idEnd - at - 13)] = dom.substr(src + 10, srcEnd - src - 10);
 		at = srcEnd;
 	}
 	return sources;
