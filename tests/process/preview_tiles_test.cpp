@@ -345,7 +345,14 @@ TEST(PreviewTiles, EveryTileShowsTheSharedMemorysFrame)
 			// A JPEG (not a 503's text: no frame within 3 s on a loaded box).
 			if (f.jpeg.jpeg.size() < 2 || uint8_t(f.jpeg.jpeg[0]) != 0xff || uint8_t(f.jpeg.jpeg[1]) != 0xd8)
 				continue;
-			f.haveExpected = frames.expected(tile, f.jpeg.timestampUs, f.expected);
+			// The preview is offered the frame just before it is published:
+			// its JPEG may come before the reader has the frame.
+			for (int wait = 0; wait < 25; wait++) {
+				f.haveExpected = frames.expected(tile, f.jpeg.timestampUs, f.expected);
+				if (f.haveExpected)
+					break;
+				std::this_thread::sleep_for(20ms);
+			}
 			met[tile] += f.haveExpected;
 			parts[tile].push_back(std::move(f));
 		}
@@ -404,17 +411,8 @@ TEST(PreviewTiles, EveryTileShowsTheSharedMemorysFrame)
 		}
 		std::printf("    %-9s %zu pictures, %d matched by capture time: mean difference <= %.2f, block <= %.0f\n",
 			    tile.c_str(), got.size(), matched, worstMean, worstBlock);
-		// The recorded tiles must meet their frames. The camera-geometry
-		// colour and alpha are judged when they do: on this 2-core box at
-		// load 23 the reader, which copies only each stream's newest frame,
-		// missed every one of 16 camera-geometry layer frames in one run of
-		// three (their differences when met: mean <= 0.8, block <= 7).
-		const bool recorded = tile == "composite" || tile == "lecturer" || tile == "board";
-		if (recorded)
-			EXPECT_GT(matched, 0) << tile << ": no picture had a shared-memory frame of its capture time (pictures at "
-					      << fetchedTimes << "us)";
-		else if (matched == 0)
-			std::printf("    %s: no picture met its frame (not judged)\n", tile.c_str());
+		EXPECT_GT(matched, 0) << tile << ": no picture had a shared-memory frame of its capture time (pictures at "
+				      << fetchedTimes << "us)";
 		EXPECT_LE(worstMean, kMeanTolerance) << tile;
 		EXPECT_LE(worstBlock, kBlockTolerance) << tile;
 	}
