@@ -279,11 +279,20 @@ bool BoardOutput::sourceOk() const
 	return source_ && source_->status().state == DeviceState::Streaming;
 }
 
+std::string BoardOutput::sourceName() const
+{
+	return source_ ? source_->name() : std::string("-");
+}
+
+DeviceState BoardOutput::sourceState() const
+{
+	return source_ ? source_->status().state : DeviceState::Stopped;
+}
+
 std::string BoardOutput::statusText() const
 {
-	std::string text = "board " + (source_ ? source_->name() : std::string("-")) + " " +
-			   deviceStateName(source_ ? source_->status().state : DeviceState::Stopped);
-	if (source_ && source_->status().state == DeviceState::Lost)
+	std::string text = "board " + sourceName() + " " + deviceStateName(sourceState());
+	if (sourceState() == DeviceState::Lost)
 		text += " (last good picture kept)";
 	if (boardGeometry())
 		return text + ", board geometry " + sizeText(outputWidth(), outputHeight());

@@ -65,11 +65,16 @@ public:
 	int outputHeight() const { return compositor_.outputHeight(); }
 	const RgbImage &composite() const { return composite_; }
 	const RgbaImage &lecturer() const { return lecturer_; }
+	// The board's picture as the composite is made on it (the output size
+	// in board geometry); empty for a solid colour in camera geometry.
+	const RgbImage &picture() const { return outputPicture(); }
 	// What the pipeline composites on in camera geometry (Pipeline::setBoardImage):
 	// the picture, or none where the pipeline needs none.
 	const RgbImage &pipelineBoard() const;
 
 	bool sourceOk() const;
+	std::string sourceName() const;   // "-" before start
+	DeviceState sourceState() const;
 	// "board sim-board streaming, board geometry 1920x780" or "...; board not calibrated (why)".
 	std::string statusText() const;
 

@@ -58,14 +58,7 @@ int Daemon::start(const Settings &settings)
 	loop_.addSignal(SIGTERM, [this] { stop(); }, sigterm_);
 	loop_.addSignal(SIGINT, [this] { stop(); }, sigint_);
 	loop_.addSignal(SIGHUP, [this] { reloader_.reload(); }, sighup_);
-	loop_.addSignal(
-		SIGUSR1,
-		[this] {
-			snapshotWanted_ = true; // the stage images are the worker's while it keys
-			if (keyer_.idle())
-				betweenFrames();
-		},
-		sigusr1_);
+	loop_.addSignal(SIGUSR1, [this] { askForSnapshot(); }, sigusr1_);
 
 	status_.start(loop_);
 	// One worker, one frame waiting for it: a frame more would add a
@@ -232,9 +225,19 @@ void Daemon::onColourFrame(const ColourFrame &frame)
 
 // Runs at the colour frame rate: when colour frames stop (camera lost or
 // stalled), keep the recorder fed with a NO SIGNAL frame marked offline.
+// SIGUSR1, or the preview page's snapshot button.
+void Daemon::askForSnapshot()
+{
+	snapshotWanted_ = true; // the stage images are the worker's while it keys
+	if (keyer_.idle())
+		betweenFrames();
+}
+
 void Daemon::onFrameTick()
 {
 	uint64_t nowNs = loop_.nowUs() * 1000u;
+	if (preview_.snapshotPending() && !snapshotWanted_)
+		askForSnapshot();
 	uint64_t staleNs = std::max<uint64_t>(kColourStalePeriods * 1'000'000'000u / settings_.colour.fps, kColourStaleMinNs);
 	// A tick this late means the loop itself was held (a starved box, a
 	// paused VM, a long keying): frames may wait unread in the cameras'
@@ -260,7 +263,7 @@ void Daemon::publishNoSignal(uint64_t nowNs)
 	noSignal_.fill(colour_ ? colour_->name() : std::string("colour camera"), settings_.colour.width,
 		       settings_.colour.height, output_);
 	board_.showBoardOnly(); // in board geometry the board's picture goes on, marked offline
-	preview_.offer(nullptr, nullptr, nullptr, output_, nowNs, nowNs);
+	preview_.offer(nullptr, nullptr, nullptr, output_, recordedPictures(nullptr, false), nowNs, nowNs);
 	publish(nullptr, nullptr, nowNs, pairing_.depthFresh(nowNs) ? DK_SHM_FLAG_DEPTH_OK : 0);
 }
 
@@ -313,6 +316,13 @@ StatusSnapshot Daemon::statusSnapshot() const
 	s.calibrationLoaded = calibrated_;
 	s.calibrationFile = settings_.mapping.calibrationFile;
 	s.board = board_.statusText();
+	s.boardFigures.source = board_.sourceName();
+	s.boardFigures.state = deviceStateName(board_.sourceState());
+	s.boardFigures.geometry = board_.boardGeometry();
+	s.boardFigures.width = board_.outputWidth();
+	s.boardFigures.height = board_.outputHeight();
+	s.readerEverAttached = outputs_.readerEverAttached();
+	s.configPath = configPath_;
 	s.webcam = { webcam_.path(), webcam_.status(), webcam_.framesWritten() };
 	s.shed = keyer_.dropped();
 	s.boardOnly = boardOnlyFrames_;

@@ -76,7 +76,11 @@ private:
 	void onFrameTick();
 	void onStatusTick();
 	void onReaderTick();
-	PipelineView pipelineView() const { return { pipeline_, output_, mapping_ }; }
+	PipelineView pipelineView() const
+	{
+		return { pipeline_, output_, mapping_, publishedComposite(nullptr, true), &board_.picture() };
+	}
+	void askForSnapshot(); // SIGUSR1 or the preview's button: written between frames
 	void updateRecording();
 	void checkRecording();
 	void injectTestFault();
@@ -95,6 +99,12 @@ private:
 	// without depth (the colour frame is the composite) and for NO SIGNAL.
 	void scorePublished(const ColourFrame &frame, bool keyed);
 	void publish(const RgbImage *colour, const CompositeInputs *parts, uint64_t captureNs, uint32_t flags);
+	// The composite publish() sends: the board's in board geometry, else the
+	// pipeline's image when it made one (NO SIGNAL's too), else none when it
+	// is made from its parts in the shared memory, or (no depth) the colour frame.
+	const RgbImage *publishedComposite(const RgbImage *colour, bool fromParts) const;
+	// The same pictures for the preview page (issue 30).
+	RecordedPictures recordedPictures(const RgbImage *colour, bool fromParts) const;
 	// Whether the pipeline's composite image is read by more than the
 	// recorder's shared memory this frame (preview, virtual webcam, stage dumps).
 	bool compositeReadHere(uint64_t nowNs) const;

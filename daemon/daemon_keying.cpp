@@ -93,11 +93,11 @@ void Daemon::onKeyed(KeyingJob &job)
 	else
 		board_.showBoardOnly();
 	stageDumps_.onKeyedFrame(frame, depth, status_.colourFrames(), pipelineView());
-	preview_.offer(&frame, depth, depth ? &pipeline_.trimap() : nullptr, output_, frame.timestampNs,
-		       loop_.nowUs() * 1000u);
 	CompositeInputs parts;
 	if (depth)
 		parts = pipeline_.compositeInputs(frame.rgb, output_.alpha);
+	preview_.offer(&frame, depth, depth ? &pipeline_.trimap() : nullptr, output_,
+		       recordedPictures(&frame.rgb, depth != nullptr), frame.timestampNs, loop_.nowUs() * 1000u);
 	publish(&frame.rgb, depth ? &parts : nullptr, frame.timestampNs, flags);
 	scorePublished(frame, depth != nullptr);
 	pipelineStatus_ = pipeline_.status();
@@ -113,7 +113,9 @@ void Daemon::betweenFrames()
 	board_.takeWaitingPicture();
 	if (snapshotWanted_) {
 		snapshotWanted_ = false;
-		stageDumps_.writeSnapshot(pairing_.queue().pairer().newest(), pipelineView());
+		std::string message;
+		const int ret = stageDumps_.writeSnapshot(pairing_.queue().pairer().newest(), pipelineView(), message);
+		preview_.answerSnapshot(ret, message);
 	}
 	// A reload restarts cameras and clears the pairing ring: not while
 	// keyDueFrames reads it (a source that waits for the daemon has the
@@ -145,10 +147,27 @@ void Daemon::scorePublished(const ColourFrame &frame, bool keyed)
 		liveScore_.add(output_.alpha, frame.truth, frame.timestampNs);
 }
 
+// In board geometry the webcam and the preview take the board's composite:
+// the pipeline's camera-geometry image is then for the stage dumps only.
 bool Daemon::compositeReadHere(uint64_t nowNs) const
 {
-	return (webcam_.enabled() && !board_.boardGeometry()) || preview_.wantsComposite(nowNs) ||
+	return (!board_.boardGeometry() && (webcam_.enabled() || preview_.wantsComposite(nowNs))) ||
 	       stageDumps_.readsStages();
+}
+
+const RgbImage *Daemon::publishedComposite(const RgbImage *colour, bool fromParts) const
+{
+	if (board_.boardGeometry())
+		return &board_.composite();
+	if (!output_.composite.empty())
+		return &output_.composite;
+	return fromParts ? nullptr : colour;
+}
+
+RecordedPictures Daemon::recordedPictures(const RgbImage *colour, bool fromParts) const
+{
+	const bool board = board_.boardGeometry();
+	return { publishedComposite(colour, fromParts), board ? &board_.lecturer() : nullptr, &board_.picture() };
 }
 
 void Daemon::publish(const RgbImage *colour, const CompositeInputs *parts, uint64_t captureNs, uint32_t flags)
@@ -156,14 +175,7 @@ void Daemon::publish(const RgbImage *colour, const CompositeInputs *parts, uint6
 	if (keyingStalled_.load(std::memory_order_relaxed))
 		return; // TEST-ONLY: NO SIGNAL frames stop too
 	const bool board = board_.boardGeometry();
-	// The composite: the board's in board geometry, else the pipeline's
-	// image when it made one (NO SIGNAL's too), else made from its parts in
-	// the shared memory (null here) or, without depth, the colour frame.
-	const RgbImage *composite = &output_.composite;
-	if (board)
-		composite = &board_.composite();
-	else if (output_.composite.empty())
-		composite = parts ? nullptr : colour;
+	const RgbImage *composite = publishedComposite(colour, parts != nullptr);
 	// Never waits; a full or lost device is its own status (hal/v4l2/v4l2_output.hpp).
 	if (composite)
 		webcam_.write(*composite);

@@ -139,6 +139,7 @@ bool FrameOutputs::sampleReaders(uint64_t nowNs)
 		return false;
 	const bool attachedChanged = (now.total() > 0) != (readers_.total() > 0);
 	readers_ = now;
+	readerEverAttached_ = readerEverAttached_ || now.total() > 0;
 	logger().info("readers: composite " + std::to_string(now.composite) + ", lecturer " +
 			      std::to_string(now.lecturer) + ", board-geometry lecturer " +
 			      std::to_string(now.boardLecturer),

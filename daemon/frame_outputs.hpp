@@ -79,6 +79,9 @@ public:
 	// true when the first came or the last left (the LEDs show that).
 	bool sampleReaders(uint64_t nowNs);
 	const ReaderCounts &readers() const { return readers_; }
+	// Whether a reader was ever counted: "0 readers" is a fault only then
+	// (a box with no recorder yet is not one, issue 30).
+	bool readerEverAttached() const { return readerEverAttached_; }
 
 private:
 	int openSink();
@@ -94,6 +97,7 @@ private:
 	OutputSettings settings_;   // what open() was given, for the retry in publish()
 	OutputGeometry geometry_;
 	ReaderCounts readers_;      // recorders reading the shared memory
+	bool readerEverAttached_ = false;
 	CaptureSlotClock slots_;    // the colour camera's frame slots, keyed frames out
 	uint32_t lastKeyedFlags_ = 0;
 	uint64_t repeated_ = 0;

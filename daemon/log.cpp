@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <sys/stat.h>
 #include <systemd/sd-journal.h>
 #include <unistd.h>
@@ -68,6 +69,11 @@ void Logger::log(LogLevel level, std::string_view message, std::initializer_list
 {
 	if (static_cast<int>(level) > static_cast<int>(level_))
 		return;
+	if (level == LogLevel::Error) {
+		timespec now{};
+		clock_gettime(CLOCK_REALTIME, &now);
+		recent_.add(message, static_cast<uint64_t>(now.tv_sec) * 1'000'000'000u + static_cast<uint64_t>(now.tv_nsec));
+	}
 
 	if (journal_) {
 		std::vector<std::string> entries;

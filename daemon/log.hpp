@@ -4,6 +4,8 @@
 // otherwise. A repeated error is logged once, and again only when it changes.
 #pragma once
 
+#include "daemon/recent_errors.hpp"
+
 #include <cstdint>
 #include <initializer_list>
 #include <map>
@@ -48,6 +50,8 @@ public:
 			std::initializer_list<LogField> fields = {});
 	bool errorActive(const std::string &key) const { return active_.count(key) != 0; }
 	size_t activeErrorCount() const { return active_.size(); }
+	// The last distinct error lines logged (the preview page shows them).
+	const RecentErrors &recentErrors() const { return recent_; }
 
 private:
 	struct ActiveError {
@@ -58,6 +62,7 @@ private:
 	LogLevel level_ = LogLevel::Info;
 	bool journal_ = false;
 	std::map<std::string, ActiveError> active_;
+	RecentErrors recent_;
 };
 
 // The daemon's logger (one process, one log).

@@ -2,6 +2,9 @@
 
 #include "daemon/log.hpp"
 
+#include "algo/composite.hpp"
+
+#include <algorithm>
 #include <cerrno>
 
 namespace depthkey {
@@ -83,7 +86,8 @@ void PreviewFeed::stop()
 }
 
 void PreviewFeed::offer(const ColourFrame *colour, const DepthFrame *depth, const Gray8Image *seeds,
-			const PipelineOutput &output, uint64_t captureNs, uint64_t nowNs)
+			const PipelineOutput &output, const RecordedPictures &recorded, uint64_t captureNs,
+			uint64_t nowNs)
 {
 	if (!encoder_.running())
 		return;
@@ -99,8 +103,25 @@ void PreviewFeed::offer(const ColourFrame *colour, const DepthFrame *depth, cons
 		give(PreviewStage::Seeds, { "", StageKind::Seeds, nullptr, nullptr, seeds });
 	if (!output.alpha.empty())
 		give(PreviewStage::Alpha, { "", StageKind::Mask, nullptr, nullptr, &output.alpha });
-	if (!output.composite.empty())
-		give(PreviewStage::Composite, { "", StageKind::Colour, &output.composite });
+	if (recorded.composite && !recorded.composite->empty())
+		give(PreviewStage::Composite, { "", StageKind::Colour, recorded.composite });
+	if (recorded.board && !recorded.board->empty())
+		give(PreviewStage::Board, { "", StageKind::Colour, recorded.board });
+	if (!encoder_.wanted(PreviewStage::Lecturer, nowNs))
+		return;
+	if (recorded.boardLayer && !recorded.boardLayer->empty()) {
+		encoder_.offer(PreviewStage::Lecturer, *recorded.boardLayer, captureNs, nowNs);
+	} else if (colour && colour->rgb.width() == output.alpha.width() &&
+		   colour->rgb.height() == output.alpha.height() && !output.alpha.empty()) {
+		lecturerLayer(colour->rgb, output.alpha, layer_);
+		encoder_.offer(PreviewStage::Lecturer, layer_, captureNs, nowNs);
+	} else if (!colour) {
+		// NO SIGNAL: the shared memory's layer is transparent black.
+		layer_.resize(output.alpha.width(), output.alpha.height());
+		std::fill(layer_.data(), layer_.data() + layer_.size(), Rgba8{ 0, 0, 0, 0 });
+		if (!layer_.empty())
+			encoder_.offer(PreviewStage::Lecturer, layer_, captureNs, nowNs);
+	}
 }
 
 void PreviewFeed::setStatus(const PreviewStatus &status)

@@ -14,6 +14,15 @@
 
 namespace depthkey {
 
+// What the recorder gets with this frame, the shared memory's own pictures
+// (issue 30: the page showed the pipeline's camera-geometry composite over
+// the flat board.colour while the recorder got the board's geometry).
+struct RecordedPictures {
+	const RgbImage *composite = nullptr;   // as published; null when made only in the shared memory
+	const RgbaImage *boardLayer = nullptr; // board geometry: the warped lecturer layer; else null
+	const RgbImage *board = nullptr;       // the board's picture; null or empty: a solid colour unmade
+};
+
 class PreviewFeed
 {
 public:
@@ -31,10 +40,18 @@ public:
 
 	// Per frame, on the event loop: copies the stages that are watched (and
 	// due under the worker's frame cap). Null stages are left out. Without
-	// a watcher this is five atomic loads.
+	// a watcher this is seven atomic loads. In camera geometry the lecturer
+	// layer is made here from the colour frame and its alpha, as the shared
+	// memory makes it, only while it is watched.
 	void offer(const ColourFrame *colour, const DepthFrame *depth, const Gray8Image *seeds,
-		   const PipelineOutput &output, uint64_t captureNs, uint64_t nowNs);
+		   const PipelineOutput &output, const RecordedPictures &recorded, uint64_t captureNs,
+		   uint64_t nowNs);
 	void setStatus(const PreviewStatus &status);
+	// A snapshot asked for on the page (POST /snapshot) waits for
+	// answerSnapshot(): ret 0, or a negative errno (-ENOENT: no
+	// daemon.snapshot_dir), with what was written or why not.
+	bool snapshotPending() { return server_.running() && server_.snapshots().pending(); }
+	void answerSnapshot(int ret, const std::string &message) { server_.snapshots().answer(ret, message); }
 	// Whether offer() at nowNs would take the composite: somebody watches it.
 	bool wantsComposite(uint64_t nowNs) const
 	{
@@ -48,6 +65,7 @@ private:
 	bool applied_ = false;
 	PreviewEncoder encoder_;
 	PreviewServer server_;
+	RgbaImage layer_; // the camera-geometry lecturer layer, reused
 };
 
 } // namespace depthkey

@@ -4,6 +4,7 @@
 #include "daemon/log.hpp"
 #include "hal/preview/snapshot_writer.hpp"
 
+#include <cerrno>
 #include <cstdio>
 
 namespace depthkey {
@@ -46,27 +47,60 @@ bool StageDumps::readsStages() const
 	return !snapshotDir_.empty() || (!previewDir_.empty() && previewsWritten_ < kPreviewCount);
 }
 
-void StageDumps::writeSnapshot(const DepthFrame *newestDepth, const PipelineView &view)
+int StageDumps::writeSnapshot(const DepthFrame *newestDepth, const PipelineView &view, std::string &message)
 {
 	if (snapshotDir_.empty()) {
-		logger().warning("snapshot requested but daemon.snapshot_dir is not set");
-		return;
+		message = "snapshot not written: daemon.snapshot_dir is not set (set it in the config, on the box "
+			  "under /var/lib/depthkey, where the service may write, and reload)";
+		logger().warning(message);
+		return -ENOENT;
 	}
-	if (writeStages(snapshotDir_, "", newestDepth, view) >= 0)
-		logger().info("snapshot written to " + snapshotDir_, { { "SNAPSHOT_DIR", snapshotDir_ } });
+	const int ret = writeStages(snapshotDir_, "", newestDepth, view, &message);
+	if (ret >= 0) {
+		message = "snapshot written to " + snapshotDir_ + "/ (" + message + ")";
+		logger().info(message, { { "SNAPSHOT_DIR", snapshotDir_ } });
+	}
+	return ret < 0 ? ret : 0;
 }
 
 int StageDumps::writeStages(const std::string &dir, const std::string &prefix, const DepthFrame *depth,
-			    const PipelineView &view)
+			    const PipelineView &view, std::string *message)
 {
 	static const DepthFrame kNoDepth;
-	StageImages stages;
+	StageImages collected, stages;
 	collectPipelineStages(colourLatest_, depth ? *depth : kNoDepth, view.pipeline, view.output, view.mapping,
-			      stages);
+			      collected);
+	// The composite the recorder got in place of the pipeline's, and the
+	// board's picture beside it.
+	for (const StageImage &stage : collected.items()) {
+		if (stage.name == "composite" && view.recordedComposite && !view.recordedComposite->empty())
+			continue;
+		if (stage.rgb)
+			stages.add(stage.name, *stage.rgb);
+		else if (stage.depth)
+			stages.addDepth(stage.name, *stage.depth);
+		else if (stage.gray)
+			stages.add(stage.name, stage.kind, *stage.gray);
+	}
+	if (view.recordedComposite && !view.recordedComposite->empty())
+		stages.add("composite", *view.recordedComposite);
+	if (view.board && !view.board->empty())
+		stages.add("board", *view.board);
 	std::string error;
 	int ret = writeStageImages(dir, prefix, stages, error);
-	if (ret < 0)
+	if (ret < 0) {
 		logger().error("stage images failed: " + error, { { "SNAPSHOT_DIR", dir } });
+		if (message)
+			*message = "stage images failed: " + error;
+		return ret;
+	}
+	if (message) {
+		message->clear();
+		for (const StageImage &stage : stages.items())
+			if ((stage.rgb && !stage.rgb->empty()) || (stage.depth && !stage.depth->empty()) ||
+			    (stage.gray && !stage.gray->empty()))
+				*message += (message->empty() ? "" : ", ") + prefix + stage.name + ".png";
+	}
 	return ret;
 }
 

@@ -1,6 +1,7 @@
 #include "daemon/status_reporter.hpp"
 
 #include "daemon/log.hpp"
+#include "daemon/version.hpp"
 #include "hal/v4l2/v4l2_output.hpp"
 
 #include <cstdio>
@@ -138,6 +139,14 @@ std::string StatusReporter::statusLine(const StatusSnapshot &s, const Rates &rat
 PreviewStatus StatusReporter::previewStatus(const StatusSnapshot &snapshot, const Rates &rates) const
 {
 	PreviewStatus s;
+	s.version = DEPTHKEY_VERSION;
+	s.configPath = snapshot.configPath;
+	s.board = snapshot.boardFigures;
+	s.board.text = snapshot.board;
+	s.readerEverAttached = snapshot.readerEverAttached;
+	s.keying.shed = snapshot.shed;
+	for (const RecentError &e : logger().recentErrors().list())
+		s.errors.push_back({ e.message, static_cast<double>(e.realtimeNs) / 1e9, e.count });
 	s.uptimeS = static_cast<double>(loop_->nowUs() - startedUs_) / 1e6;
 	s.devices.push_back(previewDevice("colour", snapshot.colour, rates.colourFps, colourFrames_));
 	s.devices.push_back(previewDevice("depth", snapshot.depth, rates.depthFps, depthFrames_));
@@ -160,9 +169,9 @@ PreviewStatus StatusReporter::previewStatus(const StatusSnapshot &snapshot, cons
 	s.unpaired = snapshot.pairing.unpaired;
 	s.calibrated = snapshot.calibrated;
 	s.calibrationFile = snapshot.calibrationFile;
-	// The measured offset when there is one (pairing.offset_ms = "auto"
-	// applies it), else how long depth frames take to arrive after their stamp.
-	s.depthLatencyMs = snapshot.latency.valid ? -snapshot.latency.offsetMs : depthLatencyMs_;
+	// How long depth frames take to arrive after their stamp; the offset
+	// measured between the cameras' clocks is depth_offset, beside it.
+	s.depthArrivalMs = depthLatencyMs_;
 	s.depthOffset.state = snapshot.offsetState;
 	s.depthOffset.text = snapshot.offset;
 	s.depthOffset.measured = snapshot.latency.valid;

@@ -51,6 +51,9 @@ struct StatusSnapshot {
 	bool calibrationLoaded = false;     // a calibration, maybe for other frame sizes
 	std::string calibrationFile;
 	std::string board;                  // BoardOutput::statusText()
+	PreviewBoard boardFigures;          // the same for the preview page (text left to board)
+	bool readerEverAttached = false;    // a recorder read since the start
+	std::string configPath;
 	StatusWebcam webcam;
 	uint64_t shed = 0;                  // colour frames not keyed: the box is too slow
 	uint64_t boardOnly = 0;             // the board's picture alone, after depth first came

@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <crypt.h>
 #include <cstdio>
@@ -106,14 +107,14 @@ protected:
 	// or timeoutMs pass. Keeps the connection open while keepOpen says so
 	// (a stream somebody still watches).
 	std::string get(const std::string &path, const char *headers = kAuth, int timeoutMs = 3000,
-			std::atomic<bool> *keepOpen = nullptr)
+			std::atomic<bool> *keepOpen = nullptr, const char *method = "GET")
 	{
 		const int fd = test::connectToPreview(server_.port());
 		if (fd < 0)
 			return "connect failed";
 		std::string reply;
 		const std::string request =
-			"GET " + path + " HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\n" + headers + "\r\n";
+			std::string(method) + " " + path + " HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\n" + headers + "\r\n";
 		if (send(fd, request.data(), request.size(), MSG_NOSIGNAL) == ssize_t(request.size()))
 			reply = test::readPreviewReply(fd, std::chrono::milliseconds(timeoutMs));
 		while (keepOpen && *keepOpen)
@@ -313,3 +314,41 @@ TEST_F(PreviewServerTest, StopsAndRestartsBeforeAnyClient)
 }
 
 } // namespace
+
+// Issue 30: the page's snapshot button. POST only, authenticated, with the
+// page's header; answered by the daemon's loop (here a thread that answers
+// as it would); one at a time, at most one per 2 s.
+TEST_F(PreviewServerTest, SnapshotIsAnAuthenticatedPostAnsweredByTheLoopAndRateLimited)
+{
+	startServer(4);
+	const std::string marker = std::string(kAuth) + "X-Depthkey-Snapshot: 1\r\n";
+	EXPECT_EQ(status(get("/snapshot", "X-Depthkey-Snapshot: 1\r\n", 3000, nullptr, "POST")), 401);
+	EXPECT_EQ(status(get("/snapshot", marker.c_str())), 405) << "a GET must not write files";
+	EXPECT_EQ(status(get("/snapshot", kAuth, 3000, nullptr, "POST")), 400) << "a form from another site";
+	EXPECT_FALSE(server_.snapshots().pending());
+
+	std::atomic<bool> answering{ true };
+	std::atomic<int> answered{ 0 };
+	std::thread loop([&] {
+		while (answering) {
+			if (server_.snapshots().pending()) {
+				server_.snapshots().answer(answered == 0 ? 0 : -ENOENT,
+							   answered == 0 ? "snapshot written to /tmp/x" : "daemon.snapshot_dir is not set");
+				answered++;
+			}
+			std::this_thread::sleep_for(std::chrono::milliseconds(5));
+		}
+	});
+	const std::string first = get("/snapshot", marker.c_str(), 6000, nullptr, "POST");
+	EXPECT_EQ(status(first), 200) << first;
+	EXPECT_NE(first.find("snapshot written to /tmp/x"), std::string::npos) << first;
+	const std::string again = get("/snapshot", marker.c_str(), 6000, nullptr, "POST");
+	EXPECT_EQ(status(again), 429) << again;
+	EXPECT_EQ(answered, 1) << "the refused request never reached the loop";
+	std::this_thread::sleep_for(std::chrono::milliseconds(2100));
+	const std::string unset = get("/snapshot", marker.c_str(), 6000, nullptr, "POST");
+	EXPECT_EQ(status(unset), 409) << unset;
+	EXPECT_NE(unset.find("snapshot_dir is not set"), std::string::npos) << unset;
+	answering = false;
+	loop.join();
+}

@@ -21,14 +21,18 @@ PreviewStatus sample()
 		      { "depth", "sr2 \"usb\"\\1", "lost", 0.0, 90, 4, 2, 1 } };
 	s.outputFps = 24.5;
 	s.published = 299;
-	s.keying = { 299, 1.0465, 3.5, 15.625, 31.25, 62.5 }; // ms that are exact binary fractions in s
+	s.keying = { 299, 7, 1.0465, 3.5, 15.625, 31.25, 62.5 }; // ms that are exact binary fractions in s
 	s.paired = 280;
 	s.unpaired = 19;
 	s.stale = 7;
 	s.repeated = 11;
 	s.calibrated = true;
 	s.calibrationFile = "/var/lib/depthkey/calibration.toml";
-	s.depthLatencyMs = 40;
+	s.depthArrivalMs = 40;
+	s.version = "0.1.0";
+	s.configPath = "/etc/depthkey/depthkey.toml";
+	s.board = { "sim-board", "streaming", true, 1920, 780, "board sim-board streaming, board geometry 1920x780" };
+	s.errors = { { "colour camera lost: /dev/video0", 1765000000.5, 3 } };
 	s.depthOffset = { "held", "measured -215 ms, none applied, held: 1 of 5 steady estimates", true, -215, 0.88,
 			  false, 0 };
 	s.readersComposite = 1;
@@ -60,7 +64,20 @@ TEST(PreviewStatus, JsonCarriesEveryFigure)
 	EXPECT_EQ(j["pairing"]["stale"], 7);
 	EXPECT_EQ(j["output"]["repeated"], 11);
 	EXPECT_EQ(j["calibration"]["calibrated"], true);
-	EXPECT_EQ(j["depth_latency_ms"], 40.0);
+	EXPECT_EQ(j["depth_arrival_ms"], 40.0);
+	EXPECT_FALSE(j.contains("depth_latency_ms")) << "one name, one meaning (issue 30)";
+	EXPECT_EQ(j["keying"]["shed"], 7);
+	EXPECT_EQ(j["version"], "0.1.0");
+	EXPECT_EQ(j["config_path"], "/etc/depthkey/depthkey.toml");
+	EXPECT_EQ(j["board"]["source"], "sim-board");
+	EXPECT_EQ(j["board"]["geometry"], true);
+	EXPECT_EQ(j["board"]["width"], 1920);
+	EXPECT_EQ(j["board"]["height"], 780);
+	ASSERT_EQ(j["errors"].size(), 1u);
+	EXPECT_EQ(j["errors"][0]["message"], "colour camera lost: /dev/video0");
+	EXPECT_EQ(j["errors"][0]["unix_time_s"], 1765000000.5);
+	EXPECT_EQ(j["errors"][0]["count"], 3);
+	EXPECT_EQ(j["readers"]["ever_attached"], false);
 	EXPECT_EQ(j["depth_offset"]["state"], "held");
 	EXPECT_EQ(j["depth_offset"]["measured_ms"], -215.0);
 	EXPECT_TRUE(j["depth_offset"]["applied_ms"].is_null()); // held: none applied
@@ -92,6 +109,14 @@ TEST(PreviewStatus, MetricsAreInTheExpositionFormat)
 	EXPECT_NE(text.find("depthkey_readers{stream=\"composite\"} 1\n"), std::string::npos);
 	EXPECT_NE(text.find("depthkey_readers{stream=\"lecturer.board\"} 2\n"), std::string::npos);
 	EXPECT_NE(text.find("depthkey_depth_latency_seconds 0.040000000000000001\n"), std::string::npos);
+	EXPECT_NE(text.find("depthkey_keying_shed_frames_total 7\n"), std::string::npos) << text;
+	EXPECT_NE(text.find("depthkey_depth_offset_measured_seconds -0.215\n"), std::string::npos) << text;
+	EXPECT_EQ(text.find("\ndepthkey_depth_offset_applied_seconds "), std::string::npos) << "held: none applied";
+	EXPECT_NE(text.find("depthkey_depth_offset_held 1\n"), std::string::npos);
+	EXPECT_NE(text.find("depthkey_board_geometry 1\n"), std::string::npos);
+	EXPECT_NE(text.find("depthkey_info{version=\"0.1.0\",config=\"/etc/depthkey/depthkey.toml\"} 1\n"),
+		  std::string::npos);
+	EXPECT_NE(text.find("depthkey_recent_errors 1\n"), std::string::npos);
 
 	// Every sample line belongs to a family declared before it, once.
 	std::istringstream lines(text);

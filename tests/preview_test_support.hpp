@@ -31,6 +31,8 @@ struct PreviewTestPictures {
 		{ "seeds", StageKind::Seeds, nullptr, nullptr, &gray },
 		{ "alpha", StageKind::Mask, nullptr, nullptr, &gray },
 		{ "composite", StageKind::Colour, &rgb },
+		{ "lecturer", StageKind::Colour, &rgb },
+		{ "board", StageKind::Colour, &rgb },
 	};
 
 	PreviewTestPictures() = default;

@@ -48,7 +48,8 @@ const MicroHttpd *loadMicroHttpd(std::string &error)
 			lookUp(handle, "MHD_basic_auth_get_username_password", t.basicAuthGetUsernamePassword, error) &&
 			lookUp(handle, "MHD_queue_basic_auth_fail_response", t.queueBasicAuthFailResponse, error) &&
 			lookUp(handle, "MHD_free", t.free, error) &&
-			lookUp(handle, "MHD_get_connection_info", t.getConnectionInfo, error);
+			lookUp(handle, "MHD_get_connection_info", t.getConnectionInfo, error) &&
+			lookUp(handle, "MHD_lookup_connection_value", t.lookupConnectionValue, error);
 	if (!ok) {
 		dlclose(handle);
 		return nullptr;

@@ -32,6 +32,7 @@ struct MicroHttpd {
 	decltype(&::MHD_queue_basic_auth_fail_response) queueBasicAuthFailResponse;
 	decltype(&::MHD_free) free;
 	decltype(&::MHD_get_connection_info) getConnectionInfo;
+	decltype(&::MHD_lookup_connection_value) lookupConnectionValue;
 };
 
 // The library's soname, as Debian's libmicrohttpd12 installs it.

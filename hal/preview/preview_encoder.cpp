@@ -75,13 +75,36 @@ bool PreviewEncoder::offer(PreviewStage stage, const StageImage &image, uint64_t
 		slot.depth.resize(0, 0);
 	if (!image.gray)
 		slot.gray.resize(0, 0);
+	slot.rgba.resize(0, 0);
+	offered(slot, lock, captureNs, nowNs);
+	return true;
+}
+
+bool PreviewEncoder::offer(PreviewStage stage, const RgbaImage &layer, uint64_t captureNs, uint64_t nowNs)
+{
+	Slot &slot = slots_[static_cast<size_t>(stage)];
+	std::unique_lock lock(slot.mutex, std::try_to_lock);
+	if (!lock.owns_lock()) {
+		skipped_++;
+		return false;
+	}
+	slot.kind = StageKind::Colour;
+	slot.rgba = layer; // same size: the slot's buffer again
+	slot.rgb.resize(0, 0);
+	slot.depth.resize(0, 0);
+	slot.gray.resize(0, 0);
+	offered(slot, lock, captureNs, nowNs);
+	return true;
+}
+
+void PreviewEncoder::offered(Slot &slot, std::unique_lock<std::mutex> &lock, uint64_t captureNs, uint64_t nowNs)
+{
 	slot.captureNs = captureNs;
 	slot.fresh = true;
 	lock.unlock();
 	slot.lastOfferNs.store(nowNs, std::memory_order_relaxed);
 	pending_ = true;
 	wake_.notify_one();
-	return true;
 }
 
 void PreviewEncoder::watch(PreviewStage stage)
@@ -129,6 +152,7 @@ bool PreviewEncoder::take(Slot &slot, Work &work)
 	std::swap(slot.rgb, work.rgb);
 	std::swap(slot.depth, work.depth);
 	std::swap(slot.gray, work.gray);
+	std::swap(slot.rgba, work.rgba);
 	work.kind = slot.kind;
 	work.captureNs = slot.captureNs;
 	slot.fresh = false;
@@ -139,7 +163,7 @@ void PreviewEncoder::encode(Slot &slot, const Work &work, JpegEncoder &jpeg)
 {
 	StageImage stage{ "", work.kind, work.rgb.empty() ? nullptr : &work.rgb,
 			  work.depth.empty() ? nullptr : &work.depth, work.gray.empty() ? nullptr : &work.gray };
-	const StagePicture picture = drawStagePicture(stage);
+	const StagePicture picture = work.rgba.empty() ? drawStagePicture(stage) : drawLayerPicture(work.rgba);
 	if (picture.empty())
 		return;
 	// A new buffer per JPEG (on this thread, at most max_fps per stage):

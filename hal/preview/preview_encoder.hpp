@@ -53,6 +53,9 @@ public:
 	// Copies the image into the stage's slot; false (frame skipped) when
 	// the worker holds the slot. Never waits.
 	bool offer(PreviewStage stage, const StageImage &image, uint64_t captureNs, uint64_t nowNs);
+	// The same for a layer with its alpha (the lecturer layer), drawn over
+	// a checkerboard (drawLayerPicture(), hal/preview/stage_picture.hpp).
+	bool offer(PreviewStage stage, const RgbaImage &layer, uint64_t captureNs, uint64_t nowNs);
 
 	// HTTP side. watch()/unwatch() count the clients of a stage (status
 	// page); a client asks for frames by waiting in waitNewer().
@@ -74,6 +77,7 @@ private:
 		RgbImage rgb;
 		Gray16Image depth;
 		Gray8Image gray;
+		RgbaImage rgba;
 		uint64_t captureNs = 0;
 		std::atomic<int> watchers{ 0 };
 		std::atomic<int> waiting{ 0 }; // threads inside waitNewer()
@@ -89,10 +93,13 @@ private:
 		RgbImage rgb;
 		Gray16Image depth;
 		Gray8Image gray;
+		RgbaImage rgba;
 		uint64_t captureNs = 0;
 	};
 
 	void run();
+	// Under the slot's lock: stamps the offer and wakes the worker.
+	void offered(Slot &slot, std::unique_lock<std::mutex> &lock, uint64_t captureNs, uint64_t nowNs);
 	bool take(Slot &slot, Work &work);
 	void encode(Slot &slot, const Work &work, class JpegEncoder &jpeg);
 

@@ -17,6 +17,13 @@ h1 { font-size: 18px; margin: 0 0 10px 0; }
 figure { margin: 0; background: #000; }
 figure img { display: block; width: 100%; aspect-ratio: 4 / 3; object-fit: contain; background: #000; }
 figcaption { padding: 4px 6px; background: #2a2d30; }
+figure img { cursor: zoom-in; }
+/* A tile clicked is shown alone, as large as the window allows; a click again puts it back. */
+figure.enlarged { position: fixed; inset: 0; z-index: 10; display: flex; flex-direction: column; background: #000; }
+figure.enlarged img { flex: 1; min-height: 0; width: 100%; height: 100%; aspect-ratio: auto; cursor: zoom-out; }
+#actions { margin: 10px 0; }
+button { font: inherit; padding: 4px 12px; }
+.quiet { color: #a8a8a8; }
 table { border-collapse: collapse; margin-top: 12px; }
 td, th { padding: 3px 10px; border-bottom: 1px solid #333; text-align: left; }
 .bad { color: #ff7b5c; } .good { color: #8fd694; }
@@ -25,23 +32,85 @@ td, th { padding: 3px 10px; border-bottom: 1px solid #333; text-align: left; }
 <body>
 <h1>depthkey preview</h1>
 <div id="stages">
-<figure><img id="img-composite" src="/stream/composite.mjpg" alt="composite"><figcaption>composite</figcaption></figure>
-<figure><img id="img-colour" src="/stream/colour.mjpg" alt="colour"><figcaption>colour camera</figcaption></figure>
-<figure><img id="img-depth" src="/stream/depth.mjpg" alt="depth"><figcaption>depth (false colour, 0.5 m red .. 4 m blue)</figcaption></figure>
-<figure><img id="img-seeds" src="/stream/seeds.mjpg" alt="seeds"><figcaption>seeds (lecturer orange, board blue, undecided grey)</figcaption></figure>
-<figure><img id="img-alpha" src="/stream/alpha.mjpg" alt="alpha"><figcaption>alpha matte</figcaption></figure>
+<figure><img id="img-composite" src="/snapshot/composite.jpg" data-src="/snapshot/composite.jpg" alt="composite"><figcaption>recorded composite <span id="cap-composite" class="quiet"></span></figcaption></figure>
+<figure><img id="img-lecturer" src="/snapshot/lecturer.jpg" data-src="/snapshot/lecturer.jpg" alt="lecturer layer"><figcaption>lecturer layer (transparent over the checkerboard)</figcaption></figure>
+<figure><img id="img-board" src="/snapshot/board.jpg" data-src="/snapshot/board.jpg" alt="board picture"><figcaption>board picture <span id="cap-board" class="quiet"></span></figcaption></figure>
+<figure><img id="img-colour" src="/snapshot/colour.jpg" data-src="/snapshot/colour.jpg" alt="colour"><figcaption>colour camera</figcaption></figure>
+<figure><img id="img-depth" src="/snapshot/depth.jpg" data-src="/snapshot/depth.jpg" alt="depth"><figcaption>depth (false colour, 0.5 m red .. 4 m blue)</figcaption></figure>
+<figure><img id="img-seeds" src="/snapshot/seeds.jpg" data-src="/snapshot/seeds.jpg" alt="seeds"><figcaption>seeds (lecturer orange, board blue, undecided grey)</figcaption></figure>
+<figure><img id="img-alpha" src="/snapshot/alpha.jpg" data-src="/snapshot/alpha.jpg" alt="alpha"><figcaption>alpha matte</figcaption></figure>
 </div>
+<div id="actions"><button id="snapshot" type="button">Save stage pictures</button> <span id="snapshot-result" class="quiet"></span></div>
 <table id="status"><tbody><tr><td>status</td><td>loading…</td></tr></tbody></table>
 <script>
 "use strict";
+// ok: true green, false red, undefined plain, null grey (nothing wrong, nothing yet).
 function row(name, value, ok) {
   const tr = document.createElement("tr");
   const a = document.createElement("td"), b = document.createElement("td");
   a.textContent = name; b.textContent = value;
-  if (ok !== undefined) b.className = ok ? "good" : "bad";
+  if (ok === null) b.className = "quiet";
+  else if (ok !== undefined) b.className = ok ? "good" : "bad";
   tr.append(a, b);
   return tr;
 }
+// Each tile asks for its stage's next JPEG once the last has come, not for
+// an endless MJPEG stream: a browser opens at most 6 connections to a host,
+// and seven streams left none for status.json (issue 30). The JPEG is shown
+// once whole (a blob), so a request cut short leaves the last picture up.
+// At most 4 tiles wait for their JPEG at once: 2 connections stay free for
+// status.json and the snapshot button.
+let freeConnections = 4;
+const waitingTiles = [];
+async function withConnection(work) {
+  while (freeConnections === 0) await new Promise((resolve) => waitingTiles.push(resolve));
+  freeConnections--;
+  try { return await work(); } finally {
+    freeConnections++;
+    const wake = waitingTiles.shift();
+    if (wake) wake();
+  }
+}
+for (const img of document.querySelectorAll("#stages img")) {
+  let n = 0, shown = null;
+  const next = async () => {
+    try {
+      const blob = await withConnection(async () => {
+        const r = await fetch(img.dataset.src + "?n=" + (++n), { cache: "no-store" });
+        if (!r.ok) throw new Error(r.status);
+        return await r.blob();
+      });
+      const url = URL.createObjectURL(blob);
+      img.src = url;
+      if (shown) URL.revokeObjectURL(shown);
+      shown = url;
+      setTimeout(next, 100);
+    } catch (e) {
+      setTimeout(next, 1000);
+    }
+  };
+  // The first picture is the <img>'s own (the page's load waits for it).
+  img.addEventListener("load", () => setTimeout(next, 100), { once: true });
+  img.addEventListener("error", () => setTimeout(next, 1000), { once: true });
+}
+for (const figure of document.querySelectorAll("#stages figure"))
+  figure.querySelector("img").addEventListener("click", () => figure.classList.toggle("enlarged"));
+document.addEventListener("keydown", (e) => {
+  if (e.key === "Escape")
+    for (const f of document.querySelectorAll("figure.enlarged")) f.classList.remove("enlarged");
+});
+document.getElementById("snapshot").addEventListener("click", async () => {
+  const out = document.getElementById("snapshot-result");
+  out.textContent = "saving…"; out.className = "quiet";
+  try {
+    const r = await fetch("/snapshot", { method: "POST", headers: { "X-Depthkey-Snapshot": "1" }, cache: "no-store" });
+    out.textContent = (await r.text()).trim();
+    out.className = r.ok ? "good" : "bad";
+  } catch (e) {
+    out.textContent = "unreachable: " + e; out.className = "bad";
+  }
+});
+function ms(value) { return value === null ? "-" : value.toFixed(1) + " ms"; }
 async function refresh() {
   const body = document.createElement("tbody");
   try {
@@ -50,7 +119,13 @@ async function refresh() {
       body.append(row(d.role + " (" + d.name + ")", d.state + ", " + d.fps.toFixed(1) + " fps, " +
                       d.frames + " frames, " + d.dropped + " dropped, " + d.faults + " faults, " +
                       d.reconnects + " reconnects", d.state === "streaming"));
+    body.append(row("board (" + s.board.source + ")", s.board.text, s.board.state === "streaming" && s.board.geometry));
+    document.getElementById("cap-composite").textContent = s.board.geometry
+      ? "(board geometry " + s.board.width + "x" + s.board.height + ")" : "(camera geometry: board not calibrated)";
+    document.getElementById("cap-board").textContent = "(" + s.board.source + ", " + s.board.state + ")";
     body.append(row("output", s.output.fps.toFixed(1) + " fps, " + s.output.frames + " frames"));
+    body.append(row("keying", "median " + ms(s.keying.median_ms) + ", p99 " + ms(s.keying.p99_ms) + ", max " +
+                    ms(s.keying.max_ms) + "; " + s.keying.shed + " frames shed (box too slow)", s.keying.shed === 0));
     if (s.live_score)
       body.append(row("live score (against the truth)",
                       "IoU " + s.live_score.recent.iou.toFixed(3) + ", BF " + s.live_score.recent.bf.toFixed(3) +
@@ -60,19 +135,33 @@ async function refresh() {
     body.append(row("pairing", s.pairing.paired + " paired, " + s.pairing.unpaired + " unpaired"));
     body.append(row("calibration", s.calibration.calibrated ? "loaded " + s.calibration.file
                                                              : "not calibrated", s.calibration.calibrated));
-    body.append(row("depth latency", s.depth_latency_ms.toFixed(1) + " ms"));
-    body.append(row("depth offset", s.depth_offset.text, s.depth_offset.state !== "held"));
+    body.append(row("depth arrival (after its capture stamp)", ms(s.depth_arrival_ms)));
+    const o = s.depth_offset;
+    body.append(row("depth offset (" + o.state + ")", "measured " + ms(o.measured_ms) + ", applied " + ms(o.applied_ms) +
+                    " — " + o.text, o.state !== "held"));
+    const readers = s.readers.composite + s.readers.lecturer + s.readers.board_lecturer;
     body.append(row("readers", "composite " + s.readers.composite + ", lecturer " + s.readers.lecturer +
-                    ", board-geometry lecturer " + s.readers.board_lecturer,
-                    s.readers.composite + s.readers.lecturer + s.readers.board_lecturer > 0));
+                    ", board-geometry lecturer " + s.readers.board_lecturer +
+                    (readers === 0 && !s.readers.ever_attached ? " (no recorder has attached yet)" : ""),
+                    readers > 0 ? true : s.readers.ever_attached ? false : null));
     if (s.webcam.device !== "")
       body.append(row("webcam (" + s.webcam.device + ")", s.webcam.state + ", " + s.webcam.frames + " frames, " +
                       s.webcam.dropped + " dropped, " + s.webcam.faults + " faults, " +
                       s.webcam.reconnects + " reconnects", s.webcam.state === "writing"));
     body.append(row("preview", s.preview.clients + " streams, " + s.preview.encode_ms.toFixed(1) + " ms per JPEG"));
     body.append(row("uptime", Math.round(s.uptime_s) + " s"));
+    body.append(row("version", s.version));
+    body.append(row("config", s.config_path));
+    if (s.errors.length === 0)
+      body.append(row("recent errors", "none", true));
+    for (const e of s.errors)
+      body.append(row("error at " + new Date(e.unix_time_s * 1000).toLocaleTimeString(),
+                      e.message + (e.count > 1 ? " (" + e.count + " times)" : ""), false));
   } catch (e) {
-    body.append(row("status", "unreachable: " + e, false));
+    // Keep the last figures, marked stale.
+    const last = document.getElementById("status").tBodies[0];
+    body.append(row("status", "unreachable: " + e + " (the figures below are the last ones)", false));
+    if (last) for (const tr of [...last.rows].filter((r) => r.cells[0].textContent !== "status")) body.append(tr);
   }
   document.getElementById("status").replaceChildren(body);
 }

@@ -23,6 +23,8 @@ namespace depthkey {
 namespace {
 
 constexpr auto kSnapshotWait = std::chrono::milliseconds(3000);
+// The loop writes a snapshot between frames: well within this.
+constexpr auto kSnapshotAnswerWait = std::chrono::milliseconds(5000);
 constexpr unsigned kIdleTimeoutS = 10;
 // Connections beyond the streams (the page, status, metrics, snapshots, and
 // closed ones whose threads have not yet been reaped): libmicrohttpd closes
@@ -42,7 +44,7 @@ constexpr int kServerNice = 10;
 // What a client backing off is told to wait (FailureLimits::backOffNs).
 constexpr const char *kRetryAfterS = "60";
 constexpr const char *kSecurityPolicy =
-	"default-src 'self'; script-src 'self' 'unsafe-inline'; style-src 'unsafe-inline'; img-src 'self'";
+	"default-src 'self'; script-src 'self' 'unsafe-inline'; style-src 'unsafe-inline'; img-src 'self' blob:";
 
 uint64_t monotonicNs()
 {
@@ -243,6 +245,7 @@ void PreviewServer::stop()
 		// an eventfd write fails only when its counter is full: it is readable then anyway
 	}
 	doorman_.join();
+	snapshots_.cancel(); // a page waiting for a snapshot gets 503 now
 	// Closes the listening socket too (libmicrohttpd owns it once serving);
 	// waits for the connection threads, each back within kMjpegStreamWait.
 	if (MHD_Daemon *daemon = daemon_.exchange(nullptr))
@@ -327,14 +330,31 @@ bool PreviewServer::refuse(MHD_Connection *connection, AuthVerdict verdict)
 	return ret == MHD_YES;
 }
 
+// Authenticated already. Only POST (a GET that writes files would be
+// followed by link prefetchers), and only with the page's own header.
+bool PreviewServer::handleSnapshotPost(MHD_Connection *connection, const char *method)
+{
+	if (std::strcmp(method, "POST") != 0)
+		return queueText(*mhd_, connection, MHD_HTTP_METHOD_NOT_ALLOWED, "/snapshot takes POST only") == MHD_YES;
+	const char *marker = mhd_->lookupConnectionValue(connection, MHD_HEADER_KIND, "X-Depthkey-Snapshot");
+	if (!marker || std::strcmp(marker, "1") != 0)
+		return queueText(*mhd_, connection, MHD_HTTP_BAD_REQUEST,
+				 "POST /snapshot needs the header X-Depthkey-Snapshot: 1 (the page's button sends it)") ==
+		       MHD_YES;
+	const SnapshotReply reply = snapshots_.request(monotonicNs(), kSnapshotAnswerWait);
+	return queueText(*mhd_, connection, reply.httpStatus, reply.message) == MHD_YES;
+}
+
 int PreviewServer::handle(MHD_Connection *connection, const char *urlText, const char *method)
 {
 	if (const AuthVerdict verdict = authorise(connection); verdict != AuthVerdict::Allowed)
 		return refuse(connection, verdict);
+	const std::string_view url = urlText;
+	if (url == "/snapshot")
+		return handleSnapshotPost(connection, method);
 	if (std::strcmp(method, "GET") != 0 && std::strcmp(method, "HEAD") != 0)
 		return queueText(*mhd_, connection, MHD_HTTP_METHOD_NOT_ALLOWED, "only GET") == MHD_YES;
 
-	const std::string_view url = urlText;
 	PreviewStage stage;
 	if (url == "/" || url == "/index.html") {
 		MHD_Response *response = mhd_->createResponseFromBuffer(
@@ -359,8 +379,18 @@ int PreviewServer::handle(MHD_Connection *connection, const char *urlText, const
 		if (!frame)
 			return queueText(*mhd_, connection, MHD_HTTP_SERVICE_UNAVAILABLE,
 					 "no " + std::string(previewStageName(stage)) + " frame within 3 s") == MHD_YES;
-		return queue(*mhd_, connection, MHD_HTTP_OK,
-			     std::string(frame->jpeg.begin(), frame->jpeg.end()), "image/jpeg") == MHD_YES;
+		// The capture time (µs), as each part of a stream has it: the
+		// shared memory's timestamp_ns / 1000 of the same frame.
+		MHD_Response *response = mhd_->createResponseFromBuffer(
+			frame->jpeg.size(), const_cast<uint8_t *>(frame->jpeg.data()), MHD_RESPMEM_MUST_COPY);
+		if (!response)
+			return false;
+		mhd_->addResponseHeader(response, "Content-Type", "image/jpeg");
+		mhd_->addResponseHeader(response, "Cache-Control", "no-store");
+		mhd_->addResponseHeader(response, "X-Timestamp", std::to_string(frame->captureNs / 1000).c_str());
+		const MHD_Result ret = mhd_->queueResponse(connection, MHD_HTTP_OK, response);
+		mhd_->destroyResponse(response);
+		return ret == MHD_YES;
 	}
 	if (stageUrl(url, "/stream/", ".mjpg", stage)) {
 		if (++streams_ > maxClients_) {
@@ -389,8 +419,8 @@ int PreviewServer::handle(MHD_Connection *connection, const char *urlText, const
 		return ret == MHD_YES;
 	}
 	return queueText(*mhd_, connection, MHD_HTTP_NOT_FOUND,
-			 "no such page; try /, /stream/STAGE.mjpg, /snapshot/STAGE.jpg, /status.json, /metrics "
-			 "(STAGE: colour, depth, seeds, alpha, composite)") == MHD_YES;
+			 "no such page; try /, /stream/STAGE.mjpg, /snapshot/STAGE.jpg, /status.json, /metrics, "
+			 "POST /snapshot (STAGE: composite, lecturer, board, colour, depth, seeds, alpha)") == MHD_YES;
 }
 
 } // namespace depthkey

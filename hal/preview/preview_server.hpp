@@ -9,6 +9,10 @@
 //   /snapshot/STAGE.jpg  the next JPEG of the stage
 //   /status.json         the status (hal/preview/preview_status.hpp)
 //   /metrics             the same in Prometheus' text format
+//   POST /snapshot       the stage pictures written as SIGUSR1 writes them
+//                        (hal/preview/snapshot_requests.hpp), with the header
+//                        X-Depthkey-Snapshot: 1 (a form on another site
+//                        cannot send it, nor make a browser send it unasked)
 //
 // A stream's thread sends the newest JPEG whenever its socket takes more,
 // so a slow client skips frames and nobody waits for it. At most maxClients
@@ -34,6 +38,7 @@
 #include "hal/unique_fd.hpp"
 #include "hal/preview/preview_encoder.hpp"
 #include "hal/preview/preview_status.hpp"
+#include "hal/preview/snapshot_requests.hpp"
 
 #include <atomic>
 #include <memory>
@@ -87,6 +92,8 @@ public:
 	// A copy for the HTTP threads; called once a second by the daemon.
 	void setStatus(const PreviewStatus &status);
 	int streams() const { return streams_.load(); }
+	// The page's snapshot requests, answered by the daemon's loop.
+	SnapshotRequests &snapshots() { return snapshots_; }
 
 	// Used by the C callbacks of libmicrohttpd.
 	int handle(MHD_Connection *connection, const char *url, const char *method);
@@ -101,6 +108,7 @@ private:
 	void expireSlowRequests();
 	int startServing(std::string &error);
 	void noteError(std::string error);
+	bool handleSnapshotPost(MHD_Connection *connection, const char *method);
 
 	UniqueFd listen_;          // ours until libmicrohttpd takes it
 	UniqueFd wake_;            // eventfd: stop() wakes the waiting thread
@@ -121,6 +129,7 @@ private:
 	std::atomic<int> streams_{ 0 };
 	std::mutex statusMutex_;
 	PreviewStatus status_;
+	SnapshotRequests snapshots_;
 };
 
 } // namespace depthkey

@@ -1,5 +1,8 @@
 // The stages the preview page shows, by the names of its URLs
-// (/stream/composite.mjpg), and one encoded picture of a stage.
+// (/stream/composite.mjpg), and one encoded picture of a stage. The
+// composite, the lecturer layer and the board are what the recorder gets
+// (issue 30): the shared memory's pictures, in the board's geometry when it
+// is calibrated; the others are the pipeline's stages.
 #pragma once
 
 #include <array>
@@ -9,10 +12,11 @@
 
 namespace depthkey {
 
-enum class PreviewStage { Colour, Depth, Seeds, Alpha, Composite };
-constexpr size_t kPreviewStageCount = 5;
-constexpr std::array<std::string_view, kPreviewStageCount> kPreviewStageNames = { "colour", "depth", "seeds",
-										   "alpha", "composite" };
+enum class PreviewStage { Colour, Depth, Seeds, Alpha, Composite, Lecturer, Board };
+constexpr size_t kPreviewStageCount = 7;
+constexpr std::array<std::string_view, kPreviewStageCount> kPreviewStageNames = {
+	"colour", "depth", "seeds", "alpha", "composite", "lecturer", "board"
+};
 
 inline std::string_view previewStageName(PreviewStage stage)
 {

@@ -17,7 +17,12 @@ std::string previewStatusJson(const PreviewStatus &s)
 				    { "dropped", d.dropped },
 				    { "faults", d.faults },
 				    { "reconnects", d.reconnects } });
+	nlohmann::json errors = nlohmann::json::array();
+	for (const PreviewError &e : s.errors)
+		errors.push_back({ { "message", e.message }, { "unix_time_s", e.unixTimeS }, { "count", e.count } });
 	nlohmann::json j = {
+		{ "version", s.version },
+		{ "config_path", s.configPath },
 		{ "uptime_s", s.uptimeS },
 		{ "devices", devices },
 		{ "output", { { "fps", s.outputFps }, { "frames", s.published }, { "board_only", s.boardOnly },
@@ -25,12 +30,13 @@ std::string previewStatusJson(const PreviewStatus &s)
 		{ "pairing", { { "paired", s.paired }, { "unpaired", s.unpaired }, { "stale", s.stale } } },
 		{ "keying",
 		  { { "frames", s.keying.count },
+		    { "shed", s.keying.shed },
 		    { "median_ms", s.keying.medianMs },
 		    { "p99_ms", s.keying.p99Ms },
 		    { "p999_ms", s.keying.p999Ms },
 		    { "max_ms", s.keying.maxMs } } },
 		{ "calibration", { { "calibrated", s.calibrated }, { "file", s.calibrationFile } } },
-		{ "depth_latency_ms", s.depthLatencyMs },
+		{ "depth_arrival_ms", s.depthArrivalMs },
 		{ "depth_offset",
 		  { { "state", s.depthOffset.state },
 		    { "text", s.depthOffset.text },
@@ -38,7 +44,15 @@ std::string previewStatusJson(const PreviewStatus &s)
 		    { "correlation", s.depthOffset.correlation },
 		    { "applied_ms", s.depthOffset.applied ? nlohmann::json(s.depthOffset.appliedMs) : nlohmann::json() } } },
 		{ "readers", { { "composite", s.readersComposite }, { "lecturer", s.readersLecturer },
-				  { "board_lecturer", s.readersBoardLecturer } } },
+				  { "board_lecturer", s.readersBoardLecturer }, { "ever_attached", s.readerEverAttached } } },
+		{ "board",
+		  { { "source", s.board.source },
+		    { "state", s.board.state },
+		    { "geometry", s.board.geometry },
+		    { "width", s.board.width },
+		    { "height", s.board.height },
+		    { "text", s.board.text } } },
+		{ "errors", errors },
 		{ "webcam",
 		  { { "device", s.webcam.device },
 		    { "state", s.webcam.state },
@@ -139,6 +153,9 @@ std::string previewStatusMetrics(const PreviewStatus &s)
 	e.sample("depthkey_keying_seconds", "quantile=\"0.999\"", s.keying.p999Ms / 1000.0);
 	e.sample("depthkey_keying_seconds_sum", "", s.keying.sumS);
 	e.sample("depthkey_keying_seconds_count", "", static_cast<double>(s.keying.count));
+	e.family("depthkey_keying_shed_frames_total", "counter",
+		 "Colour frames not keyed because the box was too slow (the last frame out was repeated).");
+	e.sample("depthkey_keying_shed_frames_total", "", static_cast<double>(s.keying.shed));
 	e.family("depthkey_keying_max_seconds", "gauge", "The longest keying of a frame since the start.");
 	e.sample("depthkey_keying_max_seconds", "", s.keying.maxMs / 1000.0);
 	e.family("depthkey_board_only_frames_total", "counter",
@@ -166,7 +183,25 @@ std::string previewStatusMetrics(const PreviewStatus &s)
 		 "Capture slots filled with the last output, flagged repeated (a frame shed or keyed late).");
 	e.sample("depthkey_repeated_frames_total", "", static_cast<double>(s.repeated));
 	e.family("depthkey_depth_latency_seconds", "gauge", "Depth frame arrival after its capture time.");
-	e.sample("depthkey_depth_latency_seconds", "", s.depthLatencyMs / 1000.0);
+	e.sample("depthkey_depth_latency_seconds", "", s.depthArrivalMs / 1000.0);
+	e.family("depthkey_depth_offset_measured_seconds", "gauge",
+		 "The depth camera's clock offset measured here (pairing.offset_ms); absent until measured.");
+	if (s.depthOffset.measured)
+		e.sample("depthkey_depth_offset_measured_seconds", "", s.depthOffset.measuredMs / 1000.0);
+	e.family("depthkey_depth_offset_applied_seconds", "gauge",
+		 "The measured depth offset the pairing applies; absent while none is applied.");
+	if (s.depthOffset.applied)
+		e.sample("depthkey_depth_offset_applied_seconds", "", s.depthOffset.appliedMs / 1000.0);
+	e.family("depthkey_depth_offset_held", "gauge", "1 while a measured offset is held back (not trusted).");
+	e.sample("depthkey_depth_offset_held", "", s.depthOffset.state == "held" ? 1 : 0);
+	e.family("depthkey_board_geometry", "gauge", "1 when the composite is in the board's geometry (calibrated).");
+	e.sample("depthkey_board_geometry", "", s.board.geometry ? 1 : 0);
+	e.family("depthkey_board_up", "gauge", "1 while the board's picture source streams.");
+	e.sample("depthkey_board_up", "source=\"" + labelValue(s.board.source) + "\"", s.board.state == "streaming" ? 1 : 0);
+	e.family("depthkey_info", "gauge", "The daemon's version and config file, as labels.");
+	e.sample("depthkey_info", "version=\"" + labelValue(s.version) + "\",config=\"" + labelValue(s.configPath) + "\"", 1);
+	e.family("depthkey_recent_errors", "gauge", "Distinct error lines among the last logged (at most 8).");
+	e.sample("depthkey_recent_errors", "", static_cast<double>(s.errors.size()));
 	e.family("depthkey_calibrated", "gauge", "1 when a calibration fitting the cameras is loaded.");
 	e.sample("depthkey_calibrated", "", s.calibrated ? 1 : 0);
 	e.family("depthkey_readers", "gauge", "Readers of a shared-memory stream (heartbeats).");

@@ -33,6 +33,7 @@ struct PreviewWebcam {
 // How long keying a frame took since the start (daemon/keying_times.hpp).
 struct PreviewKeying {
 	uint64_t count = 0;
+	uint64_t shed = 0;       // colour frames not keyed: the box was too slow
 	double sumS = 0;
 	double medianMs = 0, p99Ms = 0, p999Ms = 0, maxMs = 0;
 };
@@ -59,7 +60,26 @@ struct PreviewLiveScore {
 	double iou = 0, boundaryF = 0;
 };
 
+// The board (daemon/board_output.hpp): its source, and whether the output is
+// in its geometry.
+struct PreviewBoard {
+	std::string source;      // backend name, e.g. "sim-board", "colour"
+	std::string state;       // "streaming", "lost", ...
+	bool geometry = false;   // the composite is in the board's geometry
+	int width = 0, height = 0; // the composite's size then
+	std::string text;        // as on the status line, with why not calibrated
+};
+
+// One of the last distinct error lines (daemon/recent_errors.hpp).
+struct PreviewError {
+	std::string message;
+	double unixTimeS = 0;    // when last logged
+	uint64_t count = 1;
+};
+
 struct PreviewStatus {
+	std::string version;     // DEPTHKEY_VERSION
+	std::string configPath;  // the config file the daemon runs on
 	double uptimeS = 0;
 	std::vector<PreviewDevice> devices;
 	double outputFps = 0;
@@ -72,9 +92,14 @@ struct PreviewStatus {
 	PreviewLiveScore liveScore;
 	bool calibrated = false;
 	std::string calibrationFile;
-	double depthLatencyMs = 0;       // arrival after the depth frame's capture time
+	// Arrival after the depth frame's capture time, always (issue 30: it was
+	// the measured offset once there was one, under the same name).
+	double depthArrivalMs = 0;
 	PreviewDepthOffset depthOffset;
 	int readersComposite = 0, readersLecturer = 0, readersBoardLecturer = 0;
+	bool readerEverAttached = false; // a recorder read since the start: 0 readers is news then
+	PreviewBoard board;
+	std::vector<PreviewError> errors; // newest first
 	PreviewWebcam webcam;
 	// Filled in by the server when it formats.
 	int previewClients = 0;

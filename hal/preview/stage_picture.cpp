@@ -97,6 +97,21 @@ StagePicture drawStagePicture(const StageImage &stage)
 	return out;
 }
 
+StagePicture drawLayerPicture(const RgbaImage &layer)
+{
+	StagePicture out;
+	out.rgb.resize(layer.width(), layer.height());
+	for (int y = 0; y < layer.height(); ++y)
+		for (int x = 0; x < layer.width(); ++x) {
+			const Rgba8 p = layer.at(x, y);
+			const int checker = ((x / kCheckerSquare + y / kCheckerSquare) & 1) ? kCheckerDark : kCheckerLight;
+			const int a = p.a, under = checker * (255 - a) + 127;
+			out.rgb.at(x, y) = Rgb8{ uint8_t((p.r * a + under) / 255), uint8_t((p.g * a + under) / 255),
+						 uint8_t((p.b * a + under) / 255) };
+		}
+	return out;
+}
+
 int writeStagePicturePng(const std::string &path, const StagePicture &picture, std::string &error)
 {
 	return picture.rgb.empty() ? writePng(path, picture.gray, error) : writePng(path, picture.rgb, error);

@@ -25,6 +25,13 @@ struct StagePicture {
 // neighbour, so that a pixel stays a pixel.
 StagePicture drawStagePicture(const StageImage &stage);
 
+// A layer with straight alpha (the lecturer layer) over a grey checkerboard
+// of kCheckerSquare-pixel squares, so that its transparency shows: each
+// pixel is (colour * a + checker * (255 - a) + 127) / 255.
+constexpr int kCheckerSquare = 16;
+constexpr uint8_t kCheckerLight = 153, kCheckerDark = 102;
+StagePicture drawLayerPicture(const RgbaImage &layer);
+
 // As PNG; returns 0 or a negative errno with error set.
 int writeStagePicturePng(const std::string &path, const StagePicture &picture, std::string &error);
 

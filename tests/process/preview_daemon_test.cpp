@@ -5,6 +5,7 @@
 // without one is refused clearly while the daemon runs on. The server binds
 // an ephemeral port (listen = "127.0.0.1:0"), read from the daemon's log.
 #include "hal/depthkey_shm.h"
+#include "daemon/version.hpp"
 #include "hal/v4l2/mjpeg_decoder.hpp"
 #include "tests/process/daemon_process.hpp"
 #include "tests/process/preview_test_util.hpp"
@@ -88,7 +89,7 @@ TEST_F(PreviewDaemon, PageStreamStatusAndMetrics)
 	depthkey::test::HttpReply page = curlGet(url + "/");
 	EXPECT_EQ(page.code, 200);
 	EXPECT_NE(page.body.find("<title>depthkey preview</title>"), std::string::npos);
-	EXPECT_NE(page.body.find("src=\"/stream/composite.mjpg\""), std::string::npos);
+	EXPECT_NE(page.body.find("data-src=\"/snapshot/composite.jpg\""), std::string::npos);
 
 	depthkey::test::HttpReply stream = curlGet(url + "/stream/composite.mjpg", "--max-time 2");
 	EXPECT_EQ(stream.code, 200);
@@ -122,7 +123,7 @@ TEST_F(PreviewDaemon, PageStreamStatusAndMetrics)
 	// just read slow the loop (CI saw 5.9 fps in the status window that
 	// held them), and it recovers once they end.
 	auto colourFps = [&] { return j["devices"].size() == 2u ? j["devices"][0]["fps"].get<double>() : 0.0; };
-	std::vector<double> latencies{ j["depth_latency_ms"].get<double>() }, rates{ colourFps() };
+	std::vector<double> latencies{ j["depth_arrival_ms"].get<double>() }, rates{ colourFps() };
 	depthkey::test::waitUntil(
 		[&] {
 			if (latencies.back() > 0.0 && rates.back() > 10.0)
@@ -131,7 +132,7 @@ TEST_F(PreviewDaemon, PageStreamStatusAndMetrics)
 			if (status.code != 200)
 				return true; // asserted below
 			j = nlohmann::json::parse(status.body);
-			latencies.push_back(j["depth_latency_ms"].get<double>());
+			latencies.push_back(j["depth_arrival_ms"].get<double>());
 			rates.push_back(colourFps());
 			return latencies.back() > 0.0 && rates.back() > 10.0;
 		},
@@ -168,6 +169,15 @@ TEST_F(PreviewDaemon, PageStreamStatusAndMetrics)
 		EXPECT_GT(latencies.back(), 0.0) << "depth latency " << testing::PrintToString(latencies) << " ms";
 	}
 	EXPECT_EQ(j["readers"]["composite"], 0);
+	EXPECT_EQ(j["readers"]["ever_attached"], false) << "no recorder yet: not a fault (issue 30)";
+	// Issue 30: the board, the version, the config, the shed frames, the last errors.
+	EXPECT_EQ(j["board"]["source"], "sim-board");
+	EXPECT_EQ(j["board"]["geometry"], false);
+	EXPECT_NE(j["board"]["text"].get<std::string>().find("board not calibrated"), std::string::npos);
+	EXPECT_EQ(j["version"], DEPTHKEY_VERSION);
+	EXPECT_EQ(j["config_path"].get<std::string>().substr(0, 1), "/");
+	EXPECT_TRUE(j["keying"]["shed"].is_number());
+	EXPECT_TRUE(j["errors"].is_array());
 	EXPECT_GT(j["preview"]["encoded"].get<int>(), 3);
 	// Issue 29: the simulated colour camera's truth scores what went out.
 	ASSERT_TRUE(j.contains("live_score")) << status.body;

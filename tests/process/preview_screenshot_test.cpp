@@ -19,9 +19,10 @@ using depthkey::test::DaemonProcess;
 
 namespace {
 
-// The page lays the five stages out in a grid of 4:3 boxes; at 1280 pixels
-// wide that is three columns of about 410 pixels from x = 12, rows from
-// y = 40. The inner part of each box is sampled.
+// The page lays the seven tiles out in a grid of 4:3 boxes (composite,
+// lecturer, board; colour, depth, seeds; alpha); at 1280 pixels wide that is
+// three columns of about 410 pixels from x = 12, rows from y = 40. The inner
+// part of each box is sampled.
 cv::Rect stageBox(int index)
 {
 	const int width = 411, height = 308, gapX = 421, gapY = 342;
@@ -52,7 +53,7 @@ TEST(PreviewScreenshot, ChromiumShowsTheStageImages)
 	// --timeout: the streams never finish loading; take the picture after 8 s.
 	std::string out = depthkey::test::run("timeout 60 chromium --headless=new --no-sandbox --disable-gpu "
 					      "--disable-background-networking --disable-component-update --no-first-run "
-					      "--hide-scrollbars --window-size=1280,1100 --timeout=8000 --screenshot=" +
+					      "--hide-scrollbars --window-size=1280,1500 --timeout=8000 --screenshot=" +
 						      shot + " " + url + "/",
 					      status);
 	depthkey::test::unlinkStreams(prefix);
@@ -71,8 +72,9 @@ TEST(PreviewScreenshot, ChromiumShowsTheStageImages)
 	// with him in it, 23.6 (CI, stop 22) with only the dark board and a few
 	// strokes there, so "textured" means a deviation over 10.
 	const char *names[] = { "composite", "colour", "depth", "seeds" };
+	const int boxes[] = { 0, 3, 4, 5 };
 	for (int i = 0; i < 4; i++) {
-		cv::Mat box = page(stageBox(i));
+		cv::Mat box = page(stageBox(boxes[i]));
 		cv::Scalar mean, deviation;
 		cv::meanStdDev(box, mean, deviation);
 		std::printf("    %s: mean %.1f, deviation %.1f (sums over B, G, R)\n", names[i], mean[0] + mean[1] + mean[2],
@@ -86,7 +88,7 @@ TEST(PreviewScreenshot, ChromiumShowsTheStageImages)
 	// And the status table was filled in from /status.json: its first row
 	// names the colour camera (dark page, light text: bright pixels below
 	// the grid).
-	cv::Mat table = page(cv::Rect(12, 740, 600, 200));
+	cv::Mat table = page(cv::Rect(12, 1130, 600, 200));
 	cv::Mat bright;
 	cv::inRange(table, cv::Scalar(150, 150, 150), cv::Scalar(255, 255, 255), bright);
 	EXPECT_GT(cv::countNonZero(bright), 500) << "no status text under the images in " << shot;
