@@ -7,7 +7,8 @@
 // half-closes after its bytes and reads the reply for at most 300 ms
 // (streams never end by themselves: once a stream has sent its first JPEG,
 // closing our end ends it, rather than waiting out the 300 ms). A feeder
-// thread offers a small picture of every stage, so snapshots have frames.
+// thread offers a small picture of every stage, so snapshots have frames,
+// and answers POST /snapshot as a daemon's loop does.
 //
 // The password file has one account, fuzz:secret (sha512crypt with the
 // fewest rounds crypt allows, 1000: each wrong password costs a hash, and
@@ -19,6 +20,7 @@
 #include "tests/preview_test_support.hpp"
 
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <crypt.h>
 #include <cstdio>
@@ -95,6 +97,10 @@ struct Server {
 			const uint64_t now = uint64_t(ts.tv_sec) * 1000000000u + uint64_t(ts.tv_nsec);
 			for (size_t s = 0; s < kPreviewStageCount; ++s)
 				encoder.offer(PreviewStage(s), pictures.images[s], now, now);
+			// POST /snapshot waits for the loop's answer: give the one a
+			// daemon without snapshot_dir gives, at once, as its loop would.
+			if (server.snapshots().pending())
+				server.snapshots().answer(-ENOENT, "daemon.snapshot_dir is not set");
 			std::this_thread::sleep_for(std::chrono::milliseconds(5));
 		}
 	}
