@@ -23,15 +23,15 @@ void FurnitureMask::update(const Gray8Image &inRange, const Gray8Image &moving, 
 	}
 }
 
-void FurnitureMask::remove(Gray8Image &mask) const
+void FurnitureMask::fill(Gray8Image &image, uint8_t value) const
 {
-	if (mask.width() != stillFrames_.width() || mask.height() != stillFrames_.height())
+	if (image.width() != stillFrames_.width() || image.height() != stillFrames_.height())
 		return;
 	const uint8_t *count = stillFrames_.data();
-	uint8_t *m = mask.data();
-	for (size_t i = 0; i < mask.size(); ++i)
-		if (count[i] >= kFramesToLearn)
-			m[i] = 0;
+	uint8_t *m = image.data();
+	for (size_t i = 0; i < image.size(); ++i)
+		if (count[i] >= kFramesToLearn && m[i])
+			m[i] = value;
 }
 
 } // namespace depthkey

@@ -36,8 +36,10 @@ public:
 	// One depth frame: inRange, moving and previousLecturer (may be empty:
 	// none yet) all the ToF frame's size. A new size starts afresh.
 	void update(const Gray8Image &inRange, const Gray8Image &moving, const Gray8Image &previousLecturer);
-	// Clears the furniture's pixels in mask (the same size; else unchanged).
-	void remove(Gray8Image &mask) const;
+	// Sets the furniture's non-zero pixels of image (the same size; else
+	// unchanged) to value: 0 in the in-range mask; surely board in depth's
+	// evidence (0 outside the superset stays 0).
+	void fill(Gray8Image &image, uint8_t value) const;
 	bool isFurniture(int x, int y) const
 	{
 		return x >= 0 && y >= 0 && x < stillFrames_.width() && y < stillFrames_.height() &&

@@ -3,8 +3,9 @@
 // defaults, calibrated by depthkey-calibrate --sim). The accuracy gate scores
 // the first 12 s; these lie later in the lecture's 27.5 s cycle.
 //   - Seed 1, 20.0-21.2 s: he writes the third block standing behind the
-//     desk; the desk and the monitor were keyed in beside him (IoU 0.49-0.56
-//     on main before algo/furniture_mask.hpp).
+//     desk; the desk and the monitor were keyed in beside him (mean IoU
+//     0.552, worst 0.506 on main; 0.982 and 0.973 with algo/furniture_mask.hpp
+//     cutting the desk off his depth area and its evidence, docs/accuracy.md).
 #include "tests/process/shell_command.hpp"
 #include "tests/test_paths.hpp"
 
@@ -64,7 +65,7 @@ TEST(MotionCases, DeskAndMonitorAreNotKeyedInBesideHim)
 		worst = std::min(worst, ious[n]);
 	}
 	std::printf("seed 1, 20.0-21.2 s, behind the desk: mean IoU %.3f, worst %.3f\n", sum / 30, worst);
-	EXPECT_GE(sum / 30, 0.93);
-	EXPECT_GE(worst, 0.90);
+	EXPECT_GE(sum / 30, 0.96);
+	EXPECT_GE(worst, 0.95);
 	fs::remove_all(dir);
 }
