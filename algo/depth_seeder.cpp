@@ -43,6 +43,10 @@ void DepthSeeder::seed(const DepthFrame &depth, DepthSeeds &out)
 
 	// Which in-range area is the lecturer: algo/lecturer_picker.hpp.
 	background_.update(depth.depthMm, moving_);
+	// Still furniture in range is no part of him, also where he touches
+	// it (algo/furniture_mask.hpp); reach_ is still the last frame's.
+	furniture_.update(trusted_, moving_, reach_);
+	furniture_.fill(trusted_, 0);
 	for (int r = settings_.erodePx; r >= 0; --r) {
 		erodeSquare(trusted_, r, subset_, morphology_, path_);
 		out.lecturerPixels = picker_.pick(subset_, moving_, components_);
@@ -79,6 +83,9 @@ void DepthSeeder::seed(const DepthFrame &depth, DepthSeeds &out)
 	out.lecturerDepthMm = out.lecturerPixels ? int(depthSum / unsigned(out.lecturerPixels)) : 0;
 	smoothSurface(depth.depthMm, out);
 	weighDepth(depth, out);
+	// The desk's edge in his band: its depth, in front of him, would read
+	// as lecturer; it is furniture, the board's side (1 = surely board).
+	furniture_.fill(out.evidence, 1);
 	keepCoreWhereDepthIsSure(out);
 }
 

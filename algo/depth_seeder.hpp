@@ -20,6 +20,7 @@
 #pragma once
 
 #include "algo/frames.hpp"
+#include "algo/furniture_mask.hpp"
 #include "algo/lecturer_picker.hpp"
 #include "algo/morphology.hpp"
 #include "algo/static_background.hpp"
@@ -96,6 +97,7 @@ private:
 	std::vector<uint32_t> depthSums_, counts_; // integral images, (w+1) x (h+1)
 	StaticBackground background_;
 	LecturerPicker picker_;
+	FurnitureMask furniture_;
 	MorphologyScratch morphology_;
 	ComponentScratch components_;
 };
