@@ -88,46 +88,46 @@ void BandGraphCut::buildGrid(const RgbImage &colour, const Gray8Image &trimap, c
 		const Rgb8 *up = hasUp ? colour.row(s.y - 1) : nullptr, *down = hasDown ? colour.row(s.y + 1) : nullptr;
 		const uint8_t *tUp = hasUp ? trimap.row(s.y - 1) : nullptr, *tDown = hasDown ? trimap.row(s.y + 1) : nullptr;
 		const int gy = s.y - gridY0_;
+		// Rows of the grid indexed by the image's x.
 		const size_t rowStart = size_t(gy) * size_t(gw) - size_t(x0);
-		for (int x = s.x0, k = s.first; x < s.x1; ++x, ++k) {
-			const size_t c = rowStart + size_t(x);
-			// Leaning lecturer by the confidence's distance from the middle.
-			int32_t unary = int32_t(confidence[k]) - int32_t(kConfidenceLecturer);
-			uint8_t touches = 0;
-			// A fixed neighbour pulls with the edge's weight.
-			auto fixed = [&](uint8_t label, int weight) {
-				if (label == kTrimapLecturer) {
-					unary += weight;
-					touches |= CutGrid::kTouchesLecturer;
-				} else if (label == kTrimapBoard) {
-					unary -= weight;
-					touches |= CutGrid::kTouchesBoard;
-				}
-			};
-			if (x > 0 && isTrimapSeed(t[x - 1]))
-				fixed(t[x - 1], edgeWeight(row[x], row[x - 1]));
-			int32_t right = 0, below = 0;
-			if (x + 1 < w) {
-				const int weight = edgeWeight(row[x], row[x + 1]);
-				if (x + 1 < s.x1)
-					right = weight;
-				else
-					fixed(t[x + 1], weight);
+		int32_t *unaryRow = grid_.unary.data() + rowStart, *rightRow = grid_.right.data() + rowStart;
+		int32_t *downRow = grid_.down.data() + rowStart;
+		uint8_t *touchesRow = grid_.touches.data() + rowStart;
+		const uint8_t *stateBelow = gy + 1 < gh ? grid_.state.data() + rowStart + size_t(gw) : nullptr;
+		// A fixed neighbour pulls with the edge's weight.
+		auto fixed = [&](int x, uint8_t label, int weight) {
+			if (label == kTrimapLecturer) {
+				unaryRow[x] += weight;
+				touchesRow[x] |= CutGrid::kTouchesLecturer;
+			} else if (label == kTrimapBoard) {
+				unaryRow[x] -= weight;
+				touchesRow[x] |= CutGrid::kTouchesBoard;
 			}
+		};
+		// Inside the span a pixel's left and right neighbours are free (the
+		// span is a run of them): only its ends can have fixed ones, added
+		// after the loop (integer sums, so the order changes nothing).
+		for (int x = s.x0, k = s.first; x < s.x1; ++x, ++k) {
+			// Leaning lecturer by the confidence's distance from the middle.
+			unaryRow[x] = int32_t(confidence[k]) - int32_t(kConfidenceLecturer);
+			touchesRow[x] = 0;
+			rightRow[x] = x + 1 < s.x1 ? edgeWeight(row[x], row[x + 1]) : 0;
 			if (hasUp && isTrimapSeed(tUp[x]))
-				fixed(tUp[x], edgeWeight(row[x], up[x]));
+				fixed(x, tUp[x], edgeWeight(row[x], up[x]));
+			int32_t below = 0;
 			if (hasDown) {
 				const int weight = edgeWeight(row[x], down[x]);
 				if (isTrimapSeed(tDown[x]))
-					fixed(tDown[x], weight);
-				else if (gy + 1 < gh && grid_.state[c + size_t(gw)] == CutGrid::kFree)
+					fixed(x, tDown[x], weight);
+				else if (stateBelow && stateBelow[x] == CutGrid::kFree)
 					below = weight;
 			}
-			grid_.unary[c] = unary;
-			grid_.right[c] = right;
-			grid_.down[c] = below;
-			grid_.touches[c] = touches;
+			downRow[x] = below;
 		}
+		if (s.x0 > 0 && isTrimapSeed(t[s.x0 - 1]))
+			fixed(s.x0, t[s.x0 - 1], edgeWeight(row[s.x0], row[s.x0 - 1]));
+		if (s.x1 < w)
+			fixed(s.x1 - 1, t[s.x1], edgeWeight(row[s.x1 - 1], row[s.x1]));
 	}
 }
 

@@ -49,8 +49,16 @@ void CoarseToFineCut::solve(CutGrid &fine, int levels)
 	}
 	CutGrid &coarsest = depth ? coarse_[size_t(depth)] : fine;
 	int vertices = 0;
-	for (size_t c = 0, n = coarsest.cells(); c < n; ++c)
-		coarsest.node[c] = coarsest.state[c] == CutGrid::kFree ? vertices++ : -1;
+	if (active_.size() < coarsest.cells())
+		active_.resize(coarsest.cells()); // grows once: no steady-state allocation
+	for (int y = 0; y < coarsest.height; ++y)
+		for (CutGrid::Run run = coarsest.nextRun(y, 0); run.x0 < coarsest.width;
+		     run = coarsest.nextRun(y, run.x1))
+			for (int x = run.x0; x < run.x1; ++x) {
+				const size_t c = size_t(y) * size_t(coarsest.width) + size_t(x);
+				active_[size_t(vertices)] = int32_t(c);
+				coarsest.node[c] = vertices++;
+			}
 	cutActive(coarsest, vertices);
 	cellsCut_[size_t(depth)] = size_t(vertices);
 	for (int level = depth - 1; level >= 0; --level) {
@@ -72,25 +80,24 @@ size_t CoarseToFineCut::coarsen(const CutGrid &fine, CutGrid &coarse)
 		const size_t row = size_t(y) * size_t(fine.width);
 		const size_t coarseRow = size_t(y / 2) * size_t(cw);
 		const bool crossesDown = y & 1; // the link below leaves the block
-		for (int x = 0; x < fine.width; ++x) {
-			const size_t c = row + size_t(x);
-			if (fine.state[c] != CutGrid::kFree)
-				continue;
-			const size_t b = coarseRow + size_t(x / 2);
-			if (coarse.state[b] != CutGrid::kFree) {
-				coarse.state[b] = CutGrid::kFree;
-				coarse.unary[b] = coarse.right[b] = coarse.down[b] = 0;
-				coarse.touches[b] = 0;
-				++freeCells;
+		for (CutGrid::Run run = fine.nextRun(y, 0); run.x0 < fine.width; run = fine.nextRun(y, run.x1))
+			for (int x = run.x0; x < run.x1; ++x) {
+				const size_t c = row + size_t(x);
+				const size_t b = coarseRow + size_t(x / 2);
+				if (coarse.state[b] != CutGrid::kFree) {
+					coarse.state[b] = CutGrid::kFree;
+					coarse.unary[b] = coarse.right[b] = coarse.down[b] = 0;
+					coarse.touches[b] = 0;
+					++freeCells;
+				}
+				coarse.unary[b] += fine.unary[c];
+				coarse.touches[b] |= fine.touches[c];
+				// Links inside the block cost nothing: its pixels share a label.
+				if (x & 1)
+					coarse.right[b] += fine.right[c];
+				if (crossesDown)
+					coarse.down[b] += fine.down[c];
 			}
-			coarse.unary[b] += fine.unary[c];
-			coarse.touches[b] |= fine.touches[c];
-			// Links inside the block cost nothing: its pixels share a label.
-			if (x & 1)
-				coarse.right[b] += fine.right[c];
-			if (crossesDown)
-				coarse.down[b] += fine.down[c];
-		}
 	}
 	return freeCells;
 }
@@ -104,24 +111,27 @@ void CoarseToFineCut::markEdge(const CutGrid &coarse)
 		marks_.resize(n);
 	}
 	// A cell on the decided edge: a free neighbour or a fixed one on the
-	// other side.
+	// other side. Fixed cells are not on it.
+	std::fill(edge_.begin(), edge_.begin() + std::ptrdiff_t(n), uint8_t(0));
 	for (int y = 0; y < h; ++y)
-		for (int x = 0; x < w; ++x) {
-			const size_t c = size_t(y) * size_t(w) + size_t(x);
-			if (coarse.state[c] != CutGrid::kFree) {
-				edge_[c] = 0;
-				continue;
+		for (CutGrid::Run run = coarse.nextRun(y, 0); run.x0 < w; run = coarse.nextRun(y, run.x1))
+			for (int x = run.x0; x < run.x1; ++x) {
+				const size_t c = size_t(y) * size_t(w) + size_t(x);
+				const uint8_t l = coarse.label[c];
+				const uint8_t otherSide = l ? CutGrid::kTouchesBoard : CutGrid::kTouchesLecturer;
+				auto differs = [&](size_t q) {
+					return coarse.state[q] == CutGrid::kFree && coarse.label[q] != l;
+				};
+				edge_[c] = (coarse.touches[c] & otherSide) || (x > 0 && differs(c - 1)) ||
+					   (x + 1 < w && differs(c + 1)) || (y > 0 && differs(c - size_t(w))) ||
+					   (y + 1 < h && differs(c + size_t(w)));
 			}
-			const uint8_t l = coarse.label[c];
-			const uint8_t otherSide = l ? CutGrid::kTouchesBoard : CutGrid::kTouchesLecturer;
-			auto differs = [&](size_t q) { return coarse.state[q] == CutGrid::kFree && coarse.label[q] != l; };
-			edge_[c] = (coarse.touches[c] & otherSide) || (x > 0 && differs(c - 1)) ||
-				   (x + 1 < w && differs(c + 1)) || (y > 0 && differs(c - size_t(w))) ||
-				   (y + 1 < h && differs(c + size_t(w)));
-		}
 	// Grown by margin_ cells (a square): rows first into marks_, then
-	// columns back into edge_, then copied (coarse grids are small).
+	// columns back into edge_ (coarse grids are small). Margin 0 (shipped)
+	// is the edge itself.
 	const int m = margin_;
+	if (!m)
+		return;
 	for (int y = 0; y < h; ++y) {
 		const uint8_t *e = edge_.data() + size_t(y) * size_t(w);
 		uint8_t *out = marks_.data() + size_t(y) * size_t(w);
@@ -141,24 +151,26 @@ void CoarseToFineCut::markEdge(const CutGrid &coarse)
 		}
 }
 
-int CoarseToFineCut::activate(CutGrid &fine, const CutGrid &coarse) const
+int CoarseToFineCut::activate(CutGrid &fine, const CutGrid &coarse)
 {
+	if (active_.size() < fine.cells())
+		active_.resize(fine.cells()); // grows once: no steady-state allocation
 	int vertices = 0;
 	for (int y = 0; y < fine.height; ++y) {
 		const size_t row = size_t(y) * size_t(fine.width);
 		const size_t coarseRow = size_t(y / 2) * size_t(coarse.width);
-		for (int x = 0; x < fine.width; ++x) {
-			const size_t c = row + size_t(x);
-			if (fine.state[c] != CutGrid::kFree)
-				continue;
-			const size_t b = coarseRow + size_t(x / 2);
-			if (edge_[b]) {
-				fine.node[c] = vertices++;
-			} else {
-				fine.node[c] = -1;
-				fine.label[c] = coarse.label[b];
+		for (CutGrid::Run run = fine.nextRun(y, 0); run.x0 < fine.width; run = fine.nextRun(y, run.x1))
+			for (int x = run.x0; x < run.x1; ++x) {
+				const size_t c = row + size_t(x);
+				const size_t b = coarseRow + size_t(x / 2);
+				if (edge_[b]) {
+					active_[size_t(vertices)] = int32_t(c);
+					fine.node[c] = vertices++;
+				} else {
+					fine.node[c] = -1;
+					fine.label[c] = coarse.label[b];
+				}
 			}
-		}
 	}
 	return vertices;
 }
@@ -170,29 +182,28 @@ void CoarseToFineCut::cutActive(CutGrid &grid, int vertices)
 	// A free neighbour decided at a coarser level pulls as a fixed one does;
 	// folded into the unary term first, so that the flow's bound is known
 	// before the graph's weight type is chosen.
-	const int w = grid.width, h = grid.height;
+	// Only the vertices' cells are walked (active_, row-major), not the
+	// level's grid: at the finest level they are a few percent of it. A
+	// link is non-zero only between free cells of one row or column
+	// (cut_grid.hpp), so a link's weight says that its neighbour exists.
+	const size_t w = size_t(grid.width);
 	int64_t sourceSum = 0, sinkSum = 0;
-	for (int y = 0; y < h; ++y)
-		for (int x = 0; x < w; ++x) {
-			const size_t c = size_t(y) * size_t(w) + size_t(x);
-			if (grid.node[c] < 0 || grid.state[c] != CutGrid::kFree)
-				continue;
-			int32_t u = grid.unary[c];
-			auto pull = [&](size_t q, int32_t link) {
-				if (link && grid.state[q] == CutGrid::kFree && grid.node[q] < 0)
-					u += grid.label[q] ? link : -link;
-			};
-			if (x > 0)
-				pull(c - 1, grid.right[c - 1]);
-			if (x + 1 < w)
-				pull(c + 1, grid.right[c]);
-			if (y > 0)
-				pull(c - size_t(w), grid.down[c - size_t(w)]);
-			if (y + 1 < h)
-				pull(c + size_t(w), grid.down[c]);
-			grid.unary[c] = u;
-			(u > 0 ? sourceSum : sinkSum) += u > 0 ? u : -u;
-		}
+	for (int v = 0; v < vertices; ++v) {
+		const size_t c = size_t(active_[size_t(v)]);
+		int32_t u = grid.unary[c];
+		auto pull = [&](size_t q, int32_t link) {
+			if (link && grid.node[q] < 0)
+				u += grid.label[q] ? link : -link;
+		};
+		if (c > 0 && grid.state[c - 1] == CutGrid::kFree)
+			pull(c - 1, grid.right[c - 1]);
+		pull(c + 1, grid.right[c]);
+		if (c >= w && grid.state[c - w] == CutGrid::kFree)
+			pull(c - w, grid.down[c - w]);
+		pull(c + w, grid.down[c]);
+		grid.unary[c] = u;
+		(u > 0 ? sourceSum : sinkSum) += u > 0 ? u : -u;
+	}
 	// The flow is at most the smaller of the terminals' capacities; a
 	// residual link holds its weight plus what flowed back through it.
 	if (std::min(sourceSum, sinkSum) <= INT32_MAX / 2)
@@ -209,32 +220,27 @@ void CoarseToFineCut::cutWith(Graph &graph, CutGrid &grid, int vertices)
 	graph.create(unsigned(vertices), unsigned(4 * vertices));
 	for (int v = 0; v < vertices; ++v)
 		graph.addVtx();
-	const int w = grid.width, h = grid.height;
+	const size_t w = size_t(grid.width);
 	int edges = 0;
-	for (int y = 0; y < h; ++y)
-		for (int x = 0; x < w; ++x) {
-			const size_t c = size_t(y) * size_t(w) + size_t(x);
-			const int v = grid.node[c];
-			if (v < 0 || grid.state[c] != CutGrid::kFree)
-				continue;
-			const int32_t u = grid.unary[c];
-			graph.addTermWeights(v, Weight(std::max(u, 0)), Weight(std::max(-u, 0)));
-			// A zero link carries no flow (the search skips it): left out.
-			if (x + 1 < w && grid.right[c] && grid.node[c + 1] >= 0) {
-				graph.addEdges(v, grid.node[c + 1], Weight(grid.right[c]), Weight(grid.right[c]));
-				++edges;
-			}
-			if (y + 1 < h && grid.down[c] && grid.node[c + size_t(w)] >= 0) {
-				graph.addEdges(v, grid.node[c + size_t(w)], Weight(grid.down[c]), Weight(grid.down[c]));
-				++edges;
-			}
+	for (int v = 0; v < vertices; ++v) {
+		const size_t c = size_t(active_[size_t(v)]);
+		const int32_t u = grid.unary[c];
+		graph.addTermWeights(v, Weight(std::max(u, 0)), Weight(std::max(-u, 0)));
+		// A zero link carries no flow (the search skips it): left out.
+		if (const int32_t right = grid.right[c]; right && grid.node[c + 1] >= 0) {
+			graph.addEdges(v, grid.node[c + 1], Weight(right), Weight(right));
+			++edges;
 		}
+		if (const int32_t down = grid.down[c]; down && grid.node[c + w] >= 0) {
+			graph.addEdges(v, grid.node[c + w], Weight(down), Weight(down));
+			++edges;
+		}
+	}
 	if (edges)
 		graph.maxFlow(); // GCGraph refuses a graph without edges
-	for (size_t c = 0, n = grid.cells(); c < n; ++c) {
-		const int v = grid.node[c];
-		if (v >= 0 && grid.state[c] == CutGrid::kFree)
-			grid.label[c] = edges ? uint8_t(graph.inSourceSegment(v)) : uint8_t(grid.unary[c] > 0);
+	for (int v = 0; v < vertices; ++v) {
+		const size_t c = size_t(active_[size_t(v)]);
+		grid.label[c] = edges ? uint8_t(graph.inSourceSegment(v)) : uint8_t(grid.unary[c] > 0);
 	}
 }
 

@@ -67,8 +67,8 @@ private:
 	void markEdge(const CutGrid &coarse);
 	// Fine cells under marked coarse cells get a graph vertex; the others
 	// take their coarse cell's label. Returns the vertices.
-	int activate(CutGrid &fine, const CutGrid &coarse) const;
-	// Cuts the cells that have a vertex (node >= 0).
+	int activate(CutGrid &fine, const CutGrid &coarse);
+	// Cuts the cells that have a vertex (node >= 0), listed in active_.
 	void cutActive(CutGrid &grid, int vertices);
 	template<typename Weight, typename Graph>
 	void cutWith(Graph &graph, CutGrid &grid, int vertices);
@@ -76,6 +76,7 @@ private:
 	int margin_ = 0;
 	std::array<CutGrid, kMaxLevels + 1> coarse_; // [1..levels]; [0] unused (the caller's)
 	std::vector<uint8_t> edge_, marks_;          // per coarse cell
+	std::vector<int32_t> active_;                // vertex -> its cell, row-major
 	std::array<size_t, kMaxLevels + 1> cellsCut_{};
 	std::unique_ptr<Graphs> graphs_; // GCGraph's header stays out of this one
 };

@@ -6,14 +6,17 @@
 //   E = sum_free unary(label) + sum_{free p~q, cut} link(p, q)
 // with unary[c] = cost(board) - cost(lecturer) (> 0 leans lecturer) and
 // right[c], down[c] the weights of the links to the free cell right of and
-// below c (0 where there is none). Only `state` says which cells are free:
+// below c (0 where there is none, so a non-zero link always leads to a free
+// cell of the same row or column). Only `state` says which cells are free:
 // every other array is valid at free cells only, so a frame clears one byte
 // a cell, not seventeen.
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 namespace depthkey {
@@ -47,6 +50,32 @@ struct CutGrid {
 		std::fill(state.begin(), state.begin() + std::ptrdiff_t(n), kFixed);
 	}
 	size_t cells() const { return size_t(width) * size_t(height); }
+
+	// The next run of free cells of row y at or after x: [x0, x1), x0 ==
+	// width when there is none. Most of a level's bounding box is fixed (the
+	// core, the board beyond the band), so the fixed cells are skipped eight
+	// at a time instead of walked.
+	struct Run {
+		int x0, x1;
+	};
+	Run nextRun(int y, int x) const
+	{
+		const uint8_t *row = state.data() + size_t(y) * size_t(width);
+		if constexpr (std::endian::native == std::endian::little)
+			for (uint64_t word; x + 8 <= width; x += 8) {
+				std::memcpy(&word, row + x, 8);
+				if (word) {
+					x += std::countr_zero(word) / 8; // kFixed is 0
+					break;
+				}
+			}
+		while (x < width && row[x] == kFixed)
+			++x;
+		int end = x;
+		while (end < width && row[end] == kFree)
+			++end;
+		return { x, end };
+	}
 };
 
 } // namespace depthkey

@@ -193,3 +193,31 @@ TEST(BandGraphCut, CoarseLevelsGrowWithTheWidth)
 	EXPECT_EQ(BandGraphCut::levelsForWidth(2, 900), 2);  // log2(900 / 640) = 0.49 rounds down
 	EXPECT_EQ(BandGraphCut::levelsForWidth(2, 910), 3);  // 0.51 rounds up
 }
+
+TEST(CutGrid, NextRunFindsEveryRunOfFreeCellsAsAByteWalkDoes)
+{
+	// nextRun skips fixed cells eight at a time: runs that start and end
+	// on and across the eight-cell words, at the row's ends, and rows with
+	// none, against a walk of each cell.
+	std::mt19937 rng(5);
+	for (int trial = 0; trial < 200; ++trial) {
+		const int w = 1 + int(rng() % 40);
+		CutGrid g;
+		g.reset(w, 3);
+		const int fixedPercent = int(rng() % 101);
+		for (size_t c = 0; c < g.cells(); ++c)
+			g.state[c] = int(rng() % 100) < fixedPercent ? CutGrid::kFixed : CutGrid::kFree;
+		for (int y = 0; y < g.height; ++y) {
+			std::vector<uint8_t> seen(size_t(w), CutGrid::kFixed);
+			for (CutGrid::Run run = g.nextRun(y, 0); run.x0 < w; run = g.nextRun(y, run.x1)) {
+				ASSERT_LT(run.x0, run.x1) << "trial " << trial;
+				ASSERT_TRUE(run.x1 == w || g.state[size_t(y) * size_t(w) + size_t(run.x1)] == CutGrid::kFixed);
+				for (int x = run.x0; x < run.x1; ++x)
+					seen[size_t(x)] = CutGrid::kFree;
+			}
+			for (int x = 0; x < w; ++x)
+				EXPECT_EQ(seen[size_t(x)], g.state[size_t(y) * size_t(w) + size_t(x)])
+					<< "trial " << trial << " row " << y << " cell " << x;
+		}
+	}
+}
