@@ -1,6 +1,7 @@
 #include "algo/boundary_unmixing.hpp"
 
 #include "algo/column_sums.hpp"
+#include "algo/edge_kinds_rows.hpp"
 
 #include <algorithm>
 #include <climits>
@@ -49,8 +50,11 @@ int BoundaryUnmixing::refine(const RgbImage &colour, const Gray8Image &trimap, c
 	for (auto &c : columns_)
 		if (c.size() < size_t(W))
 			c.resize(size_t(W));
-	if (columnRow_.size() < size_t(W))
+	if (columnRow_.size() < size_t(W)) {
 		columnRow_.resize(size_t(W));
+		zeroKinds_.resize(size_t(W));
+		zeroColours_.resize(size_t(W));
+	}
 	findKinds(matte, roi);
 	int changed = 0;
 	for (int p = 0; p < kPasses; ++p) {
@@ -74,8 +78,7 @@ void BoundaryUnmixing::findKinds(const Gray8Image &matte, const Roi &roi)
 		}
 		const uint8_t *up = matte.row(y - 1), *m = matte.row(y), *down = matte.row(y + 1);
 		k[roi.x0] = kindAt(matte, roi, roi.x0, y);
-		for (int x = roi.x0 + 1; x + 1 < roi.x1; ++x)
-			k[x] = kindOf(m[x] + m[x - 1] + m[x + 1] + up[x] + down[x], m[x]);
+		edgeKinds_(up + roi.x0 + 1, m + roi.x0 + 1, down + roi.x0 + 1, roi.x1 - roi.x0 - 2, k + roi.x0 + 1);
 		k[roi.x1 - 1] = kindAt(matte, roi, roi.x1 - 1, y);
 	}
 }
@@ -127,6 +130,20 @@ int BoundaryUnmixing::pass(const RgbImage &colour, const Gray8Image &trimap, con
 		uint8_t *k = kind_.row(roi.y0 + y) + roi.x0;
 		const uint8_t *label = trimap.row(roi.y0 + y) + roi.x0;
 		auto looked = [&](int x) { return k[x] == kBoardEdge && label[x] != kTrimapBoard; };
+		// The rows the window's column sums take in and off, moving down
+		// (kBoardEdge, 0, is neither side).
+		static_assert(kBoardEdge == 0);
+		const bool in = y + R < h, out = y - R - 1 >= 0;
+		const uint8_t *kIn = in ? kind_.row(roi.y0 + y + R) + roi.x0 : zeroKinds_.data();
+		const uint8_t *kOut = out ? kind_.row(roi.y0 + y - R - 1) + roi.x0 : zeroKinds_.data();
+		const Rgb8 *cIn = in ? colour.row(roi.y0 + y + R) + roi.x0 : zeroColours_.data();
+		const Rgb8 *cOut = out ? colour.row(roi.y0 + y - R - 1) + roi.x0 : zeroColours_.data();
+		auto step = [&](int s, int e) {
+			SideSums at;
+			for (size_t i = 0; i < at.size(); ++i)
+				at[i] = sums[i] + s;
+			sideColumns_(kIn + s, cIn + s, kOut + s, cOut + s, e - s, { kLecturerInside, kBoardInside }, at);
+		};
 		for (int from = 0, s, e;; from = e) {
 			// The next run [s, e) of undecided board pixels on the edge.
 			while (from + 8 <= w && !anyBoardEdge(k + from))
@@ -137,8 +154,7 @@ int BoundaryUnmixing::pass(const RgbImage &colour, const Gray8Image &trimap, con
 				break;
 			for (s = e = from; e < w && looked(e);)
 				++e;
-			for (int c = std::max(0, s - R); c < std::min(w, e + R); ++c)
-				columns.bring(c, y, R, h, sides);
+			columns.bringRun(std::max(0, s - R), std::min(w, e + R), y, R, h, sides, step);
 			SlidingSums<8> window{ constSums };
 			window.start(s, R, w);
 			for (int x = s; x < e; ++x) {

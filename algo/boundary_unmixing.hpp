@@ -38,6 +38,8 @@
 #pragma once
 
 #include "algo/board_model.hpp"
+#include "algo/column_sums_rows.hpp"
+#include "algo/edge_kinds_rows.hpp"
 #include "algo/image.hpp"
 #include "algo/trimap.hpp"
 
@@ -56,6 +58,13 @@ public:
 	// minContrast2: the least |F - B|^2 (squared 8-bit levels, summed over
 	// R, G and B) for the projection to decide; 0 = off.
 	void configure(int minContrast2) { minContrast2_ = minContrast2; }
+	// The column sums' row kernel (algo/column_sums_rows.hpp); the output
+	// is the same on every path.
+	void setKernelPath(KernelPath path)
+	{
+		sideColumns_ = sideColumnsRow(path);
+		edgeKinds_ = edgeKindsRow(path);
+	}
 
 	// matte: 0 or 255 inside roi (board outside). Board pixels along its
 	// edge that the trimap leaves undecided (outside the superset stays
@@ -75,11 +84,11 @@ private:
 		kBoardInside = 3,
 		kTurned = 4,
 	};
+	static_assert(kBoardEdge == kEdgeKindBoardEdge && kLecturerEdge == kEdgeKindLecturerEdge &&
+			      kLecturerInside == kEdgeKindLecturerInside && kBoardInside == kEdgeKindBoardInside,
+		      "the kinds row (algo/edge_kinds_rows.hpp) writes these");
 	// A pixel's kind from the sum of its and its 4-neighbours' matte.
-	static uint8_t kindOf(int around, uint8_t m)
-	{
-		return around == 5 * 255 ? kLecturerInside : around == 0 ? kBoardInside : m ? kLecturerEdge : kBoardEdge;
-	}
+	static uint8_t kindOf(int around, uint8_t m) { return edgeKindOf(around, m); }
 	// The same at (x, y) in roi, board beyond it.
 	static uint8_t kindAt(const Gray8Image &matte, const Roi &roi, int x, int y);
 	void findKinds(const Gray8Image &matte, const Roi &roi);
@@ -98,6 +107,12 @@ private:
 	// column holds.
 	std::array<std::vector<uint32_t>, 8> columns_;
 	std::vector<int> columnRow_;
+	// Rows of zeros (kinds of neither side, and colours): what a window
+	// takes in or off beyond the ROI.
+	std::vector<uint8_t> zeroKinds_;
+	std::vector<Rgb8> zeroColours_;
+	SideColumnsFn sideColumns_ = sideColumnsRow(bestKernelPath());
+	EdgeKindsFn edgeKinds_ = edgeKindsRow(bestKernelPath());
 };
 
 } // namespace depthkey

@@ -46,6 +46,28 @@ struct ColumnSums {
 		}
 		rows[x] = y;
 	}
+
+	// Columns [x0, x1) to row y, as bring() each: a run of columns that
+	// held row y - 1 moves down at once, step(s, e) adding row y + r's
+	// values to columns [s, e) and taking off row y - r - 1's (a vector row,
+	// algo/column_sums_rows.hpp); any other column one at a time.
+	template<class Values, class Step>
+	void bringRun(int x0, int x1, int y, int r, int h, const Values &values, const Step &step)
+	{
+		for (int x = x0; x < x1;) {
+			if (rows[x] != y - 1) {
+				bring(x, y, r, h, values);
+				++x;
+				continue;
+			}
+			int e = x + 1;
+			while (e < x1 && rows[e] == y - 1)
+				++e;
+			step(x, e);
+			std::fill(rows + x, rows + e, y);
+			x = e;
+		}
+	}
 };
 
 // The sums of K column sums over a window of columns [x - r, x + r]

@@ -32,7 +32,27 @@ bool nextRun(const uint8_t *near, int from, int w, int &s, int &e)
 	return true;
 }
 
+// n / (N 2^shift) rounded half away from zero, as (n +- den / 2) / den
+// with den = N 2^shift gives it: floor((|n| + den / 2) / den) is
+// floor(floor((|n| + den / 2) / 2^shift) / N) (a floor of a floor), the
+// first a shift, the second byN's multiply while it is below 2^31 (the
+// callers' are: |n| / 2^shift < 2^30 N), else a division.
+inline int64_t roundedQuotient(int64_t n, int shift, int64_t N, const ExactDivisor &byN)
+{
+	const uint64_t magnitude = uint64_t(n >= 0 ? n : -n);
+	const uint64_t m = (magnitude + (uint64_t(N) << (shift - 1))) >> shift;
+	const int64_t q = m < (uint64_t(1) << ExactDivisor::kNumeratorBits) ? int64_t(byN.floor(uint32_t(m)))
+									    : int64_t(m / uint64_t(N));
+	return n >= 0 ? q : -q;
+}
+
 } // namespace
+
+GuidedFilter::GuidedFilter()
+{
+	for (int n = 1; n <= kMaxWindowPixels; ++n)
+		byCount_[size_t(n)].set(uint32_t(n));
+}
 
 void GuidedFilter::configure(int radius, int eps)
 {
@@ -131,9 +151,18 @@ void GuidedFilter::coefficientsRow(const Gray8Image &matte, const Roi &roi, int 
 		return std::array<uint32_t, 4>{ i, p, i * i, i * p };
 	};
 	ColumnSums<4> columns{ { colI_.data(), colP_.data(), colII_.data(), colIP_.data() }, momentRow_.data() };
+	// The rows the window's column sums take in and off, moving down.
+	const bool in = y + r < h, out = y - r - 1 >= 0;
+	const uint8_t *iIn = in ? guide_.row(roi.y0 + y + r) + roi.x0 : zeroBytes_.data();
+	const uint8_t *pIn = in ? matte.row(roi.y0 + y + r) + roi.x0 : zeroBytes_.data();
+	const uint8_t *iOut = out ? guide_.row(roi.y0 + y - r - 1) + roi.x0 : zeroBytes_.data();
+	const uint8_t *pOut = out ? matte.row(roi.y0 + y - r - 1) + roi.x0 : zeroBytes_.data();
+	auto step = [&](int s, int e) {
+		momentColumns_(iIn + s, pIn + s, iOut + s, pOut + s, e - s,
+			       { colI_.data() + s, colP_.data() + s, colII_.data() + s, colIP_.data() + s });
+	};
 	for (int s, e, from = 0; nextRun(nr, from, w, s, e); from = e) {
-		for (int x = std::max(0, s - r); x < std::min(w, e + r); ++x)
-			columns.bring(x, y, r, h, moments);
+		columns.bringRun(std::max(0, s - r), std::min(w, e + r), y, r, h, moments, step);
 		SlidingSums<4> window{ { colI_.data(), colP_.data(), colII_.data(), colIP_.data() } };
 		window.start(s, r, w);
 		for (int x = s; x < e; ++x) {
@@ -146,9 +175,8 @@ void GuidedFilter::coefficientsRow(const Gray8Image &matte, const Roi &roi, int 
 			const int64_t num = cov * 65536;
 			const int64_t a = (num >= 0 ? num + var / 2 : num - var / 2) / var;
 			const int64_t bNum = (P << 16) - a * I; // Q16 * N
-			const int64_t bDen = N * 256;
 			aRow[x] = int32_t(a);
-			bRow[x] = int32_t((bNum >= 0 ? bNum + bDen / 2 : bNum - bDen / 2) / bDen);
+			bRow[x] = int32_t(roundedQuotient(bNum, 8, N, byCount_[size_t(N)]));
 		}
 	}
 }
@@ -167,9 +195,17 @@ void GuidedFilter::outputRow(const Gray8Image &matte, const Roi &roi, int y, Gra
 		return std::array<uint32_t, 2>{ uint32_t(a_[at]), uint32_t(b_[at]) };
 	};
 	ColumnSums<2> columns{ { colA_.data(), colB_.data() }, ringRow_.data() };
+	const bool takeIn = y + r < h, takeOff = y - r - 1 >= 0;
+	auto ringAt = [&](const std::vector<int32_t> &ring, int row) { return ring.data() + size_t(row % ringRows()) * w; };
+	const int32_t *aIn = takeIn ? ringAt(a_, y + r) : zeroWords_.data();
+	const int32_t *bIn = takeIn ? ringAt(b_, y + r) : zeroWords_.data();
+	const int32_t *aOut = takeOff ? ringAt(a_, y - r - 1) : zeroWords_.data();
+	const int32_t *bOut = takeOff ? ringAt(b_, y - r - 1) : zeroWords_.data();
+	auto step = [&](int s, int e) {
+		pairColumns_(aIn + s, bIn + s, aOut + s, bOut + s, e - s, { colA_.data() + s, colB_.data() + s });
+	};
 	for (int s, e, from = 0; nextRun(nr, from, w, s, e); from = e) {
-		for (int x = std::max(0, s - r); x < std::min(w, e + r); ++x)
-			columns.bring(x, y, r, h, coefficients);
+		columns.bringRun(std::max(0, s - r), std::min(w, e + r), y, r, h, coefficients, step);
 		SlidingSums<2> window{ { colA_.data(), colB_.data() } };
 		window.start(s, r, w);
 		for (int x = s; x < e; ++x) {
@@ -178,8 +214,7 @@ void GuidedFilter::outputRow(const Gray8Image &matte, const Roi &roi, int y, Gra
 			// q = (sA I / 2^16 + sB / 2^8) / N, rounded; the sums' true values
 			// fit int32.
 			const int64_t num = int64_t(int32_t(window.sums[0])) * g[x] + int64_t(int32_t(window.sums[1])) * 256;
-			const int64_t den = N * 65536;
-			const int64_t q = (num >= 0 ? num + den / 2 : num - den / 2) / den;
+			const int64_t q = roundedQuotient(num, 16, N, byCount_[size_t(N)]);
 			o[x] = uint8_t(std::clamp<int64_t>(q, 0, 255));
 			changed_ += o[x] != pRow[x];
 		}
@@ -205,6 +240,10 @@ void GuidedFilter::filter(const RgbImage &colour, const Gray8Image &matte, const
 		if (rows->size() < size_t(W))
 			rows->resize(size_t(W));
 		std::fill(rows->begin(), rows->end(), INT_MIN); // no column holds a window
+	}
+	if (zeroBytes_.size() < size_t(W)) {
+		zeroBytes_.resize(size_t(W));
+		zeroWords_.resize(size_t(W));
 	}
 	const size_t stride = size_t(W + 7) & ~size_t(7);
 	if (reach_.size() < stride)

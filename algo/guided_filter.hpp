@@ -26,13 +26,19 @@
 // issue 15). Sums are kept modulo 2^32 (a box sum is below 2^32, so
 // differences of wrapped sums are exact).
 //   a in Q16 (|a| <= 255 / (2 sqrt(eps)) < 2^8), b in Q8: their box sums
-//   fit 32 bits for r <= 7. The two divisions per pixel are 64-bit.
+//   fit 32 bits for r <= 7. a's division is 64-bit (its divisor, the
+//   window's variance, is new at every pixel); b's and q's divisors are the
+//   window's pixel count N times a power of two: the power of two is a
+//   shift, N a multiply (algo/exact_divisor.hpp, the same quotient).
 // Allocation-free once sized; tests compare it with a double reference.
 #pragma once
 
+#include "algo/column_sums_rows.hpp"
+#include "algo/exact_divisor.hpp"
 #include "algo/image.hpp"
 #include "algo/trimap.hpp"
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -43,8 +49,17 @@ class GuidedFilter
 public:
 	static constexpr int kMaxRadius = 7;
 
+	GuidedFilter();
+
 	// radius 1..kMaxRadius, eps in squared 8-bit levels (>= 1).
 	void configure(int radius, int eps);
+	// The column sums' row kernels (algo/column_sums_rows.hpp); the output
+	// is the same on every path.
+	void setKernelPath(KernelPath path)
+	{
+		momentColumns_ = momentColumnsRow(path);
+		pairColumns_ = pairColumnsRow(path);
+	}
 
 	// matte: 0..255 inside roi, 0 outside; out receives the filtered matte
 	// inside roi (resized to the image; outside roi untouched).
@@ -68,6 +83,10 @@ private:
 
 	int ringRows() const { return 2 * radius_ + 2; }
 
+	static constexpr int kMaxWindowPixels = (2 * kMaxRadius + 1) * (2 * kMaxRadius + 1);
+	// byCount_[N] divides by a window's pixel count N (1..(2r + 1)^2).
+	std::array<ExactDivisor, kMaxWindowPixels + 1> byCount_;
+
 	Gray8Image guide_, near_;              // luma; 1 = within 2r of an edge
 	// markNearEdges(): a ring of the edges' reach along rows (4r + 3 rows,
 	// each padded to whole words), and per column how many of its rows
@@ -79,6 +98,12 @@ private:
 	std::vector<uint32_t> colI_, colP_, colII_, colIP_, colA_, colB_;
 	std::vector<int> momentRow_, ringRow_;
 	std::vector<int32_t> a_, b_;            // ring of ROI rows, Q16 and Q8
+	// A row of zeros of each kind: the row a window's column sums take in
+	// or off where there is none (beyond the ROI).
+	std::vector<uint8_t> zeroBytes_;
+	std::vector<int32_t> zeroWords_;
+	MomentColumnsFn momentColumns_ = momentColumnsRow(bestKernelPath());
+	PairColumnsFn pairColumns_ = pairColumnsRow(bestKernelPath());
 };
 
 } // namespace depthkey

@@ -100,6 +100,8 @@ public:
 		kernelPath_ = path;
 		seeder_.setKernelPath(path);
 		refiner_.setKernelPath(path);
+		guided_.setKernelPath(path);
+		unmixing_.setKernelPath(path);
 	}
 
 	// Keys a colour frame with the depth frames captured just before and

@@ -9,6 +9,7 @@
 
 #include "algo/boundary_unmixing.hpp"
 #include "tests/boundary_unmixing_whole_roi.hpp"
+#include "tests/simd_paths.hpp"
 #include "tests/edge_scenes.hpp"
 
 #include <cmath>
@@ -240,10 +241,12 @@ TEST(BoundaryUnmixing, EqualsTheWholeRoiUnmixingBitForBit)
 			model.learn(scene.room, learned);
 		for (int minContrast2 : { 100, 20 })
 			for (int matte = 0; matte < 3; ++matte)
-				for (const Roi &roi : test::edgeSceneRois(w, h)) {
+				for (const Roi &roi : test::edgeSceneRois(w, h))
+				for (KernelPath path : simd_test::kAllPaths) { // the column sums' rows
 					// No edge at all: all board, all lecturer.
 					Gray8Image out = matte == 0 ? scene.matte : Gray8Image(w, h, matte == 1 ? 0 : 255);
 					Gray8Image expected = out;
+					unmixing.setKernelPath(path);
 					unmixing.configure(minContrast2);
 					reference.configure(minContrast2);
 					const int n = unmixing.refine(scene.colour, trimap, model, roi, out);
@@ -253,7 +256,8 @@ TEST(BoundaryUnmixing, EqualsTheWholeRoiUnmixingBitForBit)
 						for (int x = 0; x < w; ++x)
 							differ += out.at(x, y) != expected.at(x, y);
 					ASSERT_EQ(differ, 0) << w << "x" << h << " matte " << matte << " roi " << roi.x0 << ","
-							     << roi.y0 << "-" << roi.x1 << "," << roi.y1 << " contrast " << minContrast2;
+							     << roi.y0 << "-" << roi.x1 << "," << roi.y1 << " contrast " << minContrast2
+							     << " " << simd_test::pathName(path);
 					changed += n;
 				}
 	}

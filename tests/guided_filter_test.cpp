@@ -8,6 +8,7 @@
 #include "algo/guided_filter.hpp"
 #include "tests/edge_scenes.hpp"
 #include "tests/guided_filter_whole_roi.hpp"
+#include "tests/simd_paths.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -177,7 +178,9 @@ TEST(GuidedFilter, EqualsTheWholeRoiFilterBitForBit)
 				scene.matte = lecturer;
 			for (const Roi &roi : test::edgeSceneRois(w, h))
 				for (int radius = 1; radius <= GuidedFilter::kMaxRadius; ++radius)
-					for (int eps : { 10, 400 }) {
+					for (int eps : { 10, 400 })
+					for (KernelPath path : simd_test::kAllPaths) { // the column sums' rows
+						filter.setKernelPath(path);
 						filter.configure(radius, eps);
 						reference.configure(radius, eps);
 						Gray8Image out(w, h, 77), expected(w, h, 77);
@@ -189,7 +192,7 @@ TEST(GuidedFilter, EqualsTheWholeRoiFilterBitForBit)
 								differ += out.at(x, y) != expected.at(x, y);
 						ASSERT_EQ(differ, 0) << w << "x" << h << " matte " << matte << " roi " << roi.x0 << ","
 								     << roi.y0 << "-" << roi.x1 << "," << roi.y1 << " r " << radius
-								     << " eps " << eps;
+								     << " eps " << eps << " " << simd_test::pathName(path);
 						ASSERT_EQ(filter.changedPixels(), reference.changedPixels());
 						compared += size_t(w) * h;
 						changed += filter.changedPixels();
