@@ -53,13 +53,18 @@ public:
 	int meanMm(size_t i) const { return i < mean_.size() ? mean_.data()[i] >> kFractionBits : 0; }
 
 private:
-	// Whether the 3x3 box around (x, y) lies in front of its means by more
-	// than kToleranceMm plus twice the deviation of the box's mean noise.
-	bool inFrontPooled(int x, int y) const;
+	// pooled_: whether the 3x3 box around each measured pixel lies in front
+	// of its means by more than kToleranceMm plus twice the deviation of
+	// the box's mean noise (boxes of under 4 measured pixels: no).
+	void poolBoxes(int w, int h);
 
 	Gray16Image mean_, deviation_; // Q3 mm; mean 0 = not seen yet
 	Gray8Image inFront_, pooled_;
 	std::vector<int32_t> excess_; // this frame's depth in front of the mean, Q3 mm
+	// poolBoxes' sums over each pixel's row of three: capped excess,
+	// deviation, measured pixels.
+	std::vector<int32_t> rowExcess_, rowDeviation_;
+	std::vector<uint8_t> rowCount_;
 };
 
 } // namespace depthkey

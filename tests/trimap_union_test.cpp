@@ -8,6 +8,7 @@
 #include "algo/trimap_union.hpp"
 
 #include <cstring>
+#include <random>
 #include <vector>
 
 using namespace depthkey;
@@ -115,4 +116,31 @@ TEST(TrimapUnion, TheCoreIsWhereBothSawHimTheSupersetWhereEither)
 	uniteTrimaps(a, b, 0, out);
 	EXPECT_GT(out.evidence.at(7, 10), 128);
 	EXPECT_LT(out.evidence.at(22, 10), 128);
+}
+
+// One depth frame united with itself (the pipeline with no later depth
+// frame) is copied, not blended: the copy must equal the blend of two equal
+// frames bit for bit, whatever the time, and clear what an earlier, larger
+// union painted.
+TEST(TrimapUnion, AFrameUnitedWithItselfEqualsTheBlendOfTwoEqualFrames)
+{
+	std::mt19937 random(28);
+	std::uniform_int_distribution<int> value(0, 255);
+	MappedSeeds a = seedsWith(64, 48, { 3, 4, 60, 40 }, kTrimapUndecided, 128);
+	for (int y = 4; y < 40; ++y)
+		for (int x = 3; x < 60; ++x) {
+			a.trimap.at(x, y) = uint8_t(value(random));
+			a.evidence.at(x, y) = uint8_t(value(random));
+		}
+	const MappedSeeds copy = a;
+	const MappedSeeds wide = seedsWith(64, 48, { 0, 0, 64, 48 }, kTrimapInRange, 200);
+	for (int laterQ8 : { 0, 1, 77, 128, 255, 256 }) {
+		MappedSeeds fast, blended;
+		uniteTrimaps(wide, wide, 0, fast); // an earlier union over all of the image
+		uniteTrimaps(a, a, laterQ8, fast);
+		uniteTrimaps(a, copy, laterQ8, blended);
+		EXPECT_EQ(fast.roi, blended.roi);
+		EXPECT_EQ(0, std::memcmp(fast.trimap.data(), blended.trimap.data(), fast.trimap.size())) << laterQ8;
+		EXPECT_EQ(0, std::memcmp(fast.evidence.data(), blended.evidence.data(), fast.evidence.size())) << laterQ8;
+	}
 }
