@@ -55,6 +55,7 @@ std::string previewStatusJson(const PreviewStatus &s)
 		    { "auth_blocks", s.previewAuthBlocks },
 		    { "slow_requests_cut", s.previewSlowRequestsCut } } },
 	};
+	j["setup"] = previewSetupJson(s.setup);
 	if (s.liveScore.scored)
 		j["live_score"] = { { "recent", { { "window_s", 5 },
 						  { "frames", s.liveScore.recentFrames },

@@ -3,6 +3,8 @@
 // server formats it on its own threads.
 #pragma once
 
+#include "hal/preview/preview_setup.hpp"
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -74,6 +76,7 @@ struct PreviewStatus {
 	PreviewDepthOffset depthOffset;
 	int readersComposite = 0, readersLecturer = 0, readersBoardLecturer = 0;
 	PreviewWebcam webcam;
+	PreviewSetup setup; // issue 30: the first-run path's state
 	// Filled in by the server when it formats.
 	int previewClients = 0;
 	uint64_t previewEncoded = 0, previewSkipped = 0;
