@@ -83,7 +83,7 @@ check "the preview listens on no other address" \
 
 echo "== journal fields"
 check "journalctl -u depthkeyd DEVICE=sr2 filters by device" \
-	bash -c 'out=$(journalctl -q -o cat -u depthkeyd DEVICE=sr2); grep -q "depth camera sr2 started" <<<"$out" && ! grep -q v4l2-colour <<<"$out"'
+	bash -c 'out=$(journalctl -q -o cat -u depthkeyd DEVICE=sr2); grep -q "depth camera SR-2 (USB 0852:0071) not found" <<<"$out" && ! grep -q v4l2-colour <<<"$out"'
 
 echo "== the box's own cameras, none plugged in (issue 30, docs/first-run.md)"
 check "the installed config names no simulator (colour v4l2, depth sr2, board colour)" \
