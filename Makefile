@@ -375,7 +375,10 @@ install: all $(CONFIG_MAN)
 	install -m 0755 $(DAEMON) $(DESTDIR)$(PREFIX)/sbin/
 	install -m 0755 $(TOOLS) $(DESTDIR)$(PREFIX)/bin/
 	install -m 0644 hal/depthkey_shm.h $(DESTDIR)$(PREFIX)/include/depthkey/
-	install -D -m 0644 config/depthkey.toml $(DESTDIR)/etc/depthkey/depthkey.toml
+	# The box's config: the cameras, not the simulator (packaging/box-config.sed).
+	install -d $(DESTDIR)/etc/depthkey
+	sed -f packaging/box-config.sed config/depthkey.toml > $(DESTDIR)/etc/depthkey/depthkey.toml
+	chmod 0644 $(DESTDIR)/etc/depthkey/depthkey.toml
 	install -d $(DESTDIR)$(UNITDIR)
 	sed 's|/usr/sbin/depthkeyd|$(PREFIX)/sbin/depthkeyd|' packaging/depthkeyd.service \
 	    > $(DESTDIR)$(UNITDIR)/depthkeyd.service

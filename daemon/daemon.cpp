@@ -191,11 +191,17 @@ void Daemon::onDeviceStatus(const std::string &device, const DeviceStatus &statu
 	// hold what came before junk), so it starts again when depth is back.
 	if (status.state == DeviceState::Lost && depth_ && device == depth_->name())
 		pairing_.forgetLatency();
-	if (status.state == DeviceState::Lost)
-		logger().errorOnce(device, device + " lost: " + status.detail,
+	setup_.invalidate();
+	if (status.state == DeviceState::Lost) {
+		// Not there at all (never plugged in, unplugged): the journal
+		// says which device and the next step (docs/first-run.md).
+		const char *role = colour_ && device == colour_->name() ? "colour camera" : "depth camera";
+		std::optional<PreviewSetupDevice> missing = setup_.missing(settings_, calibrationFacts(), role);
+		logger().errorOnce(device, missing ? missingDeviceLine(*missing) : device + " lost: " + status.detail,
 				   { { "DEVICE", device }, { "ERROR", errnoText(status.error) } });
-	else if (status.state == DeviceState::Streaming)
+	} else if (status.state == DeviceState::Streaming) {
 		logger().clearError(device, device + " streaming again", { { "DEVICE", device } });
+	}
 	lights_.show(summary());
 }
 
@@ -340,6 +346,7 @@ void Daemon::onStatusTick()
 	std::optional<PreviewStatus> figures = status_.report(statusSnapshot());
 	if (!figures)
 		return;
+	figures->setup = setup_.update(settings_, calibrationFacts());
 	preview_.setStatus(*figures);
 	checkCalibrationFits();
 	checkRecording();
@@ -366,6 +373,7 @@ void Daemon::applyNow(const Settings &next, const PipelineFiles &files)
 		logger().setLevel(level);
 	applyPipelineFiles(files);
 	board_.apply(next);
+	setup_.invalidate();
 	pairing_.configure(settings_);
 	stageDumps_.setFolders(next.daemon.snapshotDir, overrides_.previewDir);
 	// A new colour size records into a folder of its own (one size a replay).

@@ -17,6 +17,7 @@
 #include "daemon/keying_worker.hpp"
 #include "daemon/no_signal_picture.hpp"
 #include "daemon/preview_feed.hpp"
+#include "daemon/setup_tracker.hpp"
 #include "daemon/stage_dumps.hpp"
 #include "daemon/status_lights.hpp"
 #include "daemon/status_reporter.hpp"
@@ -43,7 +44,7 @@ public:
 		  factory_(std::move(factory)),
 		  reloader_(loop_, status_, configPath_, overrides_,
 			    [this](const Settings &s, const PipelineFiles &f) { apply(s, f); }),
-		  outputs_(factory_.frameSink), lights_(factory_.statusLeds) {}
+		  outputs_(factory_.frameSink), lights_(factory_.statusLeds), setup_(configPath_) {}
 	~Daemon();
 
 	// Sets up the loop, signals, devices and output. A negative errno means
@@ -111,6 +112,8 @@ private:
 	void publishNoSignal(uint64_t nowNs);
 	StatusSummary summary() const;
 	StatusSnapshot statusSnapshot() const;
+	// Whether the depth and the board are calibrated, as the daemon runs.
+	CalibrationFacts calibrationFacts() const;
 
 	std::string configPath_;
 	CommandLineOverrides overrides_;
@@ -125,6 +128,7 @@ private:
 	FrameOutputs outputs_;  // the shared-memory streams; readers sampled every 250 ms
 	V4l2Output webcam_;     // the composite to a v4l2loopback node, when configured
 	StatusLights lights_;
+	SetupTracker setup_; // the first-run path's state, for status.json (issue 30)
 
 	EventSource sigterm_, sigint_, sighup_, sigusr1_, sigusr2_;
 	EventSource keyTimer_;

@@ -65,4 +65,18 @@ void Daemon::checkCalibrationFits()
 				    { { "DEVICE", "calibration" }, { "CALIBRATION_FILE", path } });
 }
 
+CalibrationFacts Daemon::calibrationFacts() const
+{
+	CalibrationFacts f;
+	const std::string &path = settings_.mapping.calibrationFile;
+	f.depth = summary().calibrated;
+	f.depthState = f.depth		  ? "calibrated (" + path + ")"
+		       : path.empty()	  ? std::string("NOT calibrated (mapping.calibration_file is empty)")
+		       : calibrated_	  ? "NOT calibrated: " + path + " was fitted for other frame sizes (journal)"
+					  : "NOT calibrated: " + path + " is refused (journal, DEVICE=calibration)";
+	f.board = board_.boardGeometry();
+	f.boardState = board_.statusText();
+	return f;
+}
+
 } // namespace depthkey

@@ -39,7 +39,9 @@ int checkConfig(const std::string &path)
 		std::fprintf(stderr, "%s\n", e.toString().c_str());
 	if (!result.ok())
 		return 1;
-	std::printf("%s: ok\n%s", path.c_str(), describeSetup(result.settings).c_str());
+	const Settings &settings = result.settings;
+	std::printf("%s: ok\n%s", path.c_str(),
+		    describeSetup(setupReport(settings, path, calibrationFromFiles(settings))).c_str());
 	return 0;
 }
 

@@ -27,6 +27,7 @@ button { font: inherit; padding: 4px 12px; }
 table { border-collapse: collapse; margin-top: 12px; }
 td, th { padding: 3px 10px; border-bottom: 1px solid #333; text-align: left; }
 .bad { color: #ff7b5c; } .good { color: #8fd694; }
+h2 { font-size: 16px; margin: 14px 0 4px 0; } #setup p { margin: 2px 0; } #setup-next { font-weight: bold; }
 </style>
 </head>
 <body>
@@ -42,6 +43,31 @@ td, th { padding: 3px 10px; border-bottom: 1px solid #333; text-align: left; }
 </div>
 <div id="actions"><button id="snapshot" type="button">Save stage pictures</button> <span id="snapshot-result" class="quiet"></span></div>
 <table id="status"><tbody><tr><td>status</td><td>loading…</td></tr></tbody></table>
+<!-- The first-run path's state (issue 30, docs/first-run.md): status.json's "setup". -->
+<h2>setup</h2>
+<section id="setup"><p>setup: loading…</p></section>
+<script>
+"use strict";
+function renderSetup(setup) {
+  const section = document.createElement("section");
+  section.id = "setup";
+  const line = (text, ok) => {
+    const p = document.createElement("p");
+    p.textContent = text;
+    p.className = ok ? "good" : "bad";
+    section.append(p);
+  };
+  for (const d of setup.devices)
+    line(d.role + ": " + (d.found ? d.name + (d.device ? " (" + d.device + ")" : "") : d.backend + " " + d.device + " NOT found: " + d.next), d.found);
+  line("depth calibration: " + setup.depth_calibration.state, setup.depth_calibration.calibrated);
+  line("board calibration: " + setup.board_calibration.state, setup.board_calibration.calibrated);
+  const next = document.createElement("p");
+  next.id = "setup-next";
+  next.textContent = setup.ready ? "setup done: record (docs/first-run.md)" : "next: " + setup.next;
+  section.append(next);
+  document.getElementById("setup").replaceWith(section);
+}
+</script>
 <script>
 "use strict";
 // ok: true green, false red, undefined plain, null grey (nothing wrong, nothing yet).
@@ -115,6 +141,7 @@ async function refresh() {
   const body = document.createElement("tbody");
   try {
     const s = await (await fetch("/status.json", { cache: "no-store" })).json();
+    renderSetup(s.setup);
     for (const d of s.devices)
       body.append(row(d.role + " (" + d.name + ")", d.state + ", " + d.fps.toFixed(1) + " fps, " +
                       d.frames + " frames, " + d.dropped + " dropped, " + d.faults + " faults, " +

@@ -70,6 +70,7 @@ std::string previewStatusJson(const PreviewStatus &s)
 		    { "auth_blocks", s.previewAuthBlocks },
 		    { "slow_requests_cut", s.previewSlowRequestsCut } } },
 	};
+	j["setup"] = previewSetupJson(s.setup);
 	if (s.liveScore.scored)
 		j["live_score"] = { { "recent", { { "window_s", 5 },
 						  { "frames", s.liveScore.recentFrames },

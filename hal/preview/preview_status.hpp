@@ -3,6 +3,8 @@
 // server formats it on its own threads.
 #pragma once
 
+#include "hal/preview/preview_setup.hpp"
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -101,6 +103,7 @@ struct PreviewStatus {
 	PreviewBoard board;
 	std::vector<PreviewError> errors; // newest first
 	PreviewWebcam webcam;
+	PreviewSetup setup; // issue 30: the first-run path's state
 	// Filled in by the server when it formats.
 	int previewClients = 0;
 	uint64_t previewEncoded = 0, previewSkipped = 0;

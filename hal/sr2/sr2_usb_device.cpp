@@ -117,6 +117,25 @@ int openSr2(libusb_context *context, const std::string &usbPath,
 	return 0;
 }
 
+std::string findSr2(const std::string &usbPath)
+{
+	// A context of its own: enumerating needs no open device, and the
+	// daemon's context belongs to its event loop's thread.
+	libusb_context *context = nullptr;
+	if (libusb_init(&context) < 0)
+		return "";
+	libusb_device **list = nullptr;
+	ssize_t count = libusb_get_device_list(context, &list);
+	std::string port;
+	for (ssize_t i = 0; i < count && port.empty(); i++)
+		if (isSr2(list[i]) && (usbPath.empty() || usbPortPath(list[i]) == usbPath))
+			port = usbPortPath(list[i]);
+	if (count >= 0)
+		libusb_free_device_list(list, 1);
+	libusb_exit(context);
+	return port;
+}
+
 void closeSr2(libusb_device_handle *handle)
 {
 	if (!handle)

@@ -29,4 +29,9 @@ int openSr2(libusb_context *context, const std::string &usbPath,
 
 void closeSr2(libusb_device_handle *handle);
 
+// Whether an SR-2 (the first, or the one at usbPath) is on the bus, without
+// opening it (it may be the daemon's, claimed): its port path, or "" when
+// there is none (depthkeyd --check-config and the setup report, issue 30).
+std::string findSr2(const std::string &usbPath);
+
 } // namespace depthkey

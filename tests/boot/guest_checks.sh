@@ -77,13 +77,47 @@ check "a user outside the group cannot" \
 
 echo "== preview page on loopback only"
 check "the preview page answers on 127.0.0.1:8080 (/status.json names the cameras)" \
-	bash -c 'curl -s --max-time 5 http://127.0.0.1:8080/status.json | grep -q "\"sim-colour\""'
+	bash -c 'curl -s --max-time 5 http://127.0.0.1:8080/status.json | grep -q "\"v4l2-colour\""'
 check "the preview listens on no other address" \
 	bash -c '! ss -Hltn | awk "{ print \$4 }" | grep ":8080\$" | grep -vq "^127\.0\.0\.1:8080\$"'
 
 echo "== journal fields"
-check "journalctl -u depthkeyd DEVICE=sim-depth filters by device" \
-	bash -c 'out=$(journalctl -q -o cat -u depthkeyd DEVICE=sim-depth); grep -q "depth camera sim-depth started" <<<"$out" && ! grep -q sim-colour <<<"$out"'
+check "journalctl -u depthkeyd DEVICE=sr2 filters by device" \
+	bash -c 'out=$(journalctl -q -o cat -u depthkeyd DEVICE=sr2); grep -q "depth camera SR-2 (USB 0852:0071) not found" <<<"$out" && ! grep -q v4l2-colour <<<"$out"'
+
+echo "== the box's own cameras, none plugged in (issue 30, docs/first-run.md)"
+check "the installed config names no simulator (colour v4l2, depth sr2, board colour)" \
+	bash -c '! grep -q "^backend = \"sim\"" '"$config"' && grep -q "^backend = \"v4l2\"" '"$config"' && grep -q "^backend = \"sr2\"" '"$config"' && grep -q "^backend = \"colour\"" '"$config"
+check "the service runs no simulator (status.json: v4l2-colour and sr2, no sim-)" \
+	bash -c 's=$(curl -s --max-time 5 http://127.0.0.1:8080/status.json); grep -q "\"sr2\"" <<<"$s" && ! grep -q "\"sim-" <<<"$s"'
+journal=$(journalctl -q -o cat -u depthkeyd)
+colourLine='colour camera /dev/video0 not found: plug it in, then `sudo depthkeyd --check-config /etc/depthkey/depthkey.toml`'
+depthLine='depth camera SR-2 (USB 0852:0071) not found: plug it in and switch on its power supply, then `sudo depthkeyd --check-config /etc/depthkey/depthkey.toml`'
+check "the journal says once: $colourLine" test "$(grep -cxF "$colourLine" <<<"$journal")" = 1
+check "the journal says once: $depthLine" test "$(grep -cxF "$depthLine" <<<"$journal")" = 1
+# The newest frame's flags in the ring's header (hal/depthkey_shm.h: slots
+# from byte 128, 64 bytes each, flags at +4, frame number at +8).
+latest_flags() {
+	local shm=/dev/shm/depthkey.composite slots latest i
+	slots=$(od -An -t u4 -j 12 -N 4 "$shm" | tr -d ' ')
+	latest=$(od -An -t u8 -j 56 -N 8 "$shm" | tr -d ' ')
+	for ((i = 0; i < slots; i++)); do
+		if [ "$(od -An -t u8 -j $((128 + 64 * i + 8)) -N 8 "$shm" | tr -d ' ')" = "$latest" ]; then
+			od -An -t u4 -j $((128 + 64 * i + 4)) -N 4 "$shm" | tr -d ' '
+			return
+		fi
+	done
+}
+flags=$(latest_flags)
+check "shared memory carries NO SIGNAL: frames flow, marked neither online nor colour ok (flags ${flags:-?})" \
+	bash -c '[ -n "$1" ] && [ $(( $1 & 3 )) = 0 ] && depthkey-shmcat --frames 2 --timeout 10 | head -c 9 | grep -q YUV4MPEG2' _ "$flags"
+check "the preview page's setup says the colour camera is missing and what to do (status.json \"setup\")" \
+	bash -c 's=$(curl -s --max-time 5 http://127.0.0.1:8080/status.json); grep -qF "\"ready\": false" <<<"$s" && grep -qF "\"next\": \"colour camera /dev/video0: plug it in" <<<"$s"'
+out=$(depthkeyd --check-config "$config" 2>&1)
+printf '%s\n' "$out" | sed 's/^/  check-config: /'
+check "depthkeyd --check-config says the same from the shell" \
+	bash -c 'grep -qF "colour camera: v4l2 /dev/video0, NOT found: plug it in" <<<"$1" && grep -qF "next: colour camera /dev/video0" <<<"$1"' _ "$out"
+check "docs/first-run.md is installed" test -f /usr/share/doc/depthkey/docs/first-run.md
 
 echo "== reload"
 cp "$config" /tmp/depthkey.toml.good
