@@ -44,9 +44,11 @@ void BoardModel::learn(const RgbImage &colour, const Gray8Image &trimap)
 	}
 	// The gain of the light against the model as it was before this update
 	// (the rows learned here have moved a quarter of the way towards it).
+	int gains[3];
 	for (int k = 0; k < 3; ++k)
-		gainQ8_[k] = modelSum[k] ? int(std::clamp<uint64_t>((colourSum[k] * 256 + modelSum[k] / 2) / modelSum[k], 128, 512))
-					 : 256;
+		gains[k] = modelSum[k] ? int(std::clamp<uint64_t>((colourSum[k] * 256 + modelSum[k] / 2) / modelSum[k], 128, 512))
+				       : 256;
+	setGains(gains);
 	lastPhase_ = phase_;
 	phase_ = (phase_ + 1) % kRowStride;
 }
@@ -78,23 +80,23 @@ void BoardModel::teach(const RgbImage &sampled, const int pictureGainQ8[3], cons
 	}
 	// The light as the picture predicts it now, against the model before
 	// this step: the model follows at a quarter a frame, the gain at once.
+	int gains[3] = { gainQ8_[0], gainQ8_[1], gainQ8_[2] };
 	for (int k = 0; k < 3; ++k)
 		if (modelSum[k])
-			gainQ8_[k] = int(std::clamp<uint64_t>((predictedSum[k] * 256 + modelSum[k] / 2) / modelSum[k], 128, 512));
+			gains[k] = int(std::clamp<uint64_t>((predictedSum[k] * 256 + modelSum[k] / 2) / modelSum[k], 128, 512));
+	setGains(gains);
 }
 
-// m += (c - m) / 4, rounded to nearest (an arithmetic shift of d + 2 floors;
-// the mean settles within 2 levels of a steady colour, below the sensor
-// noise); a pixel never seen takes the colour as it is.
-void BoardModel::update(Rgba8 &m, Rgb8 c)
+void BoardModel::setGains(const int gainQ8[3])
 {
-	auto step = [](uint8_t mean, uint8_t value) {
-		return uint8_t(mean + ((int(value) - int(mean) + (1 << (kRateShift - 1))) >> kRateShift));
-	};
-	if (m.a == 0)
-		m = { c.r, c.g, c.b, 1 };
-	else
-		m = { step(m.r, c.r), step(m.g, c.g), step(m.b, c.b), uint8_t(std::min(255, m.a + 1)) };
+	if (gainedFilled_ && std::equal(gainQ8, gainQ8 + 3, gainQ8_))
+		return;
+	for (int k = 0; k < 3; ++k) {
+		gainQ8_[k] = gainQ8[k];
+		for (int m = 0; m < 256; ++m)
+			gained_[k][m] = int16_t((m * gainQ8[k] + 128) >> 8);
+	}
+	gainedFilled_ = true;
 }
 
 void BoardModel::learnDecided(const RgbImage &colour, const Gray8Image &trimap, const Gray8Image &alpha,

@@ -76,19 +76,38 @@ public:
 		const Rgba8 m = model_.row(y)[x];
 		if (m.a < kLearnedVisits)
 			return -1;
-		return std::abs(int(c.r) - ((m.r * gainQ8_[0] + 128) >> 8)) +
-		       std::abs(int(c.g) - ((m.g * gainQ8_[1] + 128) >> 8)) +
-		       std::abs(int(c.b) - ((m.b * gainQ8_[2] + 128) >> 8));
+		return std::abs(int(c.r) - gained_[0][m.r]) + std::abs(int(c.g) - gained_[1][m.g]) +
+		       std::abs(int(c.b) - gained_[2][m.b]);
 	}
 	// The light's gain per channel since the model was learned, Q8.
 	const int *gainQ8() const { return gainQ8_; }
 
+	// m += (c - m) / 4, rounded to nearest (an arithmetic shift of d + 2
+	// floors; the mean settles within 2 levels of a steady colour, below
+	// the sensor noise); a pixel never seen takes the colour as it is.
+	// Inline: learn() calls it for a quarter of the board's pixels a frame.
+	static void update(Rgba8 &m, Rgb8 c)
+	{
+		auto step = [](uint8_t mean, uint8_t value) {
+			return uint8_t(mean + ((int(value) - int(mean) + (1 << (kRateShift - 1))) >> kRateShift));
+		};
+		if (m.a == 0)
+			m = { c.r, c.g, c.b, 1 };
+		else
+			m = { step(m.r, c.r), step(m.g, c.g), step(m.b, c.b), uint8_t(std::min(255, m.a + 1)) };
+	}
+
 private:
-	void update(Rgba8 &m, Rgb8 c);
+	void setGains(const int gainQ8[3]);
 
 	RgbaImage model_;
 	int phase_ = 0, lastPhase_ = 0;
 	int gainQ8_[3] = { 256, 256, 256 };
+	// (model * gainQ8 + 128) >> 8 per channel and model value (0..510),
+	// tabulated when the gains change: distance() is called for every band
+	// pixel, and three lookups replace three multiplies (issue 28).
+	int16_t gained_[3][256];
+	bool gainedFilled_ = false;
 };
 
 } // namespace depthkey

@@ -45,18 +45,27 @@ void FusedEvidence::confidences(int y, int x0, int x1, uint8_t *out)
 	const bool previousRow = y >= previousRoi_.y0 && y < previousRoi_.y1;
 	const uint8_t *pa = previousRow ? previousAlpha_->row(y) : nullptr;
 	const Rgb8 *pc = previousRow ? previousColour_->row(y) : nullptr;
-	for (int x = x0; x < x1; ++x) {
-		const Rgb8 colour = c[x];
-		const int siox = classifier_->confidence(quantiseColour(colour));
-		const int boardDistance = board_ ? board_->distance(x, y, colour) : -1;
-		int previousAlpha = -1, change = 0;
-		if (pa && x >= previousRoi_.x0 && x < previousRoi_.x1) {
-			previousAlpha = pa[x];
-			change = std::abs(int(colour.r) - pc[x].r) + std::abs(int(colour.g) - pc[x].g) +
-				 std::abs(int(colour.b) - pc[x].b);
+	// The span with a previous frame, [t0, t1) within [x0, x1): three plain
+	// loops instead of a test of the previous ROI at every pixel.
+	const int t0 = pa ? std::clamp(previousRoi_.x0, x0, x1) : x1;
+	const int t1 = pa ? std::clamp(previousRoi_.x1, t0, x1) : x1;
+	auto span = [&]<bool kPrevious>(int from, int to) {
+		for (int x = from; x < to; ++x) {
+			const Rgb8 colour = c[x];
+			const int siox = classifier_->confidence(quantiseColour(colour));
+			const int boardDistance = board_ ? board_->distance(x, y, colour) : -1;
+			int previousAlpha = -1, change = 0;
+			if constexpr (kPrevious) {
+				previousAlpha = pa[x];
+				change = std::abs(int(colour.r) - pc[x].r) + std::abs(int(colour.g) - pc[x].g) +
+					 std::abs(int(colour.b) - pc[x].b);
+			}
+			*out++ = fuse(siox, e[x], boardDistance, previousAlpha, change);
 		}
-		*out++ = fuse(siox, e[x], boardDistance, previousAlpha, change);
-	}
+	};
+	span.template operator()<false>(x0, t0);
+	span.template operator()<true>(t0, t1);
+	span.template operator()<false>(t1, x1);
 }
 
 } // namespace depthkey

@@ -75,3 +75,52 @@ TEST(BoardModel, AGlobalChangeOfLightStillMatches)
 	EXPECT_LE(model.distance(2, 2, dimmer), 3);
 	EXPECT_NEAR(model.gainQ8()[1], 256 * 68 / 80, 3);
 }
+
+// distance() looks the gained model up in tables (issue 28): it must equal
+// the multiply it replaced, (model * gain + 128) >> 8 per channel, at every
+// gain learn() and teach() can set (128..512 Q8) and every model value.
+TEST(BoardModel, DistanceEqualsTheGainMultiplyItTabulates)
+{
+	auto multiplied = [](const BoardModel &model, int x, int y, Rgb8 c) {
+		const Rgba8 m = model.row(y)[x];
+		if (m.a < BoardModel::kLearnedVisits)
+			return -1;
+		const int *g = model.gainQ8();
+		return std::abs(int(c.r) - ((m.r * g[0] + 128) >> 8)) + std::abs(int(c.g) - ((m.g * g[1] + 128) >> 8)) +
+		       std::abs(int(c.b) - ((m.b * g[2] + 128) >> 8));
+	};
+	// A board of every code value (256 columns, each channel a different
+	// ramp), learned under steady light.
+	RgbImage colour(256, 8);
+	Gray8Image trimap(256, 8, kTrimapBoard);
+	for (int y = 0; y < 8; ++y)
+		for (int x = 0; x < 256; ++x)
+			colour.at(x, y) = { uint8_t(x), uint8_t(255 - x), uint8_t((x * 7) & 255) };
+	BoardModel model;
+	learnFrames(model, colour, trimap, 3);
+	// Light scaled by each of a spread of factors (the gain clamps at 128
+	// and 512), then the pictures teach() predicts at other gains.
+	size_t compared = 0;
+	auto compareAll = [&] {
+		for (int y = 0; y < 8; ++y)
+			for (int x = 0; x < 256; ++x)
+				for (Rgb8 c : { Rgb8{ 0, 0, 0 }, Rgb8{ 255, 255, 255 }, colour.at(x, y), Rgb8{ 17, 200, 99 } }) {
+					ASSERT_EQ(model.distance(x, y, c), multiplied(model, x, y, c)) << x << "," << y;
+					++compared;
+				}
+	};
+	for (int scaleQ8 : { 256, 40, 128, 200, 300, 511, 700, 1000 }) {
+		RgbImage lit(256, 8);
+		const int gain[3] = { scaleQ8, scaleQ8, scaleQ8 };
+		for (int y = 0; y < 8; ++y)
+			for (int x = 0; x < 256; ++x)
+				lit.at(x, y) = BoardModel::scaleQ8(colour.at(x, y), gain);
+		model.learn(lit, trimap);
+		compareAll();
+		const int taught[3] = { scaleQ8, 256, 512 };
+		model.teach(colour, taught, trimap);
+		compareAll();
+	}
+	EXPECT_GT(model.gainQ8()[0], 256); // the gains did move
+	EXPECT_GT(compared, 100000u);
+}

@@ -189,3 +189,68 @@ TEST(FusedEvidence, EachTermPullsItsWay)
 	EXPECT_GT(still, moved);
 	EXPECT_EQ(moved, f.fuse(neutralColour, s.depthPivot, noModel, noPrevious, 0));
 }
+
+// confidences() splits a row at the previous frame's ROI (issue 28) instead
+// of testing it at every pixel: each pixel must still get exactly fuse() of
+// its own terms, with the previous frame only inside that ROI, wherever the
+// ROI starts and ends against the row's span.
+TEST(FusedEvidence, ARowEqualsFuseOfEachPixel)
+{
+	const int w = 48, h = 6;
+	RgbImage colour(w, h), previousColour(w, h);
+	Gray8Image depth(w, h), previousAlpha(w, h), trimap(w, h, kTrimapBoard);
+	for (int y = 0; y < h; ++y)
+		for (int x = 0; x < w; ++x) {
+			const int v = (x * 37 + y * 11) & 255;
+			colour.at(x, y) = { uint8_t(v), uint8_t(255 - v), uint8_t((v * 3) & 255) };
+			// Some pixels still (the temporal term counts), some changed.
+			previousColour.at(x, y) = x % 3 ? colour.at(x, y) : Rgb8{ uint8_t(v ^ 40), 9, 9 };
+			depth.at(x, y) = uint8_t((x * 53 + y) & 255);
+			previousAlpha.at(x, y) = uint8_t(x % 2 ? 255 : (x * 29) & 255);
+		}
+	// A board model learned on half the rows' pixels (the rest: none).
+	RgbImage boardColour(w, h, Rgb8{ 40, 80, 60 });
+	for (int x = 0; x < w / 2; ++x)
+		for (int y = 0; y < h; ++y)
+			trimap.at(x, y) = kTrimapUndecided;
+	BoardModel board;
+	for (int i = 0; i < 3 * BoardModel::kRowStride; ++i)
+		board.learn(boardColour, trimap);
+	QuantisedLab lab;
+	SioxClassifier classifier(lab);
+	WeightedLab lecturer[] = { { lab[quantiseColour({ 200, 40, 40 })], 10 } };
+	WeightedLab boardPoints[] = { { lab[quantiseColour({ 40, 80, 60 })], 10 } };
+	classifier.lecturer().build(lecturer, 1);
+	classifier.board().build(boardPoints, 1);
+	classifier.signaturesChanged();
+	const FusedEvidence reference = configured(DecisionSettings());
+	FusedEvidence f = configured(DecisionSettings());
+	size_t compared = 0;
+	for (int px0 : { 0, 5, 20, 47 })
+		for (int px1 : { 6, 21, 48 }) {
+			if (px1 <= px0)
+				continue;
+			const Roi previousRoi{ px0, 1, px1, h - 1 };
+			f.bind(colour, depth, classifier, board, &previousAlpha, &previousColour, previousRoi);
+			for (int y = 0; y < h; ++y)
+				for (auto [x0, x1] : { std::pair{ 0, w }, std::pair{ 3, 19 }, std::pair{ 21, 40 }, std::pair{ 30, 31 } }) {
+					uint8_t row[w];
+					f.confidences(y, x0, x1, row);
+					for (int x = x0; x < x1; ++x) {
+						const Rgb8 c = colour.at(x, y);
+						const bool inPrevious = y >= previousRoi.y0 && y < previousRoi.y1 &&
+									x >= previousRoi.x0 && x < previousRoi.x1;
+						const Rgb8 p = previousColour.at(x, y);
+						const int change = std::abs(c.r - p.r) + std::abs(c.g - p.g) + std::abs(c.b - p.b);
+						const int expected = reference.fuse(
+							classifier.confidence(quantiseColour(c)), depth.at(x, y),
+							board.distance(x, y, c), inPrevious ? previousAlpha.at(x, y) : -1,
+							inPrevious ? change : 0);
+						ASSERT_EQ(row[x - x0], expected) << "x " << x << " y " << y << " roi " << px0
+										 << ".." << px1;
+						++compared;
+					}
+				}
+		}
+	EXPECT_GT(compared, 1000u);
+}
