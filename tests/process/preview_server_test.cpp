@@ -138,8 +138,10 @@ TEST_F(PreviewServerTest, SnapshotPageAndErrors)
 	test::HttpReply page = curlGet(url_ + "/");
 	EXPECT_EQ(page.code, 200);
 	EXPECT_EQ(page.contentType, "text/html; charset=utf-8");
-	for (const char *stage : { "colour", "depth", "seeds", "alpha", "composite" })
-		EXPECT_NE(page.body.find(std::string("src=\"/stream/") + stage + ".mjpg\""), std::string::npos) << stage;
+	// Each tile fetches its stage's next JPEG (issue 30: seven endless
+	// MJPEG streams took every connection a browser opens to one host).
+	for (const char *stage : { "composite", "lecturer", "board", "colour", "depth", "seeds", "alpha" })
+		EXPECT_NE(page.body.find(std::string("data-src=\"/snapshot/") + stage + ".jpg\""), std::string::npos) << stage;
 	EXPECT_EQ(page.body.find("http://"), std::string::npos) << "nothing from outside the box";
 	EXPECT_EQ(page.body.find("https://"), std::string::npos);
 
