@@ -164,8 +164,12 @@ async function refresh() {
                                                              : "not calibrated", s.calibration.calibrated));
     body.append(row("depth arrival (after its capture stamp)", ms(s.depth_arrival_ms)));
     const o = s.depth_offset;
-    body.append(row("depth offset (" + o.state + ")", "measured " + ms(o.measured_ms) + ", applied " + ms(o.applied_ms) +
-                    " — " + o.text, o.state !== "held"));
+    // The daemon's text says measured, applied and why; held is no fault
+    // (every start holds until the estimates agree): grey, not red; green
+    // once an offset is in use.
+    body.append(row("depth offset (" + o.state + ")",
+                    o.text ? o.text : "measured " + ms(o.measured_ms) + ", applied " + ms(o.applied_ms),
+                    o.state === "applied" || o.state === "set" ? true : null));
     const readers = s.readers.composite + s.readers.lecturer + s.readers.board_lecturer;
     body.append(row("readers", "composite " + s.readers.composite + ", lecturer " + s.readers.lecturer +
                     ", board-geometry lecturer " + s.readers.board_lecturer +
