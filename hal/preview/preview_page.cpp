@@ -152,7 +152,7 @@ async function refresh() {
     document.getElementById("cap-board").textContent = "(" + s.board.source + ", " + s.board.state + ")";
     body.append(row("output", s.output.fps.toFixed(1) + " fps, " + s.output.frames + " frames"));
     body.append(row("keying", "median " + ms(s.keying.median_ms) + ", p99 " + ms(s.keying.p99_ms) + ", max " +
-                    ms(s.keying.max_ms) + "; " + s.keying.shed + " frames shed (box too slow)", s.keying.shed === 0));
+                    ms(s.keying.max_ms) + "; " + s.keying.shed + " frames shed" + (s.keying.shed > 0 ? " (box too slow)" : ""), s.keying.shed === 0));
     if (s.live_score)
       body.append(row("live score (against the truth)",
                       "IoU " + s.live_score.recent.iou.toFixed(3) + ", BF " + s.live_score.recent.bf.toFixed(3) +
