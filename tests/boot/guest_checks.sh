@@ -95,17 +95,27 @@ colourLine='colour camera /dev/video0 not found: plug it in, then `sudo depthkey
 depthLine='depth camera SR-2 (USB 0852:0071) not found: plug it in and switch on its power supply, then `sudo depthkeyd --check-config /etc/depthkey/depthkey.toml`'
 check "the journal says once: $colourLine" test "$(grep -cxF "$colourLine" <<<"$journal")" = 1
 check "the journal says once: $depthLine" test "$(grep -cxF "$depthLine" <<<"$journal")" = 1
-# The newest frame's flags in the ring's header (hal/depthkey_shm.h: slots
-# from byte 128, 64 bytes each, flags at +4, frame number at +8).
+# The newest frame's flags in the ring's header (hal/depthkey_shm.h: the slot
+# count in the high half of 64-bit word 1, latest_frame word 7, slots from
+# byte 128, 64 bytes each: sequence and flags in word 16 + 8i, frame number in
+# word 17 + 8i). The header is read in one go and parsed after: separate reads
+# race the writer, whose 2 slots turn over every 40 ms, while under TCG each od
+# takes tens of ms. Tried again while a slot is being written (odd sequence).
 latest_flags() {
-	local shm=/dev/shm/depthkey.composite slots latest i
-	slots=$(od -An -t u4 -j 12 -N 4 "$shm" | tr -d ' ')
-	latest=$(od -An -t u8 -j 56 -N 8 "$shm" | tr -d ' ')
-	for ((i = 0; i < slots; i++)); do
-		if [ "$(od -An -t u8 -j $((128 + 64 * i + 8)) -N 8 "$shm" | tr -d ' ')" = "$latest" ]; then
-			od -An -t u4 -j $((128 + 64 * i + 4)) -N 4 "$shm" | tr -d ' '
-			return
-		fi
+	local shm=/dev/shm/depthkey.composite try slots latest i word
+	local -a q
+	for ((try = 0; try < 20; try++)); do
+		read -r -a q <<<"$(od -An -v -t u8 -N 640 "$shm" | tr '\n' ' ')"
+		slots=$((q[1] >> 32))
+		latest=${q[7]}
+		for ((i = 0; i < slots && i < 8; i++)); do
+			word=${q[16 + 8 * i]}
+			if [ "${q[17 + 8 * i]}" = "$latest" ] && [ $((word & 1)) = 0 ]; then
+				echo $((word >> 32))
+				return
+			fi
+		done
+		sleep 0.05
 	done
 }
 flags=$(latest_flags)
