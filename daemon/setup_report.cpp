@@ -56,12 +56,17 @@ PreviewSetupDevice simulated(const char *role, const char *onABox)
 	return { role, "sim", "", true, std::string("simulated (a box names ") + onABox + " in the config)", "" };
 }
 
+PreviewSetupDevice replayed(const char *role, const Settings &s)
+{
+	return { role, "replay", s.replay.path, true, "a recorded sequence", "" };
+}
+
 PreviewSetupDevice colourCamera(const Settings &s, const std::string &configPath)
 {
 	if (s.colour.backend == "v4l2")
 		return videoDevice("colour camera", "v4l2", s.colour.device, configPath);
 	if (s.colour.backend == "replay")
-		return { "colour camera", "replay", s.replay.path, true, "a recorded sequence", "" };
+		return replayed("colour camera", s);
 	return simulated("colour camera", "backend \"v4l2\"");
 }
 
@@ -72,7 +77,7 @@ PreviewSetupDevice depthCamera(const Settings &s, const std::string &configPath)
 	if (s.depth.backend == "v4l2")
 		return videoDevice("depth camera", "v4l2", s.depth.device, configPath);
 	if (s.depth.backend == "replay")
-		return { "depth camera", "replay", s.replay.path, true, "a recorded sequence", "" };
+		return replayed("depth camera", s);
 	return simulated("depth camera", "backend \"sr2\" or \"v4l2\"");
 }
 
