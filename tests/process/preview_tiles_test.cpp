@@ -20,6 +20,7 @@
 #include "tests/process/shell_command.hpp"
 #include "tests/shm_test_util.hpp"
 #include "tests/test_paths.hpp"
+#include "tests/wait_until.hpp"
 
 #include <gtest/gtest.h>
 
@@ -31,6 +32,7 @@
 #include <cstdio>
 #include <map>
 #include <mutex>
+#include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -293,6 +295,23 @@ TEST(PreviewTiles, EveryTileShowsTheSharedMemorysFrame)
 	const std::string url = depthkey::test::previewUrlFromLog(daemon.log());
 	ASSERT_FALSE(url.empty()) << daemon.log();
 
+	// The board source starts after READY=1 and the composite goes to the
+	// board's geometry with its first picture; on a loaded machine (CI) the
+	// page was read before either. The page is read once status.json says both.
+	nlohmann::json board;
+	depthkey::test::waitUntil(
+		[&] {
+			const depthkey::test::HttpReply reply = depthkey::test::curlGet(url + "/status.json");
+			if (reply.code != 200)
+				return false;
+			const nlohmann::json j = nlohmann::json::parse(reply.body, nullptr, false);
+			if (!j.is_object() || !j.contains("board"))
+				return false;
+			board = j["board"];
+			return board.is_object() && board.value("state", "") == "streaming" && board.value("geometry", false);
+		},
+		20s, 200ms);
+	std::printf("    status.json's board before the page was read: %s\n", board.dump().c_str());
 	// The page as Chromium runs it: its script has filled the status table
 	// and every tile has its source.
 	const char *shots = std::getenv("DEPTHKEY_SHOTS");
