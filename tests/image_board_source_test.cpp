@@ -50,7 +50,21 @@ struct Harness {
 	std::vector<DeviceStatus> statuses;
 	EventSource step;
 	std::vector<std::function<void()>> steps;
-	size_t next = 0;
+	// A step may wait (up to 3 s) for what it needs to have happened: on a
+	// loaded machine the source's read can take longer than one 50 ms step.
+	std::vector<std::function<bool()>> ready;
+	size_t next = 0, waited = 0;
+
+	void then(std::function<bool()> when, std::function<void()> act)
+	{
+		ready.resize(steps.size());
+		ready.push_back(std::move(when));
+		steps.push_back(std::move(act));
+	}
+	std::function<bool()> picturesAtLeast(size_t n)
+	{
+		return [this, n] { return pictures.size() >= n; };
+	}
 
 	Harness()
 	{
@@ -69,9 +83,13 @@ struct Harness {
 				       [this](const DeviceStatus &s) { statuses.push_back(s); }),
 			  0);
 		loop.addPeriodic(50000, [this] {
-			if (next < steps.size())
-				steps[next++]();
-			else
+			if (next < steps.size()) {
+				const bool gated = next < ready.size() && ready[next] && !ready[next]() && ++waited < 60;
+				if (!gated) {
+					waited = 0;
+					steps[next++]();
+				}
+			} else
 				loop.exit(0);
 		}, step);
 		loop.run();
@@ -93,17 +111,17 @@ TEST(ImageBoardSource, ReadsAgainWhenTheFileIsReplacedAndRefusesAHalfWrittenOne)
 	ImageBoardSource source(settings);
 	size_t afterStart = 0, afterRename = 0, afterHalf = 0, afterInPlace = 0;
 	DeviceStatus halfStatus;
-	h.steps.push_back([&] { afterStart = h.pictures.size(); replaceByRename(h.path, green); });
-	h.steps.push_back([&] {
+	h.then(h.picturesAtLeast(1), [&] { afterStart = h.pictures.size(); replaceByRename(h.path, green); });
+	h.then(h.picturesAtLeast(2), [&] {
 		afterRename = h.pictures.size();
 		writeBytes(h.path, blue, blue.size() / 2); // the writer died half way
 	});
-	h.steps.push_back([&] {
+	h.then([&] { return source.status().state == DeviceState::Lost; }, [&] {
 		afterHalf = h.pictures.size();
 		halfStatus = source.status();
 		writeBytes(h.path, blue, blue.size()); // written in place, whole
 	});
-	h.steps.push_back([&] { afterInPlace = h.pictures.size(); });
+	h.then(h.picturesAtLeast(3), [&] { afterInPlace = h.pictures.size(); });
 	// Another file in the folder is none of its business.
 	h.steps.push_back([&] { replaceByRename(h.dir + "/other.png", red); });
 	h.run(source);

@@ -7,6 +7,7 @@
 #include "config/listen_address.hpp"
 #include "hal/preview/preview_encoder.hpp"
 #include "hal/preview/preview_server.hpp"
+#include "tests/joined_thread.hpp"
 #include "tests/preview_test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -219,7 +220,7 @@ TEST_F(PreviewServerLimits, SlowClientsFromTheTechniciansAddressAreCutAtTheDeadl
 		if (const int fd = test::connectToPreview(server_.port()); fd >= 0)
 			slow.push_back(fd);
 	std::atomic<bool> trickling{ true };
-	std::thread trickler([&] {
+	test::JoinedThread trickler([&] { trickling = false; }, [&] {
 		const std::string request = "GET /status.json HTTP/1.1\r\nHost: localhost\r\nX-Slow: ";
 		for (size_t i = 0; trickling && i < 100; i++) { // 20 s at most
 			for (int fd : slow)

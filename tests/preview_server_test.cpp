@@ -9,6 +9,7 @@
 #include "config/listen_address.hpp"
 #include "hal/preview/preview_encoder.hpp"
 #include "hal/preview/preview_server.hpp"
+#include "tests/joined_thread.hpp"
 #include "tests/preview_test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -194,8 +195,8 @@ TEST_F(PreviewServerTest, StreamsBeyondMaxClientsAreRefusedUntilOneCloses)
 	startServer(2);
 	std::atomic<bool> watching{ true };
 	std::string first, second;
-	std::thread a([&] { first = get("/stream/colour.mjpg", kAuth, 3000, &watching); });
-	std::thread b([&] { second = get("/stream/alpha.mjpg", kAuth, 3000, &watching); });
+	test::JoinedThread a([&] { watching = false; }, [&] { first = get("/stream/colour.mjpg", kAuth, 3000, &watching); });
+	test::JoinedThread b([&] { watching = false; }, [&] { second = get("/stream/alpha.mjpg", kAuth, 3000, &watching); });
 	// Both streams counted before the third asks.
 	for (int i = 0; i < 300 && server_.streams() < 2; ++i)
 		std::this_thread::sleep_for(std::chrono::milliseconds(10));

@@ -1,6 +1,7 @@
 // The shared-memory frame ring: ShmRingWriter against the C reader.
 #include "hal/depthkey_shm.h"
 #include "hal/shm_ring_writer.hpp"
+#include "tests/joined_thread.hpp"
 #include "tests/shm_test_util.hpp"
 
 #include <gtest/gtest.h>
@@ -113,7 +114,7 @@ TEST(ShmRing, TornReadsAreDetected)
 	ASSERT_EQ(writeFrame(1), 0);
 
 	std::atomic<bool> stop{ false };
-	std::thread hammer([&] {
+	test::JoinedThread hammer([&] { stop = true; }, [&] {
 		for (uint64_t f = 2; !stop.load(std::memory_order_relaxed); f++)
 			writeFrame(f);
 	});
