@@ -1,5 +1,7 @@
 #include "algo/board_model.hpp"
 
+#include "algo/board_teach_rows.hpp"
+
 #include <algorithm>
 #include <cstring>
 
@@ -58,32 +60,18 @@ void BoardModel::teach(const RgbImage &sampled, const int pictureGainQ8[3], cons
 	const int w = sampled.width(), h = sampled.height();
 	if (model_.width() != w || model_.height() != h || mask.width() != w || mask.height() != h)
 		return;
-	uint64_t predictedSum[3] = {}, modelSum[3] = {};
-	for (int y = 0; y < h; ++y) {
-		const Rgb8 *sampledRow = sampled.row(y);
-		const uint8_t *t = mask.row(y);
-		Rgba8 *m = model_.row(y);
-		for (int x = 0; x < w; ++x) {
-			if (t[x] != kTrimapBoard)
-				continue;
-			const Rgb8 p = scaleQ8(sampledRow[x], pictureGainQ8);
-			if (m[x].a) {
-				predictedSum[0] += p.r;
-				predictedSum[1] += p.g;
-				predictedSum[2] += p.b;
-				modelSum[0] += m[x].r;
-				modelSum[1] += m[x].g;
-				modelSum[2] += m[x].b;
-			}
-			update(m[x], p);
-		}
-	}
+	// Every row, every frame: a row kernel (algo/board_teach_rows.hpp).
+	const BoardTeachRowFn row = boardTeachRow(kernelPath_, pictureGainQ8);
+	BoardTeachSums sums;
+	for (int y = 0; y < h; ++y)
+		row(sampled.row(y), mask.row(y), pictureGainQ8, model_.row(y), w, sums);
 	// The light as the picture predicts it now, against the model before
 	// this step: the model follows at a quarter a frame, the gain at once.
 	int gains[3] = { gainQ8_[0], gainQ8_[1], gainQ8_[2] };
 	for (int k = 0; k < 3; ++k)
-		if (modelSum[k])
-			gains[k] = int(std::clamp<uint64_t>((predictedSum[k] * 256 + modelSum[k] / 2) / modelSum[k], 128, 512));
+		if (sums.model[k])
+			gains[k] = int(std::clamp<uint64_t>((sums.predicted[k] * 256 + sums.model[k] / 2) / sums.model[k],
+							    128, 512));
 	setGains(gains);
 }
 

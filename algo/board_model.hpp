@@ -26,6 +26,7 @@
 #include <algorithm>
 
 #include "algo/image.hpp"
+#include "algo/kernel_path.hpp"
 #include "algo/trimap.hpp"
 
 #include <cstdint>
@@ -57,6 +58,8 @@ public:
 	// mask is kTrimapBoard moves towards the prediction as a visit would, on
 	// every row; the light's gain then follows the prediction.
 	void teach(const RgbImage &sampled, const int gainQ8[3], const Gray8Image &mask);
+	// Which row kernels teach() runs (algo/kernel_path.hpp): the same bytes on each.
+	void setKernelPath(KernelPath path) { kernelPath_ = path; }
 	// c times a Q8 gain per channel, rounded, clamped at 255.
 	static Rgb8 scaleQ8(Rgb8 c, const int gainQ8[3])
 	{
@@ -101,6 +104,7 @@ private:
 	void setGains(const int gainQ8[3]);
 
 	RgbaImage model_;
+	KernelPath kernelPath_ = bestKernelPath();
 	int phase_ = 0, lastPhase_ = 0;
 	int gainQ8_[3] = { 256, 256, 256 };
 	// (model * gainQ8 + 128) >> 8 per channel and model value (0..510),

@@ -102,6 +102,7 @@ public:
 		refiner_.setKernelPath(path);
 		guided_.setKernelPath(path);
 		unmixing_.setKernelPath(path);
+		boardModel_.setKernelPath(path);
 	}
 
 	// Keys a colour frame with the depth frames captured just before and
