@@ -92,6 +92,7 @@ void PreviewFeed::offer(const ColourFrame *colour, const DepthFrame *depth, cons
 	if (!encoder_.running())
 		return;
 	auto give = [&](PreviewStage stage, const StageImage &image) {
+		encoder_.made(stage, nowNs);
 		if (encoder_.wanted(stage, nowNs))
 			encoder_.offer(stage, image, captureNs, nowNs);
 	};
@@ -107,20 +108,25 @@ void PreviewFeed::offer(const ColourFrame *colour, const DepthFrame *depth, cons
 		give(PreviewStage::Composite, { "", StageKind::Colour, recorded.composite });
 	if (recorded.board && !recorded.board->empty())
 		give(PreviewStage::Board, { "", StageKind::Colour, recorded.board });
+	const bool boardLayer = recorded.boardLayer && !recorded.boardLayer->empty();
+	const bool cameraLayer = colour && colour->rgb.width() == output.alpha.width() &&
+				 colour->rgb.height() == output.alpha.height() && !output.alpha.empty();
+	const bool noSignalLayer = !colour && !output.alpha.empty();
+	if (!(boardLayer || cameraLayer || noSignalLayer))
+		return;
+	encoder_.made(PreviewStage::Lecturer, nowNs);
 	if (!encoder_.wanted(PreviewStage::Lecturer, nowNs))
 		return;
-	if (recorded.boardLayer && !recorded.boardLayer->empty()) {
+	if (boardLayer) {
 		encoder_.offer(PreviewStage::Lecturer, *recorded.boardLayer, captureNs, nowNs);
-	} else if (colour && colour->rgb.width() == output.alpha.width() &&
-		   colour->rgb.height() == output.alpha.height() && !output.alpha.empty()) {
+	} else if (cameraLayer) {
 		lecturerLayer(colour->rgb, output.alpha, layer_);
 		encoder_.offer(PreviewStage::Lecturer, layer_, captureNs, nowNs);
-	} else if (!colour) {
+	} else {
 		// NO SIGNAL: the shared memory's layer is transparent black.
 		layer_.resize(output.alpha.width(), output.alpha.height());
 		std::fill(layer_.data(), layer_.data() + layer_.size(), Rgba8{ 0, 0, 0, 0 });
-		if (!layer_.empty())
-			encoder_.offer(PreviewStage::Lecturer, layer_, captureNs, nowNs);
+		encoder_.offer(PreviewStage::Lecturer, layer_, captureNs, nowNs);
 	}
 }
 

@@ -96,9 +96,11 @@ protected:
 		const test::PreviewTestPictures pictures;
 		while (!stop_) {
 			const uint64_t now = nowNs();
-			for (size_t s = 0; s < kPreviewStageCount; ++s)
+			for (size_t s = 0; s < kPreviewStageCount; ++s) {
+				encoder_.made(PreviewStage(s), now);
 				if (encoder_.wanted(PreviewStage(s), now))
 					encoder_.offer(PreviewStage(s), pictures.images[s], now, now);
+			}
 			std::this_thread::sleep_for(std::chrono::milliseconds(5));
 		}
 	}

@@ -137,6 +137,18 @@ std::shared_ptr<const EncodedFrame> PreviewEncoder::waitNewer(PreviewStage stage
 	return slot.latest;
 }
 
+void PreviewEncoder::made(PreviewStage stage, uint64_t nowNs)
+{
+	slots_[static_cast<size_t>(stage)].lastMadeNs.store(nowNs, std::memory_order_relaxed);
+}
+
+bool PreviewEncoder::making(PreviewStage stage, uint64_t nowNs) const
+{
+	const uint64_t made = slots_[static_cast<size_t>(stage)].lastMadeNs.load(std::memory_order_relaxed);
+	// The loop's clock read may come just after the caller's.
+	return made != 0 && (made >= nowNs || nowNs - made < kMakingWindowNs);
+}
+
 PreviewEncoderStats PreviewEncoder::stats() const
 {
 	return { encoded_.load(), skipped_.load(), encodeNs_.load(), failed_.load() };

@@ -50,6 +50,9 @@ public:
 	// stage and its last copy is at least 1 / maxFps old (nowNs
 	// CLOCK_MONOTONIC).
 	bool wanted(PreviewStage stage, uint64_t nowNs) const;
+	// The loop has the stage's picture at nowNs (told every frame, watched
+	// or not: one atomic store): the stage's sign of life for making().
+	void made(PreviewStage stage, uint64_t nowNs);
 	// Copies the image into the stage's slot; false (frame skipped) when
 	// the worker holds the slot. Never waits.
 	bool offer(PreviewStage stage, const StageImage &image, uint64_t captureNs, uint64_t nowNs);
@@ -67,6 +70,12 @@ public:
 	// (timeout > 0) the stage is wanted.
 	std::shared_ptr<const EncodedFrame> waitNewer(PreviewStage stage, uint64_t after,
 						      std::chrono::milliseconds timeout);
+	// The event loop told made() for the stage within the last
+	// kMakingWindowNs: a client waiting for its next picture will get one. False for the depth, seeds and alpha of NO SIGNAL
+	// (no cameras), which the server answers at once instead of letting a
+	// tile wait seconds for nothing (issue 30).
+	bool making(PreviewStage stage, uint64_t nowNs) const;
+	static constexpr uint64_t kMakingWindowNs = 2'000'000'000u;
 	PreviewEncoderStats stats() const;
 
 private:
@@ -82,6 +91,7 @@ private:
 		std::atomic<int> watchers{ 0 };
 		std::atomic<int> waiting{ 0 }; // threads inside waitNewer()
 		std::atomic<uint64_t> lastOfferNs{ 0 };
+		std::atomic<uint64_t> lastMadeNs{ 0 }; // made()'s last time, 0: never
 		// The published JPEG, guarded by outMutex.
 		std::mutex outMutex;
 		std::condition_variable newFrame;

@@ -18,6 +18,13 @@ figure { margin: 0; background: #000; }
 figure img { display: block; width: 100%; aspect-ratio: 4 / 3; object-fit: contain; background: #000; }
 figcaption { padding: 4px 6px; background: #2a2d30; }
 figure img { cursor: zoom-in; }
+/* A tile without a picture (NO SIGNAL's depth, seeds and alpha; the page's
+   first moment) says so in a box of the picture's size, not with the
+   browser's broken-image icon: data-state is "picture" once one is shown. */
+figure:not([data-state="picture"]) img { display: none; }
+figure[data-state="picture"] .no-frame { display: none; }
+.no-frame { display: flex; align-items: center; justify-content: center; aspect-ratio: 4 / 3; padding: 0 12%; box-sizing: border-box;
+            text-align: center; color: #a8a8a8; background: repeating-linear-gradient(45deg, #111 0 12px, #181818 12px 24px); }
 /* A tile clicked is shown alone, as large as the window allows; a click again puts it back. */
 figure.enlarged { position: fixed; inset: 0; z-index: 10; display: flex; flex-direction: column; background: #000; }
 figure.enlarged img { flex: 1; min-height: 0; width: 100%; height: 100%; aspect-ratio: auto; cursor: zoom-out; }
@@ -33,13 +40,13 @@ h2 { font-size: 16px; margin: 14px 0 4px 0; } #setup p { margin: 2px 0; } #setup
 <body>
 <h1>depthkey preview</h1>
 <div id="stages">
-<figure><img id="img-composite" src="/snapshot/composite.jpg" data-src="/snapshot/composite.jpg" alt="composite"><figcaption>recorded composite <span id="cap-composite" class="quiet"></span></figcaption></figure>
-<figure><img id="img-lecturer" src="/snapshot/lecturer.jpg" data-src="/snapshot/lecturer.jpg" alt="lecturer layer"><figcaption>lecturer layer (transparent over the checkerboard)</figcaption></figure>
-<figure><img id="img-board" src="/snapshot/board.jpg" data-src="/snapshot/board.jpg" alt="board picture"><figcaption>board picture <span id="cap-board" class="quiet"></span></figcaption></figure>
-<figure><img id="img-colour" src="/snapshot/colour.jpg" data-src="/snapshot/colour.jpg" alt="colour"><figcaption>colour camera</figcaption></figure>
-<figure><img id="img-depth" src="/snapshot/depth.jpg" data-src="/snapshot/depth.jpg" alt="depth"><figcaption>depth (false colour, 0.5 m red .. 4 m blue)</figcaption></figure>
-<figure><img id="img-seeds" src="/snapshot/seeds.jpg" data-src="/snapshot/seeds.jpg" alt="seeds"><figcaption>seeds (lecturer orange, board blue, undecided grey)</figcaption></figure>
-<figure><img id="img-alpha" src="/snapshot/alpha.jpg" data-src="/snapshot/alpha.jpg" alt="alpha"><figcaption>alpha matte</figcaption></figure>
+<figure><img id="img-composite" src="/snapshot/composite.jpg" data-src="/snapshot/composite.jpg" alt="composite"><div class="no-frame">waiting for the first frame…</div><figcaption>recorded composite <span id="cap-composite" class="quiet"></span></figcaption></figure>
+<figure><img id="img-lecturer" src="/snapshot/lecturer.jpg" data-src="/snapshot/lecturer.jpg" alt="lecturer layer"><div class="no-frame">waiting for the first frame…</div><figcaption>lecturer layer (transparent over the checkerboard)</figcaption></figure>
+<figure><img id="img-board" src="/snapshot/board.jpg" data-src="/snapshot/board.jpg" alt="board picture"><div class="no-frame">waiting for the first frame…</div><figcaption>board picture <span id="cap-board" class="quiet"></span></figcaption></figure>
+<figure><img id="img-colour" src="/snapshot/colour.jpg" data-src="/snapshot/colour.jpg" alt="colour"><div class="no-frame">waiting for the first frame…</div><figcaption>colour camera</figcaption></figure>
+<figure><img id="img-depth" src="/snapshot/depth.jpg" data-src="/snapshot/depth.jpg" alt="depth"><div class="no-frame">waiting for the first frame…</div><figcaption>depth (false colour, 0.5 m red .. 4 m blue)</figcaption></figure>
+<figure><img id="img-seeds" src="/snapshot/seeds.jpg" data-src="/snapshot/seeds.jpg" alt="seeds"><div class="no-frame">waiting for the first frame…</div><figcaption>seeds (lecturer orange, board blue, undecided grey)</figcaption></figure>
+<figure><img id="img-alpha" src="/snapshot/alpha.jpg" data-src="/snapshot/alpha.jpg" alt="alpha"><div class="no-frame">waiting for the first frame…</div><figcaption>alpha matte</figcaption></figure>
 </div>
 <div id="actions"><button id="snapshot" type="button">Save stage pictures</button> <span id="snapshot-result" class="quiet"></span></div>
 <table id="status"><tbody><tr><td>status</td><td>loading…</td></tr></tbody></table>
@@ -97,13 +104,22 @@ async function withConnection(work) {
     if (wake) wake();
   }
 }
+// A tile shows its picture only once one has loaded (data-state
+// "picture"); until then, and whenever the daemon says it has none (503 and
+// why), its placeholder says so. A request cut short keeps the tile as it was.
+function noFrame(figure, why) {
+  figure.dataset.state = "no-frame";
+  figure.querySelector(".no-frame").textContent = why;
+}
+class NoFrame extends Error {}
 for (const img of document.querySelectorAll("#stages img")) {
+  const figure = img.closest("figure");
   let n = 0, shown = null;
   const next = async () => {
     try {
       const blob = await withConnection(async () => {
         const r = await fetch(img.dataset.src + "?n=" + (++n), { cache: "no-store" });
-        if (!r.ok) throw new Error(r.status);
+        if (!r.ok) throw new NoFrame((await r.text()).trim() || "no frame (HTTP " + r.status + ")");
         return await r.blob();
       });
       const url = URL.createObjectURL(blob);
@@ -112,12 +128,17 @@ for (const img of document.querySelectorAll("#stages img")) {
       shown = url;
       setTimeout(next, 100);
     } catch (e) {
+      if (e instanceof NoFrame) noFrame(figure, e.message);
       setTimeout(next, 1000);
     }
   };
+  img.addEventListener("load", () => { if (img.naturalWidth > 0) figure.dataset.state = "picture"; });
+  img.addEventListener("error", () => noFrame(figure, "no " + img.id.replace("img-", "") + " frame yet"));
   // The first picture is the <img>'s own (the page's load waits for it).
-  img.addEventListener("load", () => setTimeout(next, 100), { once: true });
-  img.addEventListener("error", () => setTimeout(next, 1000), { once: true });
+  let first = true;
+  const start = (delay) => { if (first) { first = false; setTimeout(next, delay); } };
+  img.addEventListener("load", () => start(100));
+  img.addEventListener("error", () => start(1000));
 }
 for (const figure of document.querySelectorAll("#stages figure"))
   figure.querySelector("img").addEventListener("click", () => figure.classList.toggle("enlarged"));

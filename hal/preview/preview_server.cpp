@@ -43,6 +43,9 @@ constexpr int kClientAddresses = 4;
 constexpr int kServerNice = 10;
 // What a client backing off is told to wait (FailureLimits::backOffNs).
 constexpr const char *kRetryAfterS = "60";
+// Why a stage has no picture: the page shows it on the tile.
+constexpr std::string_view kNotMade =
+	"the daemon makes none now (a camera or the board's source missing or not streaming: see setup and status)";
 constexpr const char *kSecurityPolicy =
 	"default-src 'self'; script-src 'self' 'unsafe-inline'; style-src 'unsafe-inline'; img-src 'self' blob:";
 
@@ -372,6 +375,13 @@ int PreviewServer::handle(MHD_Connection *connection, const char *urlText, const
 		return queue(*mhd_, connection, MHD_HTTP_OK, previewStatusMetrics(status()),
 			     "text/plain; version=0.0.4; charset=utf-8") == MHD_YES;
 	if (stageUrl(url, "/snapshot/", ".jpg", stage)) {
+		// A stage the loop makes no picture of (NO SIGNAL's depth, seeds and
+		// alpha): said at once, not after a 3 s wait that holds one of the
+		// few connections a browser opens to the page (issue 30).
+		if (!encoder_->making(stage, monotonicNs()))
+			return queueText(*mhd_, connection, MHD_HTTP_SERVICE_UNAVAILABLE,
+					 "no " + std::string(previewStageName(stage)) + " frame yet: " + std::string(kNotMade)) ==
+			       MHD_YES;
 		encoder_->watch(stage);
 		auto current = encoder_->waitNewer(stage, 0, std::chrono::milliseconds(0));
 		auto frame = encoder_->waitNewer(stage, current ? current->sequence : 0, kSnapshotWait);

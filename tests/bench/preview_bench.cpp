@@ -74,9 +74,11 @@ void BM_PreviewOffer(benchmark::State &state)
 	uint64_t now = 1'000'000'000u;
 	for (auto _ : state) {
 		now += 40'000'000u;
-		for (size_t s = 0; s < kPreviewStageCount; s++)
+		for (size_t s = 0; s < kPreviewStageCount; s++) {
+			encoder.made(static_cast<PreviewStage>(s), now); // as daemon/preview_feed.cpp does
 			if (encoder.wanted(static_cast<PreviewStage>(s), now))
 				encoder.offer(static_cast<PreviewStage>(s), stage, now, now);
+		}
 	}
 	done = true;
 	if (client.joinable())

@@ -45,6 +45,7 @@ public:
 			while (!stop_) {
 				std::fill(image_.data(), image_.data() + image_.size(), Rgb8{ 200, 40, 90 });
 				uint64_t t0 = monotonicNs();
+				encoder_.made(PreviewStage::Composite, t0);
 				if (encoder_.wanted(PreviewStage::Composite, t0))
 					encoder_.offer(PreviewStage::Composite, { "", StageKind::Colour, &image_ }, t0, t0);
 				uint64_t took = monotonicNs() - t0;
@@ -146,7 +147,10 @@ TEST_F(PreviewServerTest, SnapshotPageAndErrors)
 	EXPECT_EQ(page.body.find("https://"), std::string::npos);
 
 	EXPECT_EQ(curlGet(url_ + "/stream/nothing.mjpg").code, 404);
-	EXPECT_EQ(curlGet(url_ + "/snapshot/colour.jpg").code, 503) << "no colour frame was offered";
+	// No colour picture is made: said at once, and why (not after 3 s).
+	const test::HttpReply colour = curlGet(url_ + "/snapshot/colour.jpg");
+	EXPECT_EQ(colour.code, 503) << "no colour frame was offered";
+	EXPECT_EQ(colour.body.rfind("no colour frame yet: the daemon makes none now", 0), 0u) << colour.body;
 	EXPECT_EQ(curlGet(url_ + "/status.json", "-X POST").code, 405);
 }
 
@@ -256,6 +260,13 @@ TEST(PreviewEncoder, CopiesOnlyWhileSomebodyWaits)
 	EXPECT_FALSE(frame) << "no newer frame was offered";
 	encoder.unwatch(PreviewStage::Colour);
 	EXPECT_FALSE(encoder.wanted(PreviewStage::Colour, 2'000'000'000u));
+	// made() is the stage's sign of life, watched or not, for kMakingWindowNs.
+	EXPECT_FALSE(encoder.making(PreviewStage::Depth, 2'000'000'000u)) << "never made";
+	encoder.made(PreviewStage::Depth, 2'000'000'000u);
+	EXPECT_TRUE(encoder.making(PreviewStage::Depth, 2'000'000'000u + PreviewEncoder::kMakingWindowNs - 1));
+	EXPECT_TRUE(encoder.making(PreviewStage::Depth, 1'999'000'000u)) << "the caller's clock read just before";
+	EXPECT_FALSE(encoder.making(PreviewStage::Depth, 2'000'000'000u + PreviewEncoder::kMakingWindowNs));
+	EXPECT_FALSE(encoder.making(PreviewStage::Colour, 2'000'000'000u)) << "one stage's life is not another's";
 	encoder.stop();
 	EXPECT_FALSE(encoder.wanted(PreviewStage::Colour, 2'000'000'000u));
 }

@@ -84,6 +84,22 @@ inline std::vector<std::string> mjpegParts(const std::string &stream)
 	return parts;
 }
 
+// Headless Chromium (Debian's chromium) as the page tests run it, at the
+// window size given ("1280,1600"), to be followed by --dump-dom or
+// --screenshot=FILE and the URL; it stops loading after 8 s (--timeout).
+inline bool chromiumInstalled()
+{
+	int status = 0;
+	run("command -v chromium", status);
+	return status == 0;
+}
+inline std::string headlessChromium(const std::string &windowSize)
+{
+	return "timeout 60 chromium --headless=new --no-sandbox --disable-gpu --disable-background-networking "
+	       "--disable-component-update --no-first-run --hide-scrollbars --window-size=" +
+	       windowSize + " --timeout=8000 ";
+}
+
 // The newest frame number in the shared-memory output `name` (0 if it
 // cannot be opened): the daemon's published frame count, read as a reader would.
 inline uint64_t latestSharedFrame(const std::string &name)

@@ -273,10 +273,9 @@ std::map<std::string, std::string> tileSources(const std::string &dom)
 
 TEST(PreviewTiles, EveryTileShowsTheSharedMemorysFrame)
 {
-	int status = 0;
-	depthkey::test::run("command -v chromium", status);
-	if (status != 0)
+	if (!depthkey::test::chromiumInstalled())
 		GTEST_SKIP() << "chromium is not installed: the tile test is skipped";
+	int status = 0;
 
 	DaemonProcess daemon;
 	// The simulator calibrated as make run calibrates it: board geometry.
@@ -316,9 +315,7 @@ TEST(PreviewTiles, EveryTileShowsTheSharedMemorysFrame)
 	// and every tile has its source.
 	const char *shots = std::getenv("DEPTHKEY_SHOTS");
 	const std::string shot = (shots ? std::string(shots) : daemon.dir()) + "/preview-page.png";
-	const std::string chromium = "timeout 60 chromium --headless=new --no-sandbox --disable-gpu "
-				     "--disable-background-networking --disable-component-update --no-first-run "
-				     "--hide-scrollbars --window-size=1280,1600 --timeout=8000 ";
+	const std::string chromium = depthkey::test::headlessChromium("1280,1600");
 	std::string dom = depthkey::test::run(chromium + "--dump-dom " + url + "/ 2>/dev/null", status);
 	ASSERT_EQ(status, 0) << dom;
 	// The daemon's STATUS= datagrams are drained between the steps: a
