@@ -83,7 +83,7 @@ size_t CoarseToFineCut::coarsen(const CutGrid &fine, CutGrid &coarse)
 		for (CutGrid::Run run = fine.nextRun(y, 0); run.x0 < fine.width; run = fine.nextRun(y, run.x1))
 			for (int x = run.x0; x < run.x1; ++x) {
 				const size_t c = row + size_t(x);
-				const size_t b = coarseRow + size_t(x / 2);
+				const size_t b = coarseRow + size_t(x) / 2; // a shift: x >= 0
 				if (coarse.state[b] != CutGrid::kFree) {
 					coarse.state[b] = CutGrid::kFree;
 					coarse.unary[b] = coarse.right[b] = coarse.down[b] = 0;
@@ -162,7 +162,7 @@ int CoarseToFineCut::activate(CutGrid &fine, const CutGrid &coarse)
 		for (CutGrid::Run run = fine.nextRun(y, 0); run.x0 < fine.width; run = fine.nextRun(y, run.x1))
 			for (int x = run.x0; x < run.x1; ++x) {
 				const size_t c = row + size_t(x);
-				const size_t b = coarseRow + size_t(x / 2);
+				const size_t b = coarseRow + size_t(x) / 2; // a shift: x >= 0
 				if (edge_[b]) {
 					active_[size_t(vertices)] = int32_t(c);
 					fine.node[c] = vertices++;

@@ -196,9 +196,9 @@ TEST(BandGraphCut, CoarseLevelsGrowWithTheWidth)
 
 TEST(CutGrid, NextRunFindsEveryRunOfFreeCellsAsAByteWalkDoes)
 {
-	// nextRun skips fixed cells eight at a time: runs that start and end
-	// on and across the eight-cell words, at the row's ends, and rows with
-	// none, against a walk of each cell.
+	// nextRun skips fixed cells and measures free ones eight at a time:
+	// runs that start and end on and across the eight-cell words, at the
+	// row's ends, and rows with none, against a walk of each cell.
 	std::mt19937 rng(5);
 	for (int trial = 0; trial < 200; ++trial) {
 		const int w = 1 + int(rng() % 40);
