@@ -35,7 +35,7 @@ CoarseToFineCut::CoarseToFineCut() : graphs_(std::make_unique<Graphs>())
 
 CoarseToFineCut::~CoarseToFineCut() = default;
 
-void CoarseToFineCut::solve(CutGrid &fine, int levels)
+void CoarseToFineCut::solve(CutGrid &fine, int levels, const DeferredLinks *deferred)
 {
 	levels = std::clamp(levels, 0, kMaxLevels);
 	cellsCut_.fill(0);
@@ -59,6 +59,8 @@ void CoarseToFineCut::solve(CutGrid &fine, int levels)
 				active_[size_t(vertices)] = int32_t(c);
 				coarsest.node[c] = vertices++;
 			}
+	if (deferred && !depth)
+		deferred->weigh(fine, active_.data(), vertices);
 	cutActive(coarsest, vertices);
 	cellsCut_[size_t(depth)] = size_t(vertices);
 	for (int level = depth - 1; level >= 0; --level) {
@@ -66,6 +68,8 @@ void CoarseToFineCut::solve(CutGrid &fine, int levels)
 		const CutGrid &coarser = coarse_[size_t(level) + 1];
 		markEdge(coarser);
 		vertices = activate(finer, coarser);
+		if (deferred && !level)
+			deferred->weigh(fine, active_.data(), vertices);
 		cutActive(finer, vertices);
 		cellsCut_[size_t(level)] = size_t(vertices);
 	}

@@ -24,6 +24,10 @@ namespace depthkey {
 struct CutGrid {
 	static constexpr uint8_t kFixed = 0, kFree = 1;
 	static constexpr uint8_t kTouchesLecturer = 1, kTouchesBoard = 2;
+	// A link inside a 2x2 block of the finest grid that its builder left to
+	// be weighed on demand (CoarseToFineCut::DeferredLinks): coarser levels
+	// never read it, and the finest level cuts only a few blocks.
+	static constexpr int32_t kLinkDeferred = -1;
 
 	int width = 0, height = 0;
 	std::vector<uint8_t> state;    // kFixed / kFree
