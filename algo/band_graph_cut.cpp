@@ -40,7 +40,9 @@ void BandGraphCut::cut(const RgbImage &colour, const Gray8Image &trimap, const s
 	if (spans.empty())
 		return;
 	buildGrid(colour, trimap, spans, confidence);
-	solver_.solve(grid_, levelsForWidth(levels_, colour.width()));
+	colour_ = &colour;
+	solver_.solve(grid_, levelsForWidth(levels_, colour.width()), this);
+	colour_ = nullptr;
 	for (const BandSpan &s : spans) {
 		const uint8_t *label = grid_.label.data() + size_t(s.y - gridY0_) * size_t(grid_.width);
 		for (int x = s.x0, k = s.first; x < s.x1; ++x, ++k)
@@ -88,6 +90,9 @@ void BandGraphCut::buildGrid(const RgbImage &colour, const Gray8Image &trimap, c
 		const Rgb8 *up = hasUp ? colour.row(s.y - 1) : nullptr, *down = hasDown ? colour.row(s.y + 1) : nullptr;
 		const uint8_t *tUp = hasUp ? trimap.row(s.y - 1) : nullptr, *tDown = hasDown ? trimap.row(s.y + 1) : nullptr;
 		const int gy = s.y - gridY0_;
+		// The link below stays inside a 2x2 block from an even row, the one
+		// to the right from an even column (of the grid): deferred.
+		const bool downInBlock = !(gy & 1);
 		// Rows of the grid indexed by the image's x.
 		const size_t rowStart = size_t(gy) * size_t(gw) - size_t(x0);
 		int32_t *unaryRow = grid_.unary.data() + rowStart, *rightRow = grid_.right.data() + rowStart;
@@ -111,16 +116,18 @@ void BandGraphCut::buildGrid(const RgbImage &colour, const Gray8Image &trimap, c
 			// Leaning lecturer by the confidence's distance from the middle.
 			unaryRow[x] = int32_t(confidence[k]) - int32_t(kConfidenceLecturer);
 			touchesRow[x] = 0;
-			rightRow[x] = x + 1 < s.x1 ? edgeWeight(row[x], row[x + 1]) : 0;
+			const bool rightInBlock = !((x - x0) & 1);
+			rightRow[x] = x + 1 >= s.x1 ? 0
+				      : rightInBlock ? CutGrid::kLinkDeferred
+						     : edgeWeight(row[x], row[x + 1]);
 			if (hasUp && isTrimapSeed(tUp[x]))
 				fixed(x, tUp[x], edgeWeight(row[x], up[x]));
 			int32_t below = 0;
 			if (hasDown) {
-				const int weight = edgeWeight(row[x], down[x]);
 				if (isTrimapSeed(tDown[x]))
-					fixed(x, tDown[x], weight);
+					fixed(x, tDown[x], edgeWeight(row[x], down[x]));
 				else if (stateBelow && stateBelow[x] == CutGrid::kFree)
-					below = weight;
+					below = downInBlock ? CutGrid::kLinkDeferred : edgeWeight(row[x], down[x]);
 			}
 			downRow[x] = below;
 		}
@@ -128,6 +135,21 @@ void BandGraphCut::buildGrid(const RgbImage &colour, const Gray8Image &trimap, c
 			fixed(s.x0, t[s.x0 - 1], edgeWeight(row[s.x0], row[s.x0 - 1]));
 		if (s.x1 < w)
 			fixed(s.x1 - 1, t[s.x1], edgeWeight(row[s.x1 - 1], row[s.x1]));
+	}
+}
+
+void BandGraphCut::weigh(CutGrid &fine, const int32_t *cells, int count) const
+{
+	const size_t w = size_t(fine.width);
+	for (int i = 0; i < count; ++i) {
+		const size_t c = size_t(cells[i]);
+		const int gy = int(c / w), gx = int(c - size_t(gy) * w);
+		const int x = gridX0_ + gx, y = gridY0_ + gy;
+		const Rgb8 *row = colour_->row(y);
+		if (fine.right[c] == CutGrid::kLinkDeferred)
+			fine.right[c] = edgeWeight(row[x], row[x + 1]);
+		if (fine.down[c] == CutGrid::kLinkDeferred)
+			fine.down[c] = edgeWeight(row[x], colour_->row(y + 1)[x]);
 	}
 }
 

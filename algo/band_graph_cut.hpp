@@ -31,7 +31,7 @@ struct BandSpan {
 	int first;
 };
 
-class BandGraphCut
+class BandGraphCut : private CoarseToFineCut::DeferredLinks
 {
 public:
 	// smoothness 0 turns the cut off; edgeSigma in 8-bit levels (RGB).
@@ -58,9 +58,13 @@ public:
 	int edgeWeight(Rgb8 a, Rgb8 b) const;
 
 private:
-	// The band's energy on the grid of the spans' bounding box.
+	// The band's energy on the grid of the spans' bounding box; the links
+	// between free pixels of one 2x2 block are left for weigh(): the
+	// coarse levels do not use them, and the finest level only where it
+	// cuts again (a sixth of the band at 640x480).
 	void buildGrid(const RgbImage &colour, const Gray8Image &trimap, const std::vector<BandSpan> &spans,
 		       const uint8_t *confidence);
+	void weigh(CutGrid &fine, const int32_t *cells, int count) const override;
 
 	int smoothness_ = 0;
 	// smoothness * exp(-d2 / (2 sigma^2)) by squared RGB distance d2, up to
@@ -69,6 +73,7 @@ private:
 	int levels_ = 0;
 	CutGrid grid_;
 	int gridX0_ = 0, gridY0_ = 0;
+	const RgbImage *colour_ = nullptr; // the frame being cut, for weigh()
 	CoarseToFineCut solver_;
 };
 

@@ -35,7 +35,7 @@ CoarseToFineCut::CoarseToFineCut() : graphs_(std::make_unique<Graphs>())
 
 CoarseToFineCut::~CoarseToFineCut() = default;
 
-void CoarseToFineCut::solve(CutGrid &fine, int levels)
+void CoarseToFineCut::solve(CutGrid &fine, int levels, const DeferredLinks *deferred)
 {
 	levels = std::clamp(levels, 0, kMaxLevels);
 	cellsCut_.fill(0);
@@ -59,6 +59,8 @@ void CoarseToFineCut::solve(CutGrid &fine, int levels)
 				active_[size_t(vertices)] = int32_t(c);
 				coarsest.node[c] = vertices++;
 			}
+	if (deferred && !depth)
+		deferred->weigh(fine, active_.data(), vertices);
 	cutActive(coarsest, vertices);
 	cellsCut_[size_t(depth)] = size_t(vertices);
 	for (int level = depth - 1; level >= 0; --level) {
@@ -66,6 +68,8 @@ void CoarseToFineCut::solve(CutGrid &fine, int levels)
 		const CutGrid &coarser = coarse_[size_t(level) + 1];
 		markEdge(coarser);
 		vertices = activate(finer, coarser);
+		if (deferred && !level)
+			deferred->weigh(fine, active_.data(), vertices);
 		cutActive(finer, vertices);
 		cellsCut_[size_t(level)] = size_t(vertices);
 	}
@@ -83,7 +87,7 @@ size_t CoarseToFineCut::coarsen(const CutGrid &fine, CutGrid &coarse)
 		for (CutGrid::Run run = fine.nextRun(y, 0); run.x0 < fine.width; run = fine.nextRun(y, run.x1))
 			for (int x = run.x0; x < run.x1; ++x) {
 				const size_t c = row + size_t(x);
-				const size_t b = coarseRow + size_t(x / 2);
+				const size_t b = coarseRow + size_t(x) / 2; // a shift: x >= 0
 				if (coarse.state[b] != CutGrid::kFree) {
 					coarse.state[b] = CutGrid::kFree;
 					coarse.unary[b] = coarse.right[b] = coarse.down[b] = 0;
@@ -111,7 +115,9 @@ void CoarseToFineCut::markEdge(const CutGrid &coarse)
 		marks_.resize(n);
 	}
 	// A cell on the decided edge: a free neighbour or a fixed one on the
-	// other side. Fixed cells are not on it.
+	// other side. Fixed cells are not on it. Two free neighbours that
+	// differ are both on it: each pair is looked at once, from its left or
+	// upper cell (the pairs to the left and above were marked before).
 	std::fill(edge_.begin(), edge_.begin() + std::ptrdiff_t(n), uint8_t(0));
 	for (int y = 0; y < h; ++y)
 		for (CutGrid::Run run = coarse.nextRun(y, 0); run.x0 < w; run = coarse.nextRun(y, run.x1))
@@ -119,12 +125,14 @@ void CoarseToFineCut::markEdge(const CutGrid &coarse)
 				const size_t c = size_t(y) * size_t(w) + size_t(x);
 				const uint8_t l = coarse.label[c];
 				const uint8_t otherSide = l ? CutGrid::kTouchesBoard : CutGrid::kTouchesLecturer;
-				auto differs = [&](size_t q) {
-					return coarse.state[q] == CutGrid::kFree && coarse.label[q] != l;
-				};
-				edge_[c] = (coarse.touches[c] & otherSide) || (x > 0 && differs(c - 1)) ||
-					   (x + 1 < w && differs(c + 1)) || (y > 0 && differs(c - size_t(w))) ||
-					   (y + 1 < h && differs(c + size_t(w)));
+				uint8_t onEdge = edge_[c] | uint8_t((coarse.touches[c] & otherSide) != 0);
+				// Within a run the cell to the right is free.
+				if (x + 1 < run.x1 && coarse.label[c + 1] != l)
+					onEdge = edge_[c + 1] = 1;
+				const size_t below = c + size_t(w);
+				if (y + 1 < h && coarse.state[below] == CutGrid::kFree && coarse.label[below] != l)
+					onEdge = edge_[below] = 1;
+				edge_[c] = onEdge;
 			}
 	// Grown by margin_ cells (a square): rows first into marks_, then
 	// columns back into edge_ (coarse grids are small). Margin 0 (shipped)
@@ -162,7 +170,7 @@ int CoarseToFineCut::activate(CutGrid &fine, const CutGrid &coarse)
 		for (CutGrid::Run run = fine.nextRun(y, 0); run.x0 < fine.width; run = fine.nextRun(y, run.x1))
 			for (int x = run.x0; x < run.x1; ++x) {
 				const size_t c = row + size_t(x);
-				const size_t b = coarseRow + size_t(x / 2);
+				const size_t b = coarseRow + size_t(x) / 2; // a shift: x >= 0
 				if (edge_[b]) {
 					active_[size_t(vertices)] = int32_t(c);
 					fine.node[c] = vertices++;

@@ -47,12 +47,26 @@ public:
 	// margin: coarse cells around a coarse edge cut again (0: the edge's own).
 	void configure(int margin) { margin_ = margin < 0 ? 0 : margin; }
 
+	// Weighs the links of the finest grid that its builder deferred
+	// (CutGrid::kLinkDeferred, only ever inside a 2x2 block: right at an
+	// even x, down at an even y), for the cells listed, which are given a
+	// vertex; the others' links inside their block are never read.
+	class DeferredLinks
+	{
+	public:
+		virtual void weigh(CutGrid &fine, const int32_t *cells, int count) const = 0;
+
+	protected:
+		~DeferredLinks() = default;
+	};
+
 	// Labels every free cell of `fine` (fine.label), which the caller has
-	// filled: state, unary, right, down and touches at its free cells. Its
+	// filled: state, unary, right, down and touches at its free cells (with
+	// `deferred`, the links inside a block may be kLinkDeferred). Its
 	// `node` and `label` are overwritten; its unary too (the pulls of
 	// neighbours decided at a coarser level are added in). levels 0 (or a
 	// band too small to coarsen) cuts the whole grid at once.
-	void solve(CutGrid &fine, int levels);
+	void solve(CutGrid &fine, int levels, const DeferredLinks *deferred = nullptr);
 
 	// Free cells cut at each level of the last solve(), coarsest last (for
 	// tests and the bench's breakdown).

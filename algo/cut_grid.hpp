@@ -24,6 +24,10 @@ namespace depthkey {
 struct CutGrid {
 	static constexpr uint8_t kFixed = 0, kFree = 1;
 	static constexpr uint8_t kTouchesLecturer = 1, kTouchesBoard = 2;
+	// A link inside a 2x2 block of the finest grid that its builder left to
+	// be weighed on demand (CoarseToFineCut::DeferredLinks): coarser levels
+	// never read it, and the finest level cuts only a few blocks.
+	static constexpr int32_t kLinkDeferred = -1;
 
 	int width = 0, height = 0;
 	std::vector<uint8_t> state;    // kFixed / kFree
@@ -54,7 +58,8 @@ struct CutGrid {
 	// The next run of free cells of row y at or after x: [x0, x1), x0 ==
 	// width when there is none. Most of a level's bounding box is fixed (the
 	// core, the board beyond the band), so the fixed cells are skipped eight
-	// at a time instead of walked.
+	// at a time instead of walked; and a run of free cells (the band's rows
+	// are tens of cells wide) is measured eight at a time too.
 	struct Run {
 		int x0, x1;
 	};
@@ -72,6 +77,15 @@ struct CutGrid {
 		while (x < width && row[x] == kFixed)
 			++x;
 		int end = x;
+		if constexpr (std::endian::native == std::endian::little)
+			for (uint64_t word; end + 8 <= width; end += 8) {
+				std::memcpy(&word, row + end, 8);
+				// A byte that is not kFree (1) leaves a bit standing.
+				if (const uint64_t other = word ^ 0x0101010101010101u) {
+					end += std::countr_zero(other) / 8;
+					break;
+				}
+			}
 		while (end < width && row[end] == kFree)
 			++end;
 		return { x, end };

@@ -109,6 +109,72 @@ TEST(CoarseToFineCut, ACoarseLevelReCutEverywhereIsStillExact)
 	}
 }
 
+namespace {
+
+// Weighs deferred links from the grid they were taken out of, and counts
+// the cells it was asked for.
+class LinksFrom final : public CoarseToFineCut::DeferredLinks
+{
+public:
+	explicit LinksFrom(const CutGrid &whole) : whole_(whole) {}
+	void weigh(CutGrid &fine, const int32_t *cells, int count) const override
+	{
+		for (int i = 0; i < count; ++i) {
+			const size_t c = size_t(cells[i]);
+			if (fine.right[c] == CutGrid::kLinkDeferred)
+				fine.right[c] = whole_.right[c];
+			if (fine.down[c] == CutGrid::kLinkDeferred)
+				fine.down[c] = whole_.down[c];
+		}
+		asked += size_t(count);
+	}
+	mutable size_t asked = 0;
+
+private:
+	const CutGrid &whole_;
+};
+
+} // namespace
+
+TEST(CoarseToFineCut, LinksInsideABlockWeighedOnDemandGiveTheSameCut)
+{
+	// BandGraphCut defers the links inside the finest 2x2 blocks: the cut
+	// must be the one of the whole grid, and only the cells cut at the
+	// finest level are weighed (all of them when no coarse level is made).
+	std::mt19937 rng(13);
+	CoarseToFineCut eager, lazy;
+	for (const int levels : { 0, 1, 2 })
+		for (int trial = 0; trial < 4; ++trial) {
+			const CutGrid whole = randomGrid(rng, 64, 48, 10);
+			CutGrid a = whole, b = whole;
+			size_t deferredLinks = 0;
+			for (int y = 0; y < b.height; ++y)
+				for (int x = 0; x < b.width; ++x) {
+					const size_t c = size_t(y) * size_t(b.width) + size_t(x);
+					const bool free = b.state[c] == CutGrid::kFree;
+					if (free && !(x & 1) && x + 1 < b.width && b.state[c + 1] == CutGrid::kFree)
+						b.right[c] = CutGrid::kLinkDeferred, ++deferredLinks;
+					if (free && !(y & 1) && y + 1 < b.height && b.state[c + size_t(b.width)] == CutGrid::kFree)
+						b.down[c] = CutGrid::kLinkDeferred, ++deferredLinks;
+				}
+			ASSERT_GT(deferredLinks, 1000u);
+			const LinksFrom links(whole);
+			eager.solve(a, levels);
+			lazy.solve(b, levels, &links);
+			EXPECT_EQ(lazy.cellsCut(), eager.cellsCut()) << "levels " << levels << " trial " << trial;
+			EXPECT_EQ(links.asked, eager.cellsCut()[0]) << "levels " << levels << " trial " << trial;
+			if (levels) {
+				ASSERT_GT(eager.cellsCut()[1], 0u) << "a coarse level was made";
+			}
+			for (size_t c = 0; c < whole.cells(); ++c) {
+				if (whole.state[c] == CutGrid::kFree) {
+					ASSERT_EQ(b.label[c], a.label[c])
+						<< "levels " << levels << " trial " << trial << " cell " << c;
+				}
+			}
+		}
+}
+
 TEST(CoarseToFineCut, OnANoisyDiscTheShippedSettingsStayNearTheMinimum)
 {
 	// A lecturer disc of radius 60 in a 200x200 band: noisy evidence,
@@ -196,9 +262,9 @@ TEST(BandGraphCut, CoarseLevelsGrowWithTheWidth)
 
 TEST(CutGrid, NextRunFindsEveryRunOfFreeCellsAsAByteWalkDoes)
 {
-	// nextRun skips fixed cells eight at a time: runs that start and end
-	// on and across the eight-cell words, at the row's ends, and rows with
-	// none, against a walk of each cell.
+	// nextRun skips fixed cells and measures free ones eight at a time:
+	// runs that start and end on and across the eight-cell words, at the
+	// row's ends, and rows with none, against a walk of each cell.
 	std::mt19937 rng(5);
 	for (int trial = 0; trial < 200; ++trial) {
 		const int w = 1 + int(rng() % 40);
