@@ -18,6 +18,7 @@ int BoardPicturePrior::configure(int colourWidth, int colourHeight, const Homogr
 	colourHeight_ = colourHeight;
 	boardWidth_ = boardWidth;
 	boardHeight_ = boardHeight;
+	fitScale_ = std::max(1, (colourWidth + 320) / 640);
 	boardOf_.assign(size_t(colourWidth) * colourHeight, -1);
 	sampled_ = RgbImage(colourWidth, colourHeight, Rgb8{ 0, 0, 0 });
 	sampledFrom_ = nullptr;
@@ -58,11 +59,12 @@ bool BoardPicturePrior::predict(const RgbImage &picture, const RgbImage &colour,
 	}
 	uint64_t colourSum[3] = {}, pictureSum[3] = {};
 	size_t fitted = 0;
-	for (int y = 0; y < colourHeight_; y += kFitRowStride) {
+	const int rowStep = fitRowStep(), columnStep = fitColumnStep();
+	for (int y = 0; y < colourHeight_; y += rowStep) {
 		const Rgb8 *c = colour.row(y);
 		const Rgb8 *sampled = sampled_.row(y);
 		const uint8_t *on = onDisplay_.row(y);
-		for (int x = 0; x < colourWidth_; ++x) {
+		for (int x = 0; x < colourWidth_; x += columnStep) {
 			if (on[x] != kTrimapBoard)
 				continue;
 			const int d = model.distance(x, y, c[x]);

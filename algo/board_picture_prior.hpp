@@ -42,6 +42,10 @@ public:
 	static constexpr int kFitDistance = 30;     // L1, levels: "this pixel is board as learned"
 	// The gain is a sum over the display: every 4th row measures it as well
 	// (tens of thousands of pixels at 640x480) at a quarter of the cost.
+	// Wider frames measure on a grid as sparse in columns as they are wider
+	// (rounded: 2 from 960, 3 from 1600 pixels wide), rows the same, so the
+	// pixels and the cost stay those of 640x480 (at 1920x1080 the fit was
+	// 25 M instructions a frame on every 4th row, issue 28).
 	static constexpr int kFitRowStride = 4;
 	static constexpr size_t kMinFitPixels = 250; // measured, on those rows
 
@@ -74,12 +78,16 @@ public:
 
 	const RgbImage &sampled() const { return sampled_; }
 	const Gray8Image &onDisplay() const { return onDisplay_; }
+	// The grid the gain is measured on.
+	int fitRowStep() const { return kFitRowStride * fitScale_; }
+	int fitColumnStep() const { return fitScale_; }
 	const int *gainQ8() const { return gainQ8_; }
 	// The prediction at one pixel, as teach() computes it (for tests).
 	Rgb8 predictedAt(int x, int y) const { return BoardModel::scaleQ8(sampled_.row(y)[x], gainQ8_); }
 
 private:
 	int colourWidth_ = 0, colourHeight_ = 0, boardWidth_ = 0, boardHeight_ = 0;
+	int fitScale_ = 1;
 	std::vector<int32_t> boardOf_; // per colour pixel: board pixel index, -1 off the display
 	RgbImage sampled_;             // the picture under each colour pixel (on the display)
 	const RgbImage *sampledFrom_ = nullptr; // the picture sampled_ holds; null = sample again

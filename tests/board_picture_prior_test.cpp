@@ -26,9 +26,9 @@ Homography doubling()
 	return h;
 }
 
-RgbImage boardPicture(uint64_t seed)
+RgbImage boardPicture(uint64_t seed, int w = kW, int h = kH)
 {
-	RgbImage picture(2 * kW, 2 * kH);
+	RgbImage picture(2 * w, 2 * h);
 	uint64_t s = seed;
 	for (int y = 0; y < picture.height(); ++y)
 		for (int x = 0; x < picture.width(); ++x) {
@@ -45,9 +45,10 @@ RgbImage boardPicture(uint64_t seed)
 // times a light of (0.8, 0.9, 1.1).
 RgbImage cameraView(const RgbImage &picture)
 {
-	RgbImage colour(kW, kH);
-	for (int y = 0; y < kH; ++y)
-		for (int x = 0; x < kW; ++x) {
+	const int w = picture.width() / 2, h = picture.height() / 2;
+	RgbImage colour(w, h);
+	for (int y = 0; y < h; ++y)
+		for (int x = 0; x < w; ++x) {
 			const Rgb8 p = picture.row(2 * y)[2 * x];
 			colour.row(y)[x] = { uint8_t(std::lround(p.r * 0.8)), uint8_t(std::lround(p.g * 0.9)),
 					     uint8_t(std::min(255L, std::lround(p.b * 1.1))) };
@@ -57,9 +58,14 @@ RgbImage cameraView(const RgbImage &picture)
 
 } // namespace
 
-TEST(BoardPicturePrior, PredictsTheCameraColourWithinOneLevelOfTheDoubleReference)
+namespace {
+
+// At kW x kH the gain is fitted on every 4th row; wider frames fit on a
+// sparser grid (rows and columns), so that its cost stays what it is at
+// 640 pixels wide.
+void expectPredictionWithinOneLevel(int kW, int kH)
 {
-	const RgbImage picture = boardPicture(1);
+	const RgbImage picture = boardPicture(1, kW, kH);
 	const RgbImage colour = cameraView(picture);
 	BoardModel model;
 	model.learn(colour, Gray8Image(kW, kH, kTrimapBoard));
@@ -71,10 +77,11 @@ TEST(BoardPicturePrior, PredictsTheCameraColourWithinOneLevelOfTheDoubleReferenc
 	ASSERT_TRUE(prior.predict(picture, colour, model));
 
 	// The double reference: the gain is the ratio of the sums over the
-	// pixels that match the model (all of them here) on every 4th row.
+	// pixels that match the model (all of them here) on the grid it
+	// measures on.
 	double sumC[3] = {}, sumP[3] = {};
-	for (int y = 0; y < kH; y += BoardPicturePrior::kFitRowStride) // the rows it measures on
-		for (int x = 0; x < kW; ++x) {
+	for (int y = 0; y < kH; y += prior.fitRowStep())
+		for (int x = 0; x < kW; x += prior.fitColumnStep()) {
 			const Rgb8 c = colour.row(y)[x], p = picture.row(2 * y)[2 * x];
 			sumC[0] += c.r, sumC[1] += c.g, sumC[2] += c.b;
 			sumP[0] += p.r, sumP[1] += p.g, sumP[2] += p.b;
@@ -91,10 +98,19 @@ TEST(BoardPicturePrior, PredictsTheCameraColourWithinOneLevelOfTheDoubleReferenc
 			for (int k = 0; k < 3; ++k)
 				worst = std::max(worst, int(std::lround(std::fabs(g[k] - want[k]) + 0.49)));
 		}
-	std::printf("    prediction, fixed vs double: worst %d level(s)\n", worst);
+	std::printf("    prediction at %dx%d (fit every %d rows, %d columns), fixed vs double: worst %d level(s)\n", kW, kH,
+		    prior.fitRowStep(), prior.fitColumnStep(), worst);
 	EXPECT_LE(worst, 1);
 	EXPECT_NEAR(prior.gainQ8()[0], 0.8 * 256, 3);
 	EXPECT_NEAR(prior.gainQ8()[2], 1.1 * 256, 3);
+}
+
+} // namespace
+
+TEST(BoardPicturePrior, PredictsTheCameraColourWithinOneLevelOfTheDoubleReference)
+{
+	expectPredictionWithinOneLevel(kW, kH);
+	expectPredictionWithinOneLevel(1300, 40); // fitted every 8th row, every 2nd column
 }
 
 TEST(BoardPicturePrior, OffThePictureIsOffTheDisplayAndNothingWithoutALearnedBoard)
