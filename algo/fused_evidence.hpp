@@ -24,18 +24,24 @@
 // the divisions cost a third of the band's time): configure() tabulates the
 // board and depth terms and turns the temporal term's divisor into a
 // multiply (algo/exact_divisor.hpp), each giving what the divisions gave bit
-// for bit. Tests compare it with the divisions it replaces (equal) and with
-// a double reference (tests/fused_evidence_test).
+// for bit. The two sums per pixel, the board distance and the colour
+// change, come from vector rows over the span first
+// (algo/evidence_terms_rows.hpp), the same values on every path. Tests
+// compare it with the divisions it replaces (equal), with a double
+// reference, and a row with fuse() of each pixel on every kernel path
+// (tests/fused_evidence_test).
 #pragma once
 
 #include "algo/band_evidence.hpp"
 #include "algo/board_model.hpp"
+#include "algo/evidence_terms_rows.hpp"
 #include "algo/exact_divisor.hpp"
 #include "settings/settings.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <vector>
 
 namespace depthkey {
 
@@ -53,6 +59,15 @@ public:
 		  const Roi &previousRoi);
 
 	void confidences(int y, int x0, int x1, uint8_t *out) override;
+
+	// The row kernels of the board distance and the colour change
+	// (algo/evidence_terms_rows.hpp); the confidences are the same on every
+	// path.
+	void setKernelPath(KernelPath path)
+	{
+		boardDistance_ = boardDistanceRow(path);
+		colourChange_ = colourChangeRow(path);
+	}
 
 	// One pixel's confidence from its terms (the kernel, inlined in
 	// confidences()): siox 1..255, depthEvidence 0..255, boardDistance -1 =
@@ -90,6 +105,11 @@ private:
 	const Gray8Image *previousAlpha_ = nullptr;
 	const RgbImage *previousColour_ = nullptr;
 	Roi previousRoi_;
+	// A span's board distances and colour changes, from the row kernels;
+	// sized to the colour width in bind() (once per size).
+	std::vector<int16_t> distance_, change_;
+	BoardDistanceFn boardDistance_ = boardDistanceRow(bestKernelPath());
+	ColourChangeFn colourChange_ = colourChangeRow(bestKernelPath());
 };
 
 } // namespace depthkey

@@ -257,12 +257,8 @@ void GuidedFilter::filter(const RgbImage &colour, const Gray8Image &matte, const
 	}
 
 	// Luma (r + 2g + b) / 4, and the pixels near an edge of the matte.
-	for (int y = roi.y0; y < roi.y1; ++y) {
-		const Rgb8 *c = colour.row(y);
-		uint8_t *g = guide_.row(y);
-		for (int x = roi.x0; x < roi.x1; ++x)
-			g[x] = uint8_t((c[x].r + 2 * c[x].g + c[x].b + 2) >> 2);
-	}
+	for (int y = roi.y0; y < roi.y1; ++y)
+		luma_(colour.row(y) + roi.x0, roi.x1 - roi.x0, guide_.row(y) + roi.x0);
 	markNearEdges(matte, roi);
 
 	// Row y's q needs a and b up to row y + r: the output runs r rows behind.

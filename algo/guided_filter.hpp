@@ -36,6 +36,7 @@
 #include "algo/column_sums_rows.hpp"
 #include "algo/exact_divisor.hpp"
 #include "algo/image.hpp"
+#include "algo/luma_rows.hpp"
 #include "algo/trimap.hpp"
 
 #include <array>
@@ -53,10 +54,11 @@ public:
 
 	// radius 1..kMaxRadius, eps in squared 8-bit levels (>= 1).
 	void configure(int radius, int eps);
-	// The column sums' row kernels (algo/column_sums_rows.hpp); the output
-	// is the same on every path.
+	// The luma and column sums' row kernels (algo/luma_rows.hpp,
+	// algo/column_sums_rows.hpp); the output is the same on every path.
 	void setKernelPath(KernelPath path)
 	{
+		luma_ = lumaRow(path);
 		momentColumns_ = momentColumnsRow(path);
 		pairColumns_ = pairColumnsRow(path);
 	}
@@ -104,6 +106,7 @@ private:
 	std::vector<int32_t> zeroWords_;
 	MomentColumnsFn momentColumns_ = momentColumnsRow(bestKernelPath());
 	PairColumnsFn pairColumns_ = pairColumnsRow(bestKernelPath());
+	LumaFn luma_ = lumaRow(bestKernelPath());
 };
 
 } // namespace depthkey

@@ -100,6 +100,7 @@ public:
 		kernelPath_ = path;
 		seeder_.setKernelPath(path);
 		refiner_.setKernelPath(path);
+		evidence_.setKernelPath(path);
 		guided_.setKernelPath(path);
 		unmixing_.setKernelPath(path);
 		boardModel_.setKernelPath(path);

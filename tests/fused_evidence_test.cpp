@@ -7,6 +7,7 @@
 
 #include "algo/exact_divisor.hpp"
 #include "algo/fused_evidence.hpp"
+#include "tests/simd_paths.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -193,7 +194,8 @@ TEST(FusedEvidence, EachTermPullsItsWay)
 // confidences() splits a row at the previous frame's ROI (issue 28) instead
 // of testing it at every pixel: each pixel must still get exactly fuse() of
 // its own terms, with the previous frame only inside that ROI, wherever the
-// ROI starts and ends against the row's span.
+// ROI starts and ends against the row's span, on every kernel path (the
+// board distance and colour change rows, algo/evidence_terms_rows.hpp).
 TEST(FusedEvidence, ARowEqualsFuseOfEachPixel)
 {
 	const int w = 48, h = 6;
@@ -226,11 +228,13 @@ TEST(FusedEvidence, ARowEqualsFuseOfEachPixel)
 	const FusedEvidence reference = configured(DecisionSettings());
 	FusedEvidence f = configured(DecisionSettings());
 	size_t compared = 0;
+	for (KernelPath path : simd_test::kAllPaths)
 	for (int px0 : { 0, 5, 20, 47 })
 		for (int px1 : { 6, 21, 48 }) {
 			if (px1 <= px0)
 				continue;
 			const Roi previousRoi{ px0, 1, px1, h - 1 };
+			f.setKernelPath(path);
 			f.bind(colour, depth, classifier, board, &previousAlpha, &previousColour, previousRoi);
 			for (int y = 0; y < h; ++y)
 				for (auto [x0, x1] : { std::pair{ 0, w }, std::pair{ 3, 19 }, std::pair{ 21, 40 }, std::pair{ 30, 31 } }) {
@@ -246,7 +250,7 @@ TEST(FusedEvidence, ARowEqualsFuseOfEachPixel)
 							classifier.confidence(quantiseColour(c)), depth.at(x, y),
 							board.distance(x, y, c), inPrevious ? previousAlpha.at(x, y) : -1,
 							inPrevious ? change : 0);
-						ASSERT_EQ(row[x - x0], expected) << "x " << x << " y " << y << " roi " << px0
+						ASSERT_EQ(row[x - x0], expected) << simd_test::pathName(path) << " x " << x << " y " << y << " roi " << px0
 										 << ".." << px1;
 						++compared;
 					}
