@@ -196,7 +196,7 @@ void DepthSeeder::smoothSurface(const Gray16Image &depthMm, DepthSeeds &out)
 		}
 	}
 	const uint16_t fallback = uint16_t(out.lecturerDepthMm);
-	const int radius = settings_.dilatePx + 1;
+	const int radius = settings_.surfacePx;
 	for (int y = 0; y < h; ++y) {
 		const uint8_t *labels = out.labels.row(y);
 		uint16_t *surface = out.surfaceMm.row(y);

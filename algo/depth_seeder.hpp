@@ -34,10 +34,10 @@ struct DepthSeeds {
 	Gray8Image labels;          // trimap labels (algo/trimap.hpp), ToF resolution
 	// The depth each lecturer or undecided pixel is mapped into the colour
 	// image with: the mean depth of the lecturer's in-range pixels within
-	// dilate_px + 1 (his surface there, without the ToF noise, which would
+	// surface_px (his surface there, without the ToF noise, which would
 	// scatter neighbouring pixels by different parallaxes and leave gaps;
-	// the radius reaches him from every band pixel, so the whole band moves
-	// with him), else his mean depth. 0 on board pixels.
+	// a radius beyond dilate_px reaches him from every band pixel, so the
+	// whole band moves with him), else his mean depth. 0 on board pixels.
 	Gray16Image surfaceMm;
 	// What depth says of each superset pixel (depthEvidence): 128 neither,
 	// higher lecturer, lower board; 0 outside the superset.

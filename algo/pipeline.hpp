@@ -99,6 +99,7 @@ public:
 	{
 		kernelPath_ = path;
 		seeder_.setKernelPath(path);
+		seedMapper_.setKernelPath(path);
 		refiner_.setKernelPath(path);
 		evidence_.setKernelPath(path);
 		guided_.setKernelPath(path);

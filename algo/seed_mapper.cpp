@@ -1,5 +1,7 @@
 #include "algo/seed_mapper.hpp"
 
+#include "algo/max_paint_rows.hpp"
+
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
@@ -97,6 +99,7 @@ void SeedMapper::map(const DepthSeeds &seeds, MappedSeeds &out) const
 	// painted as depth saying neither.
 	const bool haveEvidence = seeds.evidence.width() == tw && seeds.evidence.height() == th;
 	const uint8_t *evidence = haveEvidence ? seeds.evidence.data() : nullptr;
+	const MaxPaintFn maxPaint = maxPaintRow(path_);
 	for (int i = 0; i < tw * th; ++i) {
 		uint8_t label = labels[i];
 		if (label == kTrimapBoard)
@@ -119,17 +122,14 @@ void SeedMapper::map(const DepthSeeds &seeds, MappedSeeds &out) const
 		// the highest label: max() with it is a plain store, with no read of
 		// what overlapping blocks painted before.
 		const uint8_t ev = evidence ? evidence[i] : uint8_t(128);
+		const int n = x1 - x0, room = cw - x0;
 		for (int y = y0; y < y1; ++y) {
-			uint8_t *row = trimap.row(y);
-			uint8_t *evidenceRow = out.evidence.row(y);
-			for (int x = x0; x < x1; ++x)
-				evidenceRow[x] = std::max(evidenceRow[x], ev);
-			if (label == kTrimapLecturer) {
-				std::memset(row + x0, kTrimapLecturer, size_t(x1 - x0));
-				continue;
-			}
-			for (int x = x0; x < x1; ++x)
-				row[x] = std::max(row[x], label);
+			uint8_t *row = trimap.row(y) + x0;
+			maxPaint(out.evidence.row(y) + x0, n, room, ev);
+			if (label == kTrimapLecturer)
+				std::memset(row, kTrimapLecturer, size_t(n));
+			else
+				maxPaint(row, n, room, label);
 		}
 		roi.x0 = std::min(roi.x0, x0);
 		roi.y0 = std::min(roi.y0, y0);

@@ -19,6 +19,7 @@
 
 #include "algo/depth_mapper.hpp"
 #include "algo/depth_seeder.hpp"
+#include "algo/kernel_path.hpp"
 #include "algo/trimap.hpp"
 
 #include <vector>
@@ -42,6 +43,8 @@ class SeedMapper
 {
 public:
 	void configure(const DepthMapper &mapper);
+	// The blocks' rows are max-painted by algo/max_paint_rows.hpp's rows of path.
+	void setKernelPath(KernelPath path) { path_ = path; }
 
 	// out.trimap is resized to the mapper's colour size; out.roi receives
 	// the painted region (empty when there is no lecturer). Only out's
@@ -64,6 +67,7 @@ private:
 	const Footprint &footprint(int i, int zMm) const;
 
 	const DepthMapper *mapper_ = nullptr;
+	KernelPath path_ = bestKernelPath();
 	std::vector<Footprint> footprints_;
 };
 

@@ -223,6 +223,7 @@ void bindSegmentation(TomlSection &sec, SegmentationSettings &s)
 				    std::to_string(s.maxAmplitude) + ")");
 	sec.integer("erode_px", s.erodePx, 0, 20);
 	sec.integer("dilate_px", s.dilatePx, 1, 40);
+	sec.integer("surface_px", s.surfacePx, 1, 40);
 	sec.integer("core_px", s.corePx, 0, 20);
 	sec.integer("halo_px", s.haloPx, 0, 20);
 	sec.number("halo_share", s.haloShare, 0.0, 0.9);

@@ -81,6 +81,7 @@ struct SegmentationSettings {
 	int maxAmplitude = 65535;           // 1..65535: at or above = saturated, not trusted
 	int erodePx = 2;                    // 0..20 ToF px: in-range mask -> surely lecturer
 	int dilatePx = 7;                   // 1..40 ToF px: surely lecturer -> superset
+	int surfacePx = 8;                  // 1..40 ToF px: his depth averaged to map the seeds
 	int corePx = 3;                     // 0..20 ToF px eroded beyond erode_px: the fixed core
 	int haloPx = 4;                     // 0..20 ToF px: the scattered-light halo's reach, 0 = none
 	double haloShare = 0.5;             // 0..0.9: its share where he covers half the box

@@ -32,7 +32,7 @@ TEST(ConfigPipeline, ShippedFileHasTheDefaults)
 TEST(ConfigPipeline, ValuesAreBound)
 {
 	ConfigResult r = parseConfig("[segmentation]\nmin_amplitude = 10\nmax_amplitude = 20000\nerode_px = 3\n"
-				     "dilate_px = 9\n[mapping]\ncalibration_file = \"/etc/depthkey/cal.toml\"\n"
+				     "dilate_px = 9\nsurface_px = 11\n[mapping]\ncalibration_file = \"/etc/depthkey/cal.toml\"\n"
 				     "[learning]\ninitial_frames = 5\nboard_rate = 0.5\nlecturer_rate = 0\nsamples = 1000\n"
 				     "margin_px = 0\nrelearn_misfit = 0.2\n[siox]\nsmoothing = 0\nsoft_alpha = false\n"
 				     "[board]\nbackend = \"image\"\nimage = \"/srv/board.png\"\n",
@@ -40,6 +40,7 @@ TEST(ConfigPipeline, ValuesAreBound)
 	ASSERT_TRUE(r.ok()) << r.errors.front().toString();
 	EXPECT_EQ(r.settings.segmentation.maxAmplitude, 20000);
 	EXPECT_EQ(r.settings.segmentation.dilatePx, 9);
+	EXPECT_EQ(r.settings.segmentation.surfacePx, 11);
 	EXPECT_EQ(r.settings.mapping.calibrationFile, "/etc/depthkey/cal.toml");
 	EXPECT_EQ(r.settings.learning.samples, 1000);
 	EXPECT_DOUBLE_EQ(r.settings.learning.boardRate, 0.5);
@@ -52,6 +53,8 @@ TEST(ConfigPipeline, OutOfRangeAndInconsistentValuesAreRefused)
 {
 	EXPECT_NE(firstError("[segmentation]\nerode_px = 21\n").find("segmentation.erode_px"), std::string::npos);
 	EXPECT_NE(firstError("[segmentation]\ndilate_px = 0\n").find("segmentation.dilate_px"), std::string::npos);
+	EXPECT_NE(firstError("[segmentation]\nsurface_px = 0\n").find("segmentation.surface_px"), std::string::npos);
+	EXPECT_NE(firstError("[segmentation]\nsurface_px = 41\n").find("segmentation.surface_px"), std::string::npos);
 	EXPECT_NE(firstError("[segmentation]\nmin_amplitude = 500\nmax_amplitude = 400\n").find("max_amplitude"),
 		  std::string::npos);
 	EXPECT_NE(firstError("[mapping]\ncalibration_file = \"cal.toml\"\n").find("absolute"), std::string::npos);

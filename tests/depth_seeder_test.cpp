@@ -33,6 +33,7 @@ DepthSeeds seedsOf(const DepthFrame &depth, int maxAmplitude = SegmentationSetti
 	settings.maxAmplitude = maxAmplitude;
 	settings.erodePx = 1;
 	settings.dilatePx = 2;
+	settings.surfacePx = 3;
 	DepthSeeder seeder;
 	seeder.configure(settings);
 	DepthSeeds seeds;
@@ -69,12 +70,39 @@ TEST(DepthSeeder, SurfaceDepthIsTheLecturersSmoothedDepth)
 	const DepthSeeds seeds =
 		seedsOf(boardWithLecturer([](int x, int y) { return uint16_t((x + y) % 2 ? 1300 : 1700); }));
 	ASSERT_EQ(seeds.labels.at(20, 15), kTrimapLecturer);
-	EXPECT_NEAR(seeds.surfaceMm.at(20, 15), 1500, 10); // 7 x 7 mean (radius dilate + 1)
+	EXPECT_NEAR(seeds.surfaceMm.at(20, 15), 1500, 10); // 7 x 7 mean (radius surface_px 3)
 	EXPECT_NEAR(seeds.surfaceMm.at(11, 6), 1500, 25);  // near the corner: fewer
 	ASSERT_EQ(seeds.labels.at(8, 15), kTrimapUndecided);
 	EXPECT_NEAR(seeds.surfaceMm.at(8, 15), 1500, 25);  // band on the board: his depth
 	EXPECT_EQ(seeds.labels.at(2, 2), kTrimapBoard);
 	EXPECT_EQ(seeds.surfaceMm.at(2, 2), 0);
+}
+
+TEST(DepthSeeder, SurfaceRadiusIsItsOwnKeyApartFromTheBand)
+{
+	// A lecturer leaning towards the camera to his right (1000 + 20 x mm):
+	// the band pixel 2 left of him is mapped at the mean depth of his pixels
+	// within surface_px, whatever dilate_px makes of the band.
+	const DepthFrame depth = boardWithLecturer([](int x, int) { return uint16_t(1000 + 20 * x); });
+	auto seedsWith = [&](int dilatePx, int surfacePx) {
+		SegmentationSettings settings;
+		settings.erodePx = 1;
+		settings.dilatePx = dilatePx;
+		settings.surfacePx = surfacePx;
+		DepthSeeder seeder;
+		seeder.configure(settings);
+		DepthSeeds seeds;
+		seeder.seed(depth, seeds);
+		return seeds;
+	};
+	const DepthSeeds near = seedsWith(2, 3), far = seedsWith(2, 8), wide = seedsWith(5, 8);
+	EXPECT_EQ(near.labels, far.labels); // the radius moves no label
+	ASSERT_EQ(near.labels.at(8, 15), kTrimapUndecided);
+	EXPECT_NEAR(near.surfaceMm.at(8, 15), 1210, 1); // his columns 10..11
+	EXPECT_NEAR(far.surfaceMm.at(8, 15), 1260, 1);  // his columns 10..16
+	// A wider band with the same radius maps the pixel at the same depth.
+	ASSERT_EQ(wide.labels.at(8, 15), kTrimapUndecided);
+	EXPECT_EQ(wide.surfaceMm.at(8, 15), far.surfaceMm.at(8, 15));
 }
 
 TEST(DepthSeeder, CoreLeavesAHaloFilledGapToTheEvidence)
@@ -106,6 +134,7 @@ TEST(DepthSeeder, HaloFilledGapReadsAsBoardWithTheHaloModel)
 		SegmentationSettings settings;
 		settings.erodePx = 1;
 		settings.dilatePx = 2;
+		settings.surfacePx = 3;
 		settings.haloPx = haloPx;
 		DepthSeeder seeder;
 		seeder.configure(settings);

@@ -4,8 +4,11 @@
 
 #include "algo/depth_mapper.hpp"
 #include "algo/seed_mapper.hpp"
+#include "tests/simd_paths.hpp"
 
 #include <gtest/gtest.h>
+
+#include <random>
 
 using namespace depthkey;
 
@@ -27,16 +30,22 @@ void solidSeeds(int tw, int th, int u0, int v0, int u1, int v1, int zMm, DepthSe
 	seeds.lecturerDepthMm = zMm;
 }
 
-} // namespace
-
-TEST(SeedMapper, WideToFLensLeavesNoGapsInsideTheMappedSeeds)
+// x2 = 320 + 560 s, y2 = 240 + 420 t: the ToF image spans 1.75 times the
+// colour image, so a ToF pixel covers 7 x 6.8 colour pixels, not 4 x 3.9.
+MappingModel wideToFLens()
 {
-	// x2 = 320 + 560 s, y2 = 240 + 420 t: the ToF image spans 1.75 times the
-	// colour image, so a ToF pixel covers 7 x 6.8 colour pixels, not 4 x 3.9.
 	MappingModel model;
 	model.kind = MappingKind::Paper;
 	model.x = { 319.5, 560, 0, 0, 0 };
 	model.y = { 239.5, 420, 0, 0, 0 };
+	return model;
+}
+
+} // namespace
+
+TEST(SeedMapper, WideToFLensLeavesNoGapsInsideTheMappedSeeds)
+{
+	const MappingModel model = wideToFLens();
 	DepthMapper mapper;
 	mapper.configure(model);
 	SeedMapper seedMapper;
@@ -65,4 +74,49 @@ TEST(SeedMapper, WideToFLensLeavesNoGapsInsideTheMappedSeeds)
 	EXPECT_EQ(trimap.at((x0 >> 8) - 10, (y0 >> 8) - 10), kTrimapBoard);
 	EXPECT_EQ(trimap.at((x1 >> 8) + 10, (y1 >> 8) + 10), kTrimapBoard);
 	EXPECT_FALSE(roi.empty());
+}
+
+TEST(SeedMapper, EveryKernelPathPaintsTheCPathsSeeds)
+{
+	// Random labels, surfaces and evidence on the simulated rig's wide ToF
+	// lens: overlapping blocks of every label, blocks cut by the image
+	// border (the vector rows' room runs out there): the SIMD paths' trimap,
+	// evidence and ROI are the C path's, bit for bit.
+	const MappingModel model = wideToFLens();
+	DepthMapper mapper;
+	mapper.configure(model);
+	const int tw = model.tofWidth, th = model.tofHeight;
+	DepthSeeds seeds;
+	seeds.labels.resize(tw, th);
+	seeds.surfaceMm.resize(tw, th);
+	seeds.evidence.resize(tw, th);
+	std::mt19937 rng(28);
+	const uint8_t labels[] = { kTrimapBoard, kTrimapUndecided, kTrimapInRange, kTrimapSubset, kTrimapLecturer };
+	for (int i = 0; i < tw * th; ++i) {
+		seeds.labels.data()[i] = labels[rng() % 5];
+		seeds.surfaceMm.data()[i] = uint16_t(rng() % 8 ? 600 + rng() % 3000 : 0);
+		seeds.evidence.data()[i] = uint8_t(rng());
+	}
+	seeds.lecturerPixels = 1;
+	seeds.lecturerDepthMm = 1500;
+	SeedMapper reference;
+	reference.configure(mapper);
+	reference.setKernelPath(KernelPath::C);
+	MappedSeeds want;
+	reference.map(seeds, want);
+	ASSERT_FALSE(want.roi.empty());
+	for (KernelPath path : simd_test::kSimdPaths) {
+		SeedMapper seedMapper;
+		seedMapper.configure(mapper);
+		seedMapper.setKernelPath(path);
+		MappedSeeds got;
+		seedMapper.map(seeds, got);
+		EXPECT_EQ(got.trimap, want.trimap) << simd_test::pathName(path);
+		EXPECT_EQ(got.evidence, want.evidence) << simd_test::pathName(path);
+		EXPECT_EQ(got.roi.x0, want.roi.x0);
+		EXPECT_EQ(got.roi.y0, want.roi.y0);
+		EXPECT_EQ(got.roi.x1, want.roi.x1);
+		EXPECT_EQ(got.roi.y1, want.roi.y1);
+		EXPECT_EQ(got.lecturerBeyondBorder, want.lecturerBeyondBorder);
+	}
 }

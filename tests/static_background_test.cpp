@@ -42,6 +42,7 @@ void seedEmptyRoom(std::mt19937 &random, DepthSeeder &seeder, DepthSeeds &seeds,
 	Settings settings;
 	settings.segmentation.erodePx = 1;
 	settings.segmentation.dilatePx = 2;
+	settings.segmentation.surfacePx = 3;
 	settings.segmentation.farMm = 1800;
 	seeder.configure(settings.segmentation);
 	for (int i = 0; i < 30; ++i) {
