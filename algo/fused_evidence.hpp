@@ -42,19 +42,6 @@ namespace depthkey {
 class FusedEvidence final : public BandEvidence
 {
 public:
-	// A hand writing on the board lies within the ToF noise of it, so depth
-	// says board there as surely as on the board (-144 at the defaults),
-	// more than the colour camera's whole capped say (+127): the hand was
-	// lost wherever it touched the board (issue 29 section 6, seed 1 at
-	// 14.4-16 s). Where colour and the board model together say lecturer
-	// beyond doubt (SIOX clearly his, and the pixel far from how the board
-	// looks there: not new ink, which SIOX does not give him), depth's board
-	// verdict is held to kContactDepthFloor, so the colour camera keeps him.
-	// Measured with the shipped weights (docs/accuracy.md, "The student's
-	// view in motion"): 150 and 100 keep the hand (recall 0.843 -> 0.994),
-	// the gate's seeds 1 and 2 unchanged, seed 3 and clean depth a little up.
-	static constexpr int kSureLecturerColour = 150, kContactDepthFloor = 100;
-
 	FusedEvidence() { configure(DecisionSettings()); }
 	// The weights' tables; boardMatch and stillColour >= 1.
 	void configure(const DecisionSettings &settings);
@@ -74,9 +61,7 @@ public:
 	// others truncate towards zero, each at most one unit off the real value.
 	uint8_t fuse(int siox, int depthEvidence, int boardDistance, int previousAlpha, int colourChange) const
 	{
-		const int colourAndBoard =
-			siox - kConfidenceLecturer + boardTerm_[size_t(std::min(boardDistance, boardSaturates_) + 1)];
-		int sum = colourAndBoard;
+		int sum = siox - kConfidenceLecturer + boardTerm_[size_t(std::min(boardDistance, boardSaturates_) + 1)];
 		if (previousAlpha >= 0 && colourChange < stillColour_)
 			sum += temporalDivisor_.truncate(temporalWeight_ * (previousAlpha - 128) * (stillColour_ - colourChange));
 		// Colour, the board model and the previous frame all come from the
@@ -86,8 +71,7 @@ public:
 		// Measured: uncapped, a saturated colour sum drowned depth (mean IoU /
 		// BF of seeds 1-3 0.899 / 0.633 against 0.928 / 0.718 capped).
 		sum = std::clamp(sum, 1 - int(kConfidenceLecturer), 255 - int(kConfidenceLecturer));
-		const int depth = depthTerm_[uint8_t(depthEvidence)];
-		sum += colourAndBoard >= kSureLecturerColour ? std::max(depth, -kContactDepthFloor) : depth;
+		sum += depthTerm_[uint8_t(depthEvidence)];
 		return uint8_t(std::clamp(sum + int(kConfidenceLecturer), 1, 255));
 	}
 

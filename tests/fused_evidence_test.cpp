@@ -31,15 +31,10 @@ double fuseReference(const DecisionSettings &s, int siox, int depthEvidence, int
 	else if (boardDistance > 2 * s.boardMatch)
 		sum += s.boardWeight * std::min(boardDistance - 2.0 * s.boardMatch, double(s.boardMatch)) /
 		       (2.0 * s.boardMatch);
-	const double colourAndBoard = sum;
 	if (previousAlpha >= 0 && change < s.stillColour)
 		sum += s.temporalWeight * (previousAlpha - 128.0) / 128.0 * (s.stillColour - change) / s.stillColour;
 	sum = std::clamp(sum, -127.0, 127.0); // the colour camera's say, capped
-	const double depth = s.depthWeight * (depthEvidence - s.depthPivot) / 64.0;
-	// Colour and the board model sure of him: depth's board verdict held.
-	sum += colourAndBoard >= FusedEvidence::kSureLecturerColour
-		       ? std::max(depth, -double(FusedEvidence::kContactDepthFloor))
-		       : depth;
+	sum += s.depthWeight * (depthEvidence - s.depthPivot) / 64.0;
 	return std::clamp(sum + 128.0, 1.0, 255.0);
 }
 
@@ -53,13 +48,10 @@ int fuseWithDivisions(const DecisionSettings &s, int siox, int depthEvidence, in
 		sum -= s.boardWeight * (s.boardMatch - boardDistance) / s.boardMatch;
 	else if (boardDistance > 2 * s.boardMatch)
 		sum += s.boardWeight * std::min(boardDistance - 2 * s.boardMatch, s.boardMatch) / (2 * s.boardMatch);
-	const int colourAndBoard = sum;
 	if (previousAlpha >= 0 && colourChange < s.stillColour)
 		sum += s.temporalWeight * (previousAlpha - 128) * (s.stillColour - colourChange) / (128 * s.stillColour);
 	sum = std::clamp(sum, 1 - int(kConfidenceLecturer), 255 - int(kConfidenceLecturer));
-	const int depth = (s.depthWeight * (depthEvidence - s.depthPivot)) >> 6;
-	sum += colourAndBoard >= FusedEvidence::kSureLecturerColour ? std::max(depth, -FusedEvidence::kContactDepthFloor)
-								    : depth;
+	sum += (s.depthWeight * (depthEvidence - s.depthPivot)) >> 6;
 	return std::clamp(sum + int(kConfidenceLecturer), 1, 255);
 }
 
@@ -191,13 +183,6 @@ TEST(FusedEvidence, EachTermPullsItsWay)
 	// Colour says board (a dark vest on the dark board) but the pixel is
 	// far from how the board looks there, and in range: lecturer.
 	EXPECT_GE(f.fuse(60, kDepthAtTheEdge, 90, noPrevious, 0), kConfidenceLecturer);
-	// A hand on the board (issue 29 section 6): depth says board as surely
-	// as on the board; skin clearly his by colour and far from the board's
-	// look here keeps him, even against a previous frame that lost him. The
-	// same colour where the board looks like that (distance 0) does not.
-	EXPECT_GE(f.fuse(236, kDepthSaysBoard, 90, 0, 0), kConfidenceLecturer);
-	EXPECT_LT(f.fuse(236, kDepthSaysBoard, 0, noPrevious, 0), kConfidenceLecturer);
-	EXPECT_LT(f.fuse(150, kDepthSaysBoard, 90, noPrevious, 0), kConfidenceLecturer);
 	// The previous frame counts only where the colour did not change.
 	const int still = f.fuse(neutralColour, s.depthPivot, noModel, 255, 0);
 	const int moved = f.fuse(neutralColour, s.depthPivot, noModel, 255, s.stillColour);
