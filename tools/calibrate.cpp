@@ -54,6 +54,7 @@ struct Options {
 	int holdOutEvery = 4;
 	std::optional<double> holdOutDepth;
 	std::vector<double> depths = defaultCalibrationDepths();
+	bool depthsGiven = false; // --live leaves out the default depths behind the board
 	GridSize grid;
 	std::string preview;
 	std::string record;
@@ -145,7 +146,7 @@ int parseOptions(int argc, char **argv, Options &o)
 		else if (a == "--hold-out-depth")
 			o.holdOutDepth = std::atof(v);
 		else if (a == "--depths")
-			ok = parseDepths(v, o.depths);
+			ok = o.depthsGiven = parseDepths(v, o.depths);
 		else if (a == "--grid")
 			ok = std::sscanf(v, "%dx%d", &o.grid.cols, &o.grid.rows) == 2 &&
 			     o.grid.cols >= 5 && o.grid.rows >= 5 && o.grid.cols != o.grid.rows && o.grid.cols * o.grid.rows <= 400;
@@ -248,7 +249,7 @@ public:
 	{
 		options_ = &o;
 		if (o.live)
-			return live_.open({ o.config, o.grid, o.depths, o.viewTimeoutS }, error);
+			return live_.open({ o.config, o.grid, o.depths, o.depthsGiven, o.viewTimeoutS }, error);
 		if (!o.sim)
 			return openSequence(o.sequence, error);
 		rig_.configure(o.simColourWidth, o.simColourHeight, true, 60);

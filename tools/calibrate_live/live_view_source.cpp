@@ -1,5 +1,7 @@
 #include "tools/calibrate_live/live_view_source.hpp"
 
+#include <algorithm>
+
 #include "config/config_loader.hpp"
 #include "daemon/device_factory.hpp"
 #include "hal/sim/lecture_simulator.hpp"
@@ -113,7 +115,46 @@ int LiveViewSource::open(const LiveOptions &options, std::string &error)
 		error = "cannot start the cameras: check [colour] and [depth] in " + path;
 		return ret;
 	}
+	if (!options.depthsGiven)
+		fitPlanToTheRoom();
 	return 0;
+}
+
+void LiveViewSource::fitPlanToTheRoom()
+{
+	// A pattern held 25 cm before the board still shows a clear step in depth.
+	constexpr double kClearanceM = 0.25;
+	constexpr uint64_t kWaitUs = 3'000'000;
+	const uint64_t deadlineUs = loop_.nowUs() + kWaitUs;
+	while (!haveDepth_ && loop_.nowUs() < deadlineUs)
+		if (sd_event_run(loop_.handle(), 10'000) < 0)
+			return;
+	const int farMm = haveDepth_ ? farSurfaceMm(lastDepth_.depthMm) : 0;
+	if (farMm == 0)
+		return; // nothing measured: the whole plan, as asked
+	const std::vector<double> kept = depthsInFrontOf(options_.depths, farMm / 1000.0, kClearanceM);
+	if (kept.size() == options_.depths.size())
+		return;
+	std::string left;
+	for (double depth : options_.depths)
+		if (std::find(kept.begin(), kept.end(), depth) == kept.end()) {
+			char text[32];
+			std::snprintf(text, sizeof(text), "%s%.1f", left.empty() ? "" : ", ", depth);
+			left += text;
+		}
+	if (kept.empty()) {
+		std::printf("        the room's far surface is %.2f m from the depth camera, nearer than every view "
+			    "of the plan: give --depths nearer than %.2f m\n",
+			    farMm / 1000.0, farMm / 1000.0 - kClearanceM);
+		std::fflush(stdout);
+		return;
+	}
+	std::printf("        the room's far surface (the board?) is %.2f m from the depth camera: the views at %s m "
+		    "would be behind it or against it, left out (--depths asks for any depths)\n",
+		    farMm / 1000.0, left.c_str());
+	std::fflush(stdout);
+	options_.depths = kept;
+	plan_ = calibrationPlan(kept);
 }
 
 void LiveViewSource::close()

@@ -30,6 +30,7 @@ struct LiveOptions {
 	std::string configPath;      // "" = the daemon's default config
 	GridSize grid;
 	std::vector<double> depths;
+	bool depthsGiven = false;    // --depths: asked for as they are, even behind the board
 	double viewTimeoutS = 60;    // a view not taken by then is given up (rejected)
 };
 
@@ -70,6 +71,9 @@ private:
 		void report(uint64_t startUs, uint64_t nowUs, const std::function<GridMiss()> &explain);
 	};
 	void onStatus(const char *role, const std::string &name, const DeviceStatus &status);
+	// The default plan without the depths the pattern cannot be held at in
+	// this room (behind the board), from the first depth frame; said once.
+	void fitPlanToTheRoom();
 
 	LiveOptions options_;
 	Settings settings_;
