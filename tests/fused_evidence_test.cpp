@@ -32,10 +32,17 @@ double fuseReference(const DecisionSettings &s, int siox, int depthEvidence, int
 	else if (boardDistance > 2 * s.boardMatch)
 		sum += s.boardWeight * std::min(boardDistance - 2.0 * s.boardMatch, double(s.boardMatch)) /
 		       (2.0 * s.boardMatch);
+	const double colourAndBoard = sum;
 	if (previousAlpha >= 0 && change < s.stillColour)
 		sum += s.temporalWeight * (previousAlpha - 128.0) / 128.0 * (s.stillColour - change) / s.stillColour;
 	sum = std::clamp(sum, -127.0, 127.0); // the colour camera's say, capped
-	sum += s.depthWeight * (depthEvidence - s.depthPivot) / 64.0;
+	const double depth = s.depthWeight * (depthEvidence - s.depthPivot) / 64.0;
+	// Colour and the board model sure of him where the colour moved: depth's
+	// board verdict held (a hand writing on the board).
+	const bool moved = previousAlpha >= 0 && change >= s.stillColour;
+	sum += colourAndBoard >= FusedEvidence::kSureLecturerColour && moved
+		       ? std::max(depth, -double(FusedEvidence::kContactDepthFloor))
+		       : depth;
 	return std::clamp(sum + 128.0, 1.0, 255.0);
 }
 
@@ -49,10 +56,15 @@ int fuseWithDivisions(const DecisionSettings &s, int siox, int depthEvidence, in
 		sum -= s.boardWeight * (s.boardMatch - boardDistance) / s.boardMatch;
 	else if (boardDistance > 2 * s.boardMatch)
 		sum += s.boardWeight * std::min(boardDistance - 2 * s.boardMatch, s.boardMatch) / (2 * s.boardMatch);
+	const int colourAndBoard = sum;
 	if (previousAlpha >= 0 && colourChange < s.stillColour)
 		sum += s.temporalWeight * (previousAlpha - 128) * (s.stillColour - colourChange) / (128 * s.stillColour);
 	sum = std::clamp(sum, 1 - int(kConfidenceLecturer), 255 - int(kConfidenceLecturer));
-	sum += (s.depthWeight * (depthEvidence - s.depthPivot)) >> 6;
+	const int depth = (s.depthWeight * (depthEvidence - s.depthPivot)) >> 6;
+	const bool moved = previousAlpha >= 0 && colourChange >= s.stillColour;
+	sum += colourAndBoard >= FusedEvidence::kSureLecturerColour && moved
+		       ? std::max(depth, -FusedEvidence::kContactDepthFloor)
+		       : depth;
 	return std::clamp(sum + int(kConfidenceLecturer), 1, 255);
 }
 
@@ -189,6 +201,16 @@ TEST(FusedEvidence, EachTermPullsItsWay)
 	const int moved = f.fuse(neutralColour, s.depthPivot, noModel, 255, s.stillColour);
 	EXPECT_GT(still, moved);
 	EXPECT_EQ(moved, f.fuse(neutralColour, s.depthPivot, noModel, noPrevious, 0));
+	// A hand writing on the board (issue 29 section 6): depth says board as
+	// surely as on the board; skin clearly his by colour, far from how the
+	// board looks here, and moving keeps him, even after a frame that lost
+	// him. Still (the desk beside him, his colours too), or where the board
+	// looks like that, depth decides: board.
+	const int lost = 0;
+	EXPECT_GE(f.fuse(250, kDepthSaysBoard, 90, lost, s.stillColour), kConfidenceLecturer);
+	EXPECT_LT(f.fuse(250, kDepthSaysBoard, 90, lost, 0), kConfidenceLecturer);
+	EXPECT_LT(f.fuse(250, kDepthSaysBoard, 90, noPrevious, 0), kConfidenceLecturer);
+	EXPECT_LT(f.fuse(250, kDepthSaysBoard, 2, lost, s.stillColour), kConfidenceLecturer);
 }
 
 // confidences() splits a row at the previous frame's ROI (issue 28) instead
