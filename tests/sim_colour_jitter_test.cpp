@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -82,11 +83,18 @@ TEST(SimColourCamera, CaptureTimestampsJitterAsConfigured)
 	double sd = intervalSdMs(jittered.stampsNs), sd0 = intervalSdMs(steady.stampsNs);
 	std::printf("interval sd: %.2f ms at colour_jitter_ms %.1f (expected %.2f), %.2f ms at 0\n", sd, jitterMs,
 		    expectedSd, sd0);
-	EXPECT_GT(sd, 0.7 * expectedSd);
-	EXPECT_LT(sd, 1.3 * expectedSd + sd0);
-	EXPECT_LT(sd0, 0.5 * expectedSd);
 	for (size_t i = 1; i < jittered.stampsNs.size(); i++)
 		EXPECT_GT(jittered.stampsNs[i], jittered.stampsNs[i - 1]) << "frame " << i << " out of order";
+	// The stamps also carry the scheduler's own jitter (sd0, the steady
+	// run's). On a loaded machine (a SAN build beside other builds, qemu-user)
+	// it reached 4.7-14.6 ms, as much as the configured jitter: then nothing
+	// can be told apart, and the test says so instead of guessing.
+	if (sd0 >= expectedSd)
+		GTEST_SKIP() << "the machine's own jitter (" << sd0 << " ms) is as large as the configured one";
+	// Independent jitters add in quadrature: what the configured jitter adds.
+	const double added = std::sqrt(std::max(0.0, sd * sd - sd0 * sd0));
+	EXPECT_GT(added, 0.7 * expectedSd);
+	EXPECT_LT(added, 1.3 * expectedSd);
 }
 
 TEST(SimColourCamera, FrameShowsTheSceneAtItsJitteredTimestamp)
