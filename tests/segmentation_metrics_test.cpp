@@ -112,3 +112,102 @@ TEST(TrimapAttribution, WrongPixelsBySeedAndBandAndTheBoundOfTheSeeds)
 	a.add(alpha, truth, Gray8Image(3, 1), scorer); // a trimap of another size: ignored
 	EXPECT_EQ(a.pixels(R::Band), 2u);
 }
+
+namespace {
+
+// The scorer as first written (pixel by pixel through at()), kept as the
+// reference the row-wise scorer must agree with exactly.
+SegmentationScore referenceScore(const Gray8Image &pred, const Gray8Image &truth, int tolerance)
+{
+	const int w = truth.width(), h = truth.height();
+	auto in = [](const Gray8Image &m, int x, int y) { return m.at(x, y) >= 128; };
+	auto edges = [&](const Gray8Image &m) {
+		Gray8Image e(w, h, 0);
+		for (int y = 0; y < h; ++y)
+			for (int x = 0; x < w; ++x)
+				e.at(x, y) = in(m, x, y) && ((x > 0 && !in(m, x - 1, y)) || (x + 1 < w && !in(m, x + 1, y)) ||
+							     (y > 0 && !in(m, x, y - 1)) || (y + 1 < h && !in(m, x, y + 1)));
+		return e;
+	};
+	auto matched = [&](const Gray8Image &from, const Gray8Image &to) {
+		long hits = 0, total = 0;
+		for (int y = 0; y < h; ++y)
+			for (int x = 0; x < w; ++x) {
+				if (!from.at(x, y))
+					continue;
+				total++;
+				bool hit = false;
+				for (int dy = -tolerance; dy <= tolerance && !hit; ++dy)
+					for (int dx = -tolerance; dx <= tolerance && !hit; ++dx)
+						hit = dx * dx + dy * dy <= tolerance * tolerance && x + dx >= 0 && y + dy >= 0 &&
+						      x + dx < w && y + dy < h && to.at(x + dx, y + dy);
+				hits += hit;
+			}
+		return std::pair<long, long>{ hits, total };
+	};
+	long both = 0, either = 0, t = 0, lost = 0, taken = 0;
+	for (int y = 0; y < h; ++y)
+		for (int x = 0; x < w; ++x) {
+			bool p = in(pred, x, y), q = in(truth, x, y);
+			both += p && q;
+			either += p || q;
+			t += q;
+			lost += q && !p;
+			taken += p && !q;
+		}
+	SegmentationScore s;
+	const long board = long(w) * h - t;
+	s.iou = either ? double(both) / either : 1.0;
+	s.fnr = t ? double(lost) / t : 0.0;
+	s.fpr = board ? double(taken) / board : 0.0;
+	auto [pHits, pTotal] = matched(edges(pred), edges(truth));
+	auto [tHits, tTotal] = matched(edges(truth), edges(pred));
+	if (pTotal == 0 && tTotal == 0) {
+		s.boundaryPrecision = s.boundaryRecall = s.boundaryF = 1.0;
+		return s;
+	}
+	s.boundaryPrecision = pTotal ? double(pHits) / pTotal : 0.0;
+	s.boundaryRecall = tTotal ? double(tHits) / tTotal : 0.0;
+	const double sum = s.boundaryPrecision + s.boundaryRecall;
+	s.boundaryF = sum > 0 ? 2 * s.boundaryPrecision * s.boundaryRecall / sum : 0.0;
+	return s;
+}
+
+// Blobs and speckle around the threshold: values near 128 on both sides.
+Gray8Image blobs(int w, int h, uint32_t seed)
+{
+	Gray8Image m(w, h, 0);
+	for (int y = 0; y < h; ++y)
+		for (int x = 0; x < w; ++x) {
+			seed = seed * 1664525u + 1013904223u;
+			const double cx = w * 0.5 + (seed % 7), cy = h * 0.4;
+			const bool inBlob = (x - cx) * (x - cx) / (w * w * 0.06 + 1) + (y - cy) * (y - cy) / (h * h * 0.1 + 1) < 1;
+			const uint32_t r = seed >> 24;
+			m.at(x, y) = r < 20 ? uint8_t(127 + (r & 1)) : (inBlob != (r < 40) ? 255 : uint8_t(r & 127));
+		}
+	return m;
+}
+
+} // namespace
+
+TEST(SegmentationMetrics, RowWiseScorerAgreesExactlyWithThePixelByPixelReference)
+{
+	const int sizes[][2] = { { 1, 1 }, { 1, 9 }, { 9, 1 }, { 2, 2 }, { 3, 5 }, { 17, 13 }, { 64, 48 }, { 160, 120 } };
+	for (int tolerance : { 0, 1, 2, 3 }) {
+		SegmentationScorer scorer(tolerance);
+		for (const auto &size : sizes)
+			for (uint32_t seed = 1; seed <= 6; ++seed) {
+				const Gray8Image pred = blobs(size[0], size[1], seed), truth = blobs(size[0], size[1], seed + 100);
+				const SegmentationScore got = scorer.score(pred, truth);
+				const SegmentationScore want = referenceScore(pred, truth, tolerance);
+				SCOPED_TRACE(::testing::Message() << size[0] << "x" << size[1] << " seed " << seed << " tol "
+								  << tolerance);
+				EXPECT_EQ(got.iou, want.iou);
+				EXPECT_EQ(got.fnr, want.fnr);
+				EXPECT_EQ(got.fpr, want.fpr);
+				EXPECT_EQ(got.boundaryPrecision, want.boundaryPrecision);
+				EXPECT_EQ(got.boundaryRecall, want.boundaryRecall);
+				EXPECT_EQ(got.boundaryF, want.boundaryF);
+			}
+	}
+}
