@@ -12,6 +12,7 @@ void BoardModel::reset()
 	if (!model_.empty())
 		std::memset(static_cast<void *>(model_.data()), 0, model_.size() * sizeof(Rgba8));
 	phase_ = 0;
+	teachPhase_ = 0;
 }
 
 void BoardModel::learn(const RgbImage &colour, const Gray8Image &trimap)
@@ -60,11 +61,13 @@ void BoardModel::teach(const RgbImage &sampled, const int pictureGainQ8[3], cons
 	const int w = sampled.width(), h = sampled.height();
 	if (model_.width() != w || model_.height() != h || mask.width() != w || mask.height() != h)
 		return;
-	// Every row, every frame: a row kernel (algo/board_teach_rows.hpp).
+	// Every kTeachRowStride-th row a frame, in turn (a row kernel,
+	// algo/board_teach_rows.hpp).
 	const BoardTeachRowFn row = boardTeachRow(kernelPath_, pictureGainQ8);
 	BoardTeachSums sums;
-	for (int y = 0; y < h; ++y)
+	for (int y = teachPhase_; y < h; y += kTeachRowStride)
 		row(sampled.row(y), mask.row(y), pictureGainQ8, model_.row(y), w, sums);
+	teachPhase_ = (teachPhase_ + 1) % kTeachRowStride;
 	// The light as the picture predicts it now, against the model before
 	// this step: the model follows at a quarter a frame, the gain at once.
 	int gains[3] = { gainQ8_[0], gainQ8_[1], gainQ8_[2] };

@@ -39,6 +39,13 @@ class BoardModel
 {
 public:
 	static constexpr int kRowStride = 4;
+	// teach() visits every 2nd row a frame, in turn (issue 28: at 1080p it
+	// was 36 M instructions a frame on every row). Measured on the gate
+	// (accuracy-table, seeds 1-3 / clean): every row 0.988/0.941,
+	// 0.971/0.899, 0.967/0.904, 0.991/0.967; every 2nd 0.987/0.939,
+	// 0.969/0.902, 0.967/0.904, 0.991/0.968; every 4th (learn()'s stride)
+	// 0.983/0.938, 0.966/0.902, 0.968/0.902, 0.990/0.965.
+	static constexpr int kTeachRowStride = 2;
 	static constexpr int kRateShift = 2;   // 1/4 of the difference per visit
 	static constexpr uint8_t kLearnedVisits = 2; // visits before the model is trusted
 
@@ -56,7 +63,8 @@ public:
 	// Taught a predicted board (algo/board_picture_prior.hpp): the picture
 	// sampled under each pixel times gainQ8 per channel. Every pixel whose
 	// mask is kTrimapBoard moves towards the prediction as a visit would, on
-	// every row; the light's gain then follows the prediction.
+	// every kTeachRowStride-th row in turn; the light's gain then follows
+	// the prediction on those rows.
 	void teach(const RgbImage &sampled, const int gainQ8[3], const Gray8Image &mask);
 	// Which row kernels teach() runs (algo/kernel_path.hpp): the same bytes on each.
 	void setKernelPath(KernelPath path) { kernelPath_ = path; }
@@ -106,6 +114,7 @@ private:
 	RgbaImage model_;
 	KernelPath kernelPath_ = bestKernelPath();
 	int phase_ = 0, lastPhase_ = 0;
+	int teachPhase_ = 0; // the first row teach() visits next
 	int gainQ8_[3] = { 256, 256, 256 };
 	// (model * gainQ8 + 128) >> 8 per channel and model value (0..510),
 	// tabulated when the gains change: distance() is called for every band

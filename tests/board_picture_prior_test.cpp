@@ -153,7 +153,9 @@ TEST(BoardPicturePrior, AStrokeWrittenBehindTheLecturerIsKnownBeforeItIsSeen)
 
 	BoardPicturePrior prior;
 	ASSERT_EQ(prior.configure(kW, kH, doubling(), RadialLens{}, 2 * kW, 2 * kH), 0);
-	for (int frame = 0; frame < 20; ++frame) {
+	// 20 teachings of the stroke's row: teach() visits a row every
+	// kTeachRowStride-th frame.
+	for (int frame = 0; frame < 20 * BoardModel::kTeachRowStride; ++frame) {
 		model.learn(colour, covered); // the camera still sees him there
 		ASSERT_TRUE(prior.predict(picture, colour, model));
 		model.teach(prior.sampled(), prior.gainQ8(), prior.onDisplay());
