@@ -98,6 +98,10 @@ int ReplayPrefetch::start(EventLoop &loop, SequenceReader &reader, int colourWid
 		source_.reset();
 		return -(e.code().value() ? e.code().value() : EAGAIN);
 	}
+	// Named here, before anybody can look, so that top -H, make
+	// bench-process and the CPU-share test (tests/process/live_vs_offline.sh)
+	// tell the replay's decoding apart.
+	pthread_setname_np(thread_.native_handle(), "dk-replay");
 	return 0;
 }
 
@@ -174,9 +178,6 @@ template void ReplayPrefetch::release<DepthFrame>(PrefetchedFrame<DepthFrame> *)
 
 void ReplayPrefetch::run()
 {
-	// Named, so that top -H, make bench-process and the CPU-share test
-	// (tests/process/live_vs_offline.sh) tell the replay's decoding apart.
-	pthread_setname_np(pthread_self(), "dk-replay");
 	std::unique_lock lock(mutex_);
 	for (;;) {
 		wake_.wait(lock, [this] { return stop_ || colour_.wantsRead() || depth_.wantsRead(); });
