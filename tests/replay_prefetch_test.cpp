@@ -160,7 +160,8 @@ TEST(ReplayPrefetch, AStopOrDetachWhileTheThreadReadsStartsAfresh)
 	std::vector<int> firstColourAfterStart, firstDepthAfterAttach;
 	int colourSinceStart = 0, depthSinceAttach = 0, starts = 0, replayThreads = 0;
 	std::function<void()> startDepth, startBoth;
-	auto onColour = [&](const ColourFrame &f) {
+	// Called by the handler, which the stop below destroys: this outlives it.
+	auto played = [&](const ColourFrame &f) {
 		if (colourSinceStart++ == 0)
 			firstColourAfterStart.push_back(f.rgb.at(0, 0).r);
 		replayThreads = std::max(replayThreads, threadsNamed("dk-replay"));
@@ -188,7 +189,8 @@ TEST(ReplayPrefetch, AStopOrDetachWhileTheThreadReadsStartsAfresh)
 	startBoth = [&] {
 		starts++;
 		colourSinceStart = 0;
-		ASSERT_EQ(colour->start(events, onColour, [](const DeviceStatus &) {}), 0);
+		ASSERT_EQ(colour->start(events, [&played](const ColourFrame &f) { played(f); }, [](const DeviceStatus &) {}),
+			  0);
 		startDepth();
 	};
 	startBoth();
