@@ -108,7 +108,8 @@ void ReplayTimeline::open()
 	if (ret >= 0) {
 		ret = prefetch_.start(*loop_, reader_, colourWidth_, colourHeight_, settings_.loop,
 				      [this] { onFrameRead(); });
-		why = settings_.path + ": cannot start the thread that reads it: " + std::strerror(-ret);
+		if (ret < 0)
+			why = settings_.path + ": cannot start the thread that reads it: " + std::strerror(-ret);
 	}
 	if (ret < 0) {
 		// The folder is both cameras'.
