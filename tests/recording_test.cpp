@@ -4,6 +4,7 @@
 #include "hal/recording/sequence_writer.hpp"
 #include "hal/replay/replay_cameras.hpp"
 #include "hal/sim/sim_sequence.hpp"
+#include "tests/replay_recording.hpp"
 #include "tests/wait_until.hpp"
 
 #include <cstdlib>
@@ -204,6 +205,29 @@ TEST(Recording, ReaderErrorsNameTheFileAndLine)
 	EXPECT_EQ(reader.open(dir), -EINVAL);
 	EXPECT_NE(reader.describeError().find("mask.txt: does not list the same timestamps as rgb.txt"),
 		  std::string::npos);
+}
+
+// Without amplitude and intensity recorded a depth frame has them zero, in
+// the frame's own storage: a replay reads frame after frame into the same
+// frames (hal/replay/replay_prefetch.hpp), which used to be given new
+// images each time.
+TEST(Recording, DepthWithoutAmplitudeReadsZerosIntoItsOwnStorage)
+{
+	TempDir temp;
+	const std::string dir = temp;
+	depthkey::test::record(dir, 0, 2);
+	for (const char *optional : { "/amplitude.txt", "/intensity.txt" })
+		std::filesystem::remove(dir + optional);
+	SequenceReader reader;
+	ASSERT_EQ(reader.open(dir), 0) << reader.describeError();
+	DepthFrame frame;
+	frame.amplitude = frame.intensity = Gray16Image(8, 6, 7);
+	const uint16_t *amplitude = frame.amplitude.data(), *intensity = frame.intensity.data();
+	ASSERT_EQ(reader.readDepth(1, frame), 0) << reader.describeError();
+	EXPECT_TRUE(frame.amplitude == Gray16Image(8, 6, 0));
+	EXPECT_TRUE(frame.intensity == Gray16Image(8, 6, 0));
+	EXPECT_EQ(frame.amplitude.data(), amplitude);
+	EXPECT_EQ(frame.intensity.data(), intensity);
 }
 
 TEST(Recording, ReplayCamerasPlayTheRecordingInOrder)

@@ -12,6 +12,7 @@
 #include "hal/replay/replay_cameras.hpp"
 #include "hal/sim/sim_sequence.hpp"
 #include "tests/hostile_files.hpp"
+#include "tests/replay_recording.hpp"
 
 #include <csignal>
 #include <filesystem>
@@ -21,43 +22,11 @@
 
 using namespace depthkey;
 using depthkey::test::ScratchDir;
+using depthkey::test::listed;
+using depthkey::test::lostReports;
+using depthkey::test::record;
 
 namespace {
-
-constexpr uint64_t kColourPeriodNs = 40'000'000, kDepthPeriodNs = 100'000'000;
-
-// colourFrames of width x height every 40 ms and depthFrames of 8x6 every
-// 100 ms, each frame's pixels its own; a mask per colour frame (8-bit grey
-// files to break depth with).
-void record(const std::string &dir, int colourFrames, int depthFrames, int width = 16, int height = 12)
-{
-	SequenceWriter writer;
-	ASSERT_EQ(writer.open(dir), 0) << writer.describeError();
-	for (int i = 0; i < colourFrames; ++i) {
-		ColourFrame c;
-		c.rgb = RgbImage(width, height, Rgb8{ uint8_t(i), 100, 200 });
-		c.timestampNs = 1'000'000'000 + i * kColourPeriodNs;
-		c.sequence = i + 1;
-		ASSERT_EQ(writer.writeColour(c), 0) << writer.describeError();
-		ASSERT_EQ(writer.writeMask(Gray8Image(width, height, 255), c.timestampNs, c.sequence), 0);
-	}
-	for (int i = 0; i < depthFrames; ++i) {
-		DepthFrame d;
-		d.depthMm = Gray16Image(8, 6, uint16_t(1000 + i));
-		d.amplitude = Gray16Image(8, 6, 5000);
-		d.intensity = Gray16Image(8, 6, 5000);
-		d.timestampNs = 1'000'000'000 + i * kDepthPeriodNs;
-		d.sequence = i + 1;
-		ASSERT_EQ(writer.writeDepth(d), 0) << writer.describeError();
-	}
-}
-
-std::vector<SequenceEntry> listed(const std::string &dir, bool colour)
-{
-	SequenceReader reader;
-	EXPECT_EQ(reader.open(dir), 0) << reader.describeError();
-	return colour ? reader.colour() : reader.depth();
-}
 
 struct Played {
 	std::vector<DeviceStatus> colourReports, depthReports;
@@ -71,14 +40,6 @@ bool reportsMention(const std::vector<DeviceStatus> &reports, const std::string 
 		if (s.detail.find(text) != std::string::npos)
 			return true;
 	return false;
-}
-
-int lostReports(const std::vector<DeviceStatus> &reports)
-{
-	int n = 0;
-	for (const DeviceStatus &s : reports)
-		n += s.state == DeviceState::Lost;
-	return n;
 }
 
 // Plays dir as fast as it goes, both cameras attached, until each reported

@@ -181,8 +181,9 @@ int SequenceReader::readDepth(size_t i, DepthFrame &out)
 				error_ = dir_ + "/" + index_[stream][i].file + ": size differs from the depth image";
 				return -EINVAL;
 			}
-		} else {
-			*image = Gray16Image(out.depthMm.width(), out.depthMm.height(), 0);
+		} else { // zeros in the frame's own storage: no allocation a frame
+			image->resize(out.depthMm.width(), out.depthMm.height());
+			std::fill(image->data(), image->data() + image->size(), uint16_t{ 0 });
 		}
 	}
 	out.timestampNs = depth()[i].timestampNs;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstring>
 
 namespace depthkey {
 
@@ -12,11 +13,6 @@ constexpr uint64_t kRetryUs = 2'000'000; // a missing folder may be copied in la
 // next: a folder of bad files would otherwise spin the loop.
 constexpr uint64_t kSkippedFrameUs = 40'000;
 constexpr uint64_t kDefaultPeriodNs = 40'000'000;
-
-std::string sizeText(int width, int height)
-{
-	return std::to_string(width) + "x" + std::to_string(height);
-}
 
 // The mean period of an index, or 0 with fewer than two frames.
 uint64_t meanPeriodNs(const std::vector<SequenceEntry> &index)
@@ -55,6 +51,7 @@ void ReplayTimeline::detachColour()
 	colour_.onFrame = nullptr;
 	colour_.onStatus = nullptr;
 	colour_.status = { DeviceState::Stopped, 0, "", colour_.status.droppedFrames };
+	prefetch_.idle<ColourFrame>();
 	detached();
 }
 
@@ -63,6 +60,7 @@ void ReplayTimeline::detachDepth()
 	depth_.onFrame = nullptr;
 	depth_.onStatus = nullptr;
 	depth_.status = { DeviceState::Stopped, 0, "", depth_.status.droppedFrames };
+	prefetch_.idle<DepthFrame>();
 	detached();
 }
 
@@ -70,8 +68,14 @@ void ReplayTimeline::detachDepth()
 // the next attach.
 void ReplayTimeline::detached()
 {
-	if (colour_.attached() || depth_.attached())
+	if (colour_.attached() || depth_.attached()) {
+		// The frame being waited for may have been the one detached.
+		if (waiting_ && opened_)
+			scheduleNext();
 		return;
+	}
+	prefetch_.stop();
+	waiting_ = false;
 	timer_.reset();
 	loop_ = nullptr;
 	opened_ = false;
@@ -100,10 +104,17 @@ void ReplayTimeline::begin(EventLoop &loop)
 void ReplayTimeline::open()
 {
 	int ret = reader_.open(settings_.path);
+	std::string why = reader_.describeError();
+	if (ret >= 0) {
+		ret = prefetch_.start(*loop_, reader_, colourWidth_, colourHeight_, settings_.loop,
+				      [this] { onFrameRead(); });
+		if (ret < 0)
+			why = settings_.path + ": cannot start the thread that reads it: " + std::strerror(-ret);
+	}
 	if (ret < 0) {
 		// The folder is both cameras'.
-		colour_.setStatus(DeviceState::Lost, ret, reader_.describeError());
-		depth_.setStatus(DeviceState::Lost, ret, reader_.describeError());
+		colour_.setStatus(DeviceState::Lost, ret, why);
+		depth_.setStatus(DeviceState::Lost, ret, why);
 		loop_->addTimer(kRetryUs, [this] { open(); }, timer_);
 		return;
 	}
@@ -144,6 +155,8 @@ static void refuseRepeatedTimestamps(ReplayTrack<Frame> &track, const std::vecto
 void ReplayTimeline::startTrack(ReplayTrack<ColourFrame> &track)
 {
 	refuseRepeatedTimestamps(track, reader_.colour());
+	if (track.attached())
+		prefetch_.restart<ColourFrame>(track.refused);
 	if (reader_.colour().empty()) // a depth-only recording: depth plays, colour says why not
 		track.setStatus(DeviceState::Lost, -ENODATA, reader_.dir() + "/rgb.txt: no colour frames recorded");
 	else
@@ -153,6 +166,8 @@ void ReplayTimeline::startTrack(ReplayTrack<ColourFrame> &track)
 void ReplayTimeline::startTrack(ReplayTrack<DepthFrame> &track)
 {
 	refuseRepeatedTimestamps(track, reader_.depth());
+	if (track.attached())
+		prefetch_.restart<DepthFrame>(track.refused);
 	if (reader_.depth().empty())
 		track.setStatus(DeviceState::Lost, -ENODATA, reader_.dir() + "/depth.txt: no depth frames recorded");
 	else
@@ -166,6 +181,7 @@ uint64_t ReplayTimeline::localNs(uint64_t recordedNs) const
 
 void ReplayTimeline::scheduleNext()
 {
+	waiting_ = false; // the timer plays the next frame
 	bool colourLeft = colour_.attached() && colour_.next < reader_.colour().size();
 	bool depthLeft = depth_.attached() && depth_.next < reader_.depth().size();
 	if (!colourLeft && !depthLeft) {
@@ -201,76 +217,69 @@ void ReplayTimeline::scheduleNext()
 
 void ReplayTimeline::emitNext()
 {
+	waiting_ = false;
 	bool colourLeft = colour_.attached() && colour_.next < reader_.colour().size();
 	bool depthLeft = depth_.attached() && depth_.next < reader_.depth().size();
 	// Depth first on equal timestamps: the daemon pairs colour with the
 	// newest depth at or before it.
 	bool depthNext = depthLeft && (!colourLeft || reader_.depth()[depth_.next].timestampNs <=
 							     reader_.colour()[colour_.next].timestampNs);
+	bool played = true;
 	if (depthNext)
-		emit(depth_, reader_.depth(), depthFrame_, &ReplayTimeline::readDepth);
+		played = emit(depth_, reader_.depth());
 	else if (colourLeft)
-		emit(colour_, reader_.colour(), colourFrame_, &ReplayTimeline::readColour);
+		played = emit(colour_, reader_.colour());
+	if (!played) { // the reader thread is behind: the frame goes when read, the loop goes on
+		waiting_ = true;
+		return;
+	}
 	if (loop_) // a frame handler may have stopped both cameras (a reload)
 		scheduleNext();
 }
 
-int ReplayTimeline::readColour(size_t i)
+void ReplayTimeline::onFrameRead()
 {
-	int ret = reader_.readColour(i, colourFrame_);
-	// A sequence with mask/ is scored live as the simulator is (issue 29).
-	if (ret >= 0 && reader_.hasMask())
-		ret = reader_.readMask(i, colourFrame_.truth);
-	else if (ret >= 0)
-		colourFrame_.truth.resize(0, 0);
-	if (ret < 0) {
-		error_ = reader_.describeError();
-		return ret;
-	}
-	const int width = colourFrame_.rgb.width(), height = colourFrame_.rgb.height();
-	if (colourWidth_ > 0 && (width != colourWidth_ || height != colourHeight_)) {
-		error_ = reader_.dir() + "/" + reader_.colour()[i].file + ": " + sizeText(width, height) +
-			 ", not [colour]'s " + sizeText(colourWidth_, colourHeight_);
-		return -EINVAL;
-	}
-	return 0;
-}
-
-int ReplayTimeline::readDepth(size_t i)
-{
-	int ret = reader_.readDepth(i, depthFrame_);
-	if (ret < 0)
-		error_ = reader_.describeError();
-	return ret;
+	if (waiting_ && loop_)
+		emitNext();
 }
 
 // A bad frame is dropped and counted; the replay goes on. Its camera goes
 // Lost naming the file, and says so again only when the error changes or
 // after it came back.
+// False when the frame is not read yet (nothing done: emitNext() is
+// called again when it is).
 template<typename Frame>
-void ReplayTimeline::emit(ReplayTrack<Frame> &track, const std::vector<SequenceEntry> &index, Frame &frame,
-			  int (ReplayTimeline::*read)(size_t))
+bool ReplayTimeline::emit(ReplayTrack<Frame> &track, const std::vector<SequenceEntry> &index)
 {
-	const size_t i = track.next++;
+	const size_t i = track.next;
+	PrefetchedFrame<Frame> *read = nullptr;
+	// A refused frame was never read: the reader thread skips it too.
+	if (!track.refused[i] && !(read = prefetch_.take<Frame>()))
+		return false;
+	track.next++;
 	skipped_ = true;
-	if (track.refused[i]) {
+	if (!read) {
 		track.status.droppedFrames++;
-		return;
+		return true;
 	}
-	if (int ret = (this->*read)(i); ret < 0) {
+	if (const int ret = read->result; ret < 0) {
 		track.refused[i] = true;
 		track.status.droppedFrames++;
 		track.goodInRow = 0;
 		if (track.status.state != DeviceState::Lost || track.status.error != ret)
-			track.setStatus(DeviceState::Lost, ret, error_);
-		return;
+			track.setStatus(DeviceState::Lost, ret, read->error);
+		prefetch_.release(read);
+		return true;
 	}
 	skipped_ = false;
+	Frame &frame = read->frame;
 	frame.timestampNs = localNs(frame.timestampNs);
 	frame.sequence += loops_ * index.size();
 	track.onFrame(frame);
+	prefetch_.release(read);
 	if (track.status.state != DeviceState::Streaming && ++track.goodInRow >= kRecoverFrames)
 		track.setStatus(DeviceState::Streaming, 0, "");
+	return true;
 }
 
 } // namespace depthkey

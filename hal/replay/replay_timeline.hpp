@@ -17,10 +17,16 @@
 // bad frame and back to Streaming only after kRecoverFrames good ones in a
 // row, so a folder of bad files changes the status (and logs) a few times,
 // not once a frame.
+//
+// The frames are read and decoded ahead of play on a thread of its own
+// (ReplayPrefetch, issue 29 §2); the timer only hands a decoded frame over.
+// When the reader is behind, a frame goes out as soon as it is read, with
+// its recorded (re-stamped) timestamp: the loop never waits for it.
 #pragma once
 
 #include "hal/camera.hpp"
 #include "hal/recording/sequence_reader.hpp"
+#include "hal/replay/replay_prefetch.hpp"
 #include "settings/settings.hpp"
 
 #include <vector>
@@ -79,11 +85,9 @@ private:
 	void startTrack(ReplayTrack<DepthFrame> &track);
 	void scheduleNext();
 	void emitNext();
-	int readColour(size_t i);
-	int readDepth(size_t i);
+	void onFrameRead();
 	template<typename Frame>
-	void emit(ReplayTrack<Frame> &track, const std::vector<SequenceEntry> &index, Frame &frame,
-		  int (ReplayTimeline::*read)(size_t));
+	bool emit(ReplayTrack<Frame> &track, const std::vector<SequenceEntry> &index);
 	uint64_t localNs(uint64_t recordedNs) const;
 
 	ReplaySettings settings_;
@@ -93,12 +97,12 @@ private:
 	SequenceReader reader_;
 	bool opened_ = false;
 	bool skipped_ = false; // the last timer delivered no frame
+	bool waiting_ = false; // the next frame is being read: onFrameRead() plays it
 	ReplayTrack<ColourFrame> colour_;
 	ReplayTrack<DepthFrame> depth_;
 	uint64_t firstNs_ = 0, lengthNs_ = 0, startNs_ = 0, loops_ = 0;
-	ColourFrame colourFrame_;
-	DepthFrame depthFrame_;
-	std::string error_;
+	// After reader_: its thread is joined before the reader it uses goes.
+	ReplayPrefetch prefetch_;
 };
 
 } // namespace depthkey

@@ -5,6 +5,9 @@
 #
 #   sh cpu_share.sh create NAME PERCENT   prints the cgroup's folder
 #   sh cpu_share.sh add DIR PID           moves PID (all its threads) in
+#   sh cpu_share.sh release DIR PID PREFIX...  moves PID's threads named
+#                                         PREFIX* out, to DIR's parent; prints
+#                                         "TID NAME" for each thread it moved
 #   sh cpu_share.sh remove DIR            moves what is left out, removes it
 #   sh cpu_share.sh run PERCENT COMMAND...  runs COMMAND in a fresh share
 #
@@ -55,6 +58,37 @@ add() {
 	echo "$2" > "$1/cgroup.procs" || fail "cannot move process $2 into $1"
 }
 
+# Some threads' work is not the box's: a camera on the box delivers raw
+# frames by DMA, while here a stand-in decodes a recording (dk-replay) or
+# renders the simulated board (dk-sim*). Those threads leave the share
+# (issue 29 §2). cgroup v1 moves one thread by writing its TID to another
+# cgroup's tasks. cgroup v2 moves a thread apart from its process only
+# inside a threaded subtree (cgroup.type "threaded", the cpu controller
+# enabled in it, TIDs written to cgroup.threads); a share made by create
+# is a domain cgroup, so there the whole process stays in: exit 77 says so.
+release() {
+	dir=$1 pid=$2
+	shift 2
+	if [ ! -f "$dir/tasks" ]; then
+		unavailable "cgroup v2 without threaded mode: a thread cannot leave its process's cgroup $dir; the whole process stays in the share"
+	fi
+	parent=$(dirname "$dir")
+	for task in /proc/"$pid"/task/*; do
+		tid=${task##*/}
+		name=$(cat "$task/comm" 2>/dev/null) || continue # the thread has ended
+		for prefix in "$@"; do
+			case $name in "$prefix"*) ;; *) continue ;; esac
+			grep -qx "$tid" "$dir/tasks" || break # moved already
+			if echo "$tid" > "$parent/tasks" 2>/dev/null; then
+				echo "$tid $name"
+			elif [ -d "$task" ]; then
+				fail "cannot move thread $tid ($name) of $pid to $parent"
+			fi
+			break
+		done
+	done
+}
+
 remove() {
 	dir=$1
 	[ -d "$dir" ] || return 0
@@ -68,12 +102,13 @@ remove() {
 	rmdir "$dir" || fail "cannot remove $dir"
 }
 
-[ $# -ge 1 ] || fail "usage: cpu_share.sh create NAME PERCENT | add DIR PID | remove DIR | run PERCENT COMMAND..."
+[ $# -ge 1 ] || fail "usage: cpu_share.sh create NAME PERCENT | add DIR PID | release DIR PID PREFIX... | remove DIR | run PERCENT COMMAND..."
 command=$1
 shift
 case $command in
 create) [ $# = 2 ] || fail "usage: cpu_share.sh create NAME PERCENT"; create "$1" "$2" ;;
 add) [ $# = 2 ] || fail "usage: cpu_share.sh add DIR PID"; add "$1" "$2" ;;
+release) [ $# -ge 3 ] || fail "usage: cpu_share.sh release DIR PID PREFIX..."; release "$@" ;;
 remove) [ $# = 1 ] || fail "usage: cpu_share.sh remove DIR"; remove "$1" ;;
 run)
 	[ $# -ge 2 ] || fail "usage: cpu_share.sh run PERCENT COMMAND..."
