@@ -60,7 +60,11 @@ void BoardCompositor::tileSources()
 	tileSources_.assign(size_t(tilesX_) * tilesY_, TileSources{ 0xFFFF, 0xFFFF, 0, 0 });
 	occupied_.assign(size_t(colourTilesX_) * colourTilesY_, 0);
 	warpedTiles_.assign(tileSources_.size(), 0);
-	lastWarpedTiles_.assign(tileSources_.size(), 0);
+	noTiles_.assign(tileSources_.size(), 0);
+	for (Written &w : written_) {
+		w.tag = 0;
+		w.warpedTiles.assign(tileSources_.size(), 0);
+	}
 	clearTiles_.assign(tileSources_.size(), 0);
 	copyTiles_.assign(tileSources_.size(), 0);
 	runs_.reserve(size_t(tilesX_));
@@ -140,12 +144,37 @@ void BoardCompositor::clear()
 	tileSources_.clear();
 	occupied_.clear();
 	warpedTiles_.clear();
-	lastWarpedTiles_.clear();
+	noTiles_.clear();
+	for (Written &w : written_) {
+		w.tag = 0;
+		w.warpedTiles.clear();
+	}
 	clearTiles_.clear();
 	copyTiles_.clear();
 	runs_.clear();
 	warped_ = Roi{};
-	layerValid_ = compositeValid_ = false;
+	imageTag_ = 0;
+}
+
+const BoardCompositor::Written *BoardCompositor::writtenAs(uint64_t tag) const
+{
+	if (tag == 0)
+		return nullptr;
+	for (const Written &w : written_)
+		if (w.tag == tag)
+			return &w;
+	return nullptr;
+}
+
+// The oldest entry makes room: its target was written kRemembered frames
+// ago, longer than any ring keeps a slot.
+void BoardCompositor::remember(uint64_t tag)
+{
+	Written &w = written_[nextWritten_];
+	nextWritten_ = (nextWritten_ + 1) % kRemembered;
+	w.tag = tag;
+	w.boardVersion = boardVersion_;
+	std::copy(warpedTiles_.begin(), warpedTiles_.end(), w.warpedTiles.begin());
 }
 
 // The board pixels whose bilinear footprint can touch the colour ROI: the
@@ -184,24 +213,34 @@ Roi BoardCompositor::boardRoiOf(const Roi &colourRoi) const
 void BoardCompositor::compose(const RgbaImage &source, const Roi &roi, const RgbImage &board, int opacityQ8,
 			      RgbImage &composite, RgbaImage &lecturer)
 {
-	const int w = outputWidth_, h = outputHeight_;
-	composite.resize(w, h);
-	lecturer.resize(w, h);
+	composite.resize(outputWidth_, outputHeight_);
+	lecturer.resize(outputWidth_, outputHeight_);
 	// Another buffer (or a reallocated one) holds nothing we wrote.
 	if (composite.data() != lastComposite_ || lecturer.data() != lastLecturer_) {
-		layerValid_ = compositeValid_ = false;
+		imageTag_ = 0;
 		lastComposite_ = composite.data();
 		lastLecturer_ = lecturer.data();
 	}
-	if (!configured() || source.width() != colourWidth_ || source.height() != colourHeight_ ||
+	imageTag_ = compose(source, roi, board, opacityQ8, { viewOf(composite), viewOf(lecturer), imageTag_ });
+}
+
+uint64_t BoardCompositor::compose(const RgbaImage &source, const Roi &roi, const RgbImage &board, int opacityQ8,
+				  const BoardTarget &target)
+{
+	const int w = outputWidth_, h = outputHeight_;
+	const ImageView<Rgb8> &composite = target.composite;
+	const ImageView<Rgba8> &lecturer = target.lecturer;
+	const bool targetFits = composite.width == w && composite.height == h && lecturer.width == w && lecturer.height == h;
+	if (!configured() || !targetFits || source.width() != colourWidth_ || source.height() != colourHeight_ ||
 	    board.width() != w || board.height() != h) {
 		// Sizes that do not fit the map: the board alone (the caller
-		// reconfigures; this never reads out of bounds).
-		if (board.width() == w && board.height() == h)
-			std::memcpy(composite.data(), board.data(), composite.size() * sizeof(Rgb8));
-		std::fill(lecturer.data(), lecturer.data() + lecturer.size(), Rgba8{ 0, 0, 0, 0 });
-		layerValid_ = compositeValid_ = false;
-		return;
+		// reconfigures; this never reads or writes out of bounds).
+		const bool boardFits = board.width() == composite.width && board.height() == composite.height;
+		for (int y = 0; y < composite.height && boardFits; ++y)
+			std::memcpy(composite.row(y), board.row(y), size_t(composite.width) * sizeof(Rgb8));
+		for (int y = 0; y < lecturer.height; ++y)
+			std::fill(lecturer.row(y), lecturer.row(y) + lecturer.width, Rgba8{ 0, 0, 0, 0 });
+		return 0;
 	}
 	const Roi clampedRoi{ std::max(roi.x0, 0), std::max(roi.y0, 0), std::min(roi.x1, colourWidth_),
 			      std::min(roi.y1, colourHeight_) };
@@ -209,7 +248,6 @@ void BoardCompositor::compose(const RgbaImage &source, const Roi &roi, const Rgb
 	markOccupied(source, clampedRoi);
 	// The board tiles warped this frame: those in the ROI's reach whose
 	// colour tiles hold alpha.
-	std::swap(warpedTiles_, lastWarpedTiles_);
 	std::fill(warpedTiles_.begin(), warpedTiles_.end(), uint8_t(0));
 	const int tx0 = warped_.x0 / kBoardTile, tx1 = (warped_.x1 + kBoardTile - 1) / kBoardTile;
 	const int ty0 = warped_.y0 / kBoardTile, ty1 = (warped_.y1 + kBoardTile - 1) / kBoardTile;
@@ -218,22 +256,20 @@ void BoardCompositor::compose(const RgbaImage &source, const Roi &roi, const Rgb
 			const size_t t = size_t(ty) * tilesX_ + tx;
 			warpedTiles_[t] = tileOccupied(tileSources_[t]);
 		}
-	// The layer is transparent but where last frame's tiles were warped:
-	// clear those this frame does not warp over (a whole 1920x1080 RGBA
-	// clear would cost a third of the warp).
-	// The composite likewise, with the board: copied where last frame
-	// warped (or all of it, after forgetBoard()), before a layer reset
-	// forgets where that was.
-	for (size_t t = 0; t < copyTiles_.size(); ++t)
-		copyTiles_[t] = !warpedTiles_[t] && (!compositeValid_ || lastWarpedTiles_[t]);
-	compositeValid_ = true;
-	if (!layerValid_) {
-		std::fill(lecturer.data(), lecturer.data() + lecturer.size(), Rgba8{ 0, 0, 0, 0 });
-		std::fill(lastWarpedTiles_.begin(), lastWarpedTiles_.end(), uint8_t(0));
-		layerValid_ = true;
+	// What the target holds: transparent but where the tiles warped into
+	// it last were, and (the same board picture) the board there too.
+	const Written *before = writtenAs(target.holds);
+	const bool compositeValid = before && before->boardVersion == boardVersion_;
+	const std::vector<uint8_t> &lastWarpedTiles = before ? before->warpedTiles : noTiles_;
+	// The layer: clear the tiles warped last time that this frame does
+	// not warp over (a whole 1920x1080 RGBA clear would cost a third of
+	// the warp), or all of it when the target is unknown.
+	// The composite likewise, with the board: copied where it last warped
+	// (or all of it, after forgetBoard() or into an unknown target).
+	for (size_t t = 0; t < copyTiles_.size(); ++t) {
+		copyTiles_[t] = !warpedTiles_[t] && (!compositeValid || lastWarpedTiles[t]);
+		clearTiles_[t] = !warpedTiles_[t] && (!before || lastWarpedTiles[t]);
 	}
-	for (size_t t = 0; t < clearTiles_.size(); ++t)
-		clearTiles_[t] = lastWarpedTiles_[t] && !warpedTiles_[t];
 	warpedPixels_ = 0;
 	const BoardWarpRowFn warpRow = boardWarpRowFn(path_);
 	for (int ty = 0; ty < tilesY_; ++ty) {
@@ -261,6 +297,9 @@ void BoardCompositor::compose(const RgbaImage &source, const Roi &roi, const Rgb
 			}
 		}
 	}
+	const uint64_t tag = nextTag_++;
+	remember(tag);
+	return tag;
 }
 
 const std::vector<BoardCompositor::Run> &BoardCompositor::runsOf(const uint8_t *flags)

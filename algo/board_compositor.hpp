@@ -16,7 +16,11 @@
 // this frame. Elsewhere the composite is the board and the board-geometry
 // lecturer layer is transparent. Both outputs keep what they held: the
 // layer is cleared, and the board copied into the composite, only where
-// last frame's warped tiles were (the warp writes its pixels whole). A new
+// the tiles warped into that same pair of buffers last time were (the warp
+// writes its pixels whole). The outputs may be the shared-memory ring's
+// slots (issue 29 §2: each frame written once, where it goes), a pair for
+// each slot, so the compositor remembers which tiles it warped into each of
+// its last kRemembered pairs, known by the tag compose() returns. A new
 // board picture (forgetBoard()) is copied whole once: at 1920x1080 that
 // copy is about a quarter of such a frame's time (docs/board.md), and the
 // board's picture changes far less often than the camera's (a capture
@@ -26,15 +30,27 @@
 
 #include "algo/homography.hpp"
 #include "algo/image.hpp"
+#include "algo/image_view.hpp"
 #include "algo/kernel_path.hpp"
 #include "algo/trimap.hpp"
 
 #include "algo/radial_lens.hpp"
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
 namespace depthkey {
+
+// Where compose() writes, both of the output size: the composite (RGB) and
+// the board-geometry lecturer layer (RGBA). holds: the tag compose()
+// returned when it last wrote this pair, as it was left (0: unknown
+// contents, written whole).
+struct BoardTarget {
+	ImageView<Rgb8> composite;
+	ImageView<Rgba8> lecturer;
+	uint64_t holds = 0;
+};
 
 class BoardCompositor
 {
@@ -62,14 +78,20 @@ public:
 	// picture changed (forgetBoard()).
 	void compose(const RgbaImage &source, const Roi &roi, const RgbImage &board, int opacityQ8,
 		     RgbImage &composite, RgbaImage &lecturer);
+	// The same into borrowed buffers of the output size (a ring slot's):
+	// only what differs from the frame target.holds names is written.
+	// Returns the tag of what the pair holds now, for the next compose()
+	// into it; 0 when the sizes did not fit (the board alone written whole).
+	uint64_t compose(const RgbaImage &source, const Roi &roi, const RgbImage &board, int opacityQ8,
+			 const BoardTarget &target);
 
 	// compose() clears only the tiles it warped into lecturer last time: call this
-	// when lecturer was written by anyone else (the next compose clears all).
-	void forgetLayer() { layerValid_ = false; }
+	// when the images were written by anyone else (the next compose writes all).
+	void forgetLayer() { imageTag_ = 0; }
 	// compose() copies the board only where it warped last time: call this
 	// when the board picture changed, or composite was written by anyone
-	// else (the next compose copies all of it).
-	void forgetBoard() { compositeValid_ = false; }
+	// else (the next compose copies all of it, into every target).
+	void forgetBoard() { boardVersion_++; imageTag_ = 0; }
 
 	// The board pixels the last compose() warped (for tests and previews).
 	const Roi &warpedRoi() const { return warped_; }
@@ -100,15 +122,30 @@ private:
 	int tilesX_ = 0, tilesY_ = 0, colourTilesX_ = 0, colourTilesY_ = 0;
 	std::vector<TileSources> tileSources_; // per board tile
 	std::vector<uint8_t> occupied_;        // per colour tile: some alpha this frame
-	std::vector<uint8_t> warpedTiles_, lastWarpedTiles_, clearTiles_, copyTiles_; // per board tile
+	std::vector<uint8_t> warpedTiles_, clearTiles_, copyTiles_; // per board tile
 	std::vector<Run> runs_;                // runsOf()'s, capacity tilesX_
 	std::vector<int32_t> index_;       // per output pixel: top-left source pixel, kOutsideView = unseen
 	std::vector<uint16_t> frac_;       // per output pixel: Q8 fx | fy << 8
 	Roi warped_;
 	size_t warpedPixels_ = 0;
-	bool layerValid_ = false;          // lecturer is transparent outside lastWarpedTiles_
-	bool compositeValid_ = false;      // composite is the board outside lastWarpedTiles_
-	const void *lastComposite_ = nullptr, *lastLecturer_ = nullptr; // the buffers those hold for
+	// What compose() wrote into its last targets: a target holding tag is
+	// transparent and (with the same board version) the board outside
+	// warpedTiles. The ring's slots (up to 8) and the images' pair.
+	struct Written {
+		uint64_t tag = 0;
+		uint64_t boardVersion = 0;
+		std::vector<uint8_t> warpedTiles; // per board tile
+	};
+	static constexpr size_t kRemembered = 9;
+	const Written *writtenAs(uint64_t tag) const; // null: not remembered
+	void remember(uint64_t tag);
+	std::array<Written, kRemembered> written_;
+	size_t nextWritten_ = 0;
+	uint64_t nextTag_ = 1;
+	uint64_t boardVersion_ = 1;          // forgetBoard() moves it on
+	std::vector<uint8_t> noTiles_;       // all 0: what an unknown target had warped
+	uint64_t imageTag_ = 0;              // what the images' pair holds
+	const void *lastComposite_ = nullptr, *lastLecturer_ = nullptr; // the images imageTag_ is for
 };
 
 } // namespace depthkey

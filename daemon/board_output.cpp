@@ -65,6 +65,11 @@ void BoardOutput::startSource()
 {
 	stop();
 	source_ = factory_(settings_);
+	// A source that makes its pictures in storage lent to it (the
+	// simulated board; hal/camera.hpp) makes them in spare_, which
+	// applyPicture() swaps with picture_ rather than copy (4.5 MB a
+	// picture at 1920x780). The others' pictures are copied.
+	source_->lendFrames([this]() -> ColourFrame * { return solidColour() ? nullptr : &spare_; });
 	std::string name = source_->name();
 	int ret = source_->start(
 		*loop_, [this](const ColourFrame &f) { onPicture(f); },
@@ -107,7 +112,9 @@ void BoardOutput::applyPicture(const ColourFrame &frame)
 	bool resized = frame.rgb.width() != pictureWidth_ || frame.rgb.height() != pictureHeight_;
 	pictureWidth_ = frame.rgb.width();
 	pictureHeight_ = frame.rgb.height();
-	if (!solidColour())
+	if (!solidColour() && &frame == &spare_)
+		std::swap(picture_, spare_.rgb); // the next picture is made over the last one
+	else if (!solidColour())
 		picture_ = frame.rgb; // same size: no allocation
 	else if (!picture_.empty())
 		fillSolid(picture_);
@@ -239,6 +246,20 @@ void BoardOutput::compose(const RgbImage &colour, const Gray8Image &alpha, const
 		return;
 	lecturerLayer(colour, alpha, cameraLayer_, layerPath_);
 	compositor_.compose(cameraLayer_, roi, outputPicture(), opacityQ8, composite_, lecturer_);
+}
+
+BoardFrameMaker *BoardOutput::composeInPlace(const RgbImage &colour, const Gray8Image &alpha, const Roi &roi,
+					     int opacityQ8)
+{
+	if (!boardGeometry())
+		return nullptr;
+	lecturerLayer(colour, alpha, cameraLayer_, layerPath_);
+	inPlace_.compositor = &compositor_;
+	inPlace_.layer = &cameraLayer_;
+	inPlace_.roi = roi;
+	inPlace_.board = &outputPicture();
+	inPlace_.opacityQ8 = opacityQ8;
+	return &inPlace_;
 }
 
 void BoardOutput::showBoardOnly()

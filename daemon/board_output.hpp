@@ -12,8 +12,9 @@
 #include "algo/board_compositor.hpp"
 #include "algo/pipeline.hpp"
 #include "config/board_calibration_file.hpp"
-#include "hal/kernel_path_env.hpp"
 #include "hal/camera.hpp"
+#include "hal/frame_sink.hpp"
+#include "hal/kernel_path_env.hpp"
 #include "settings/settings.hpp"
 
 #include <functional>
@@ -57,6 +58,13 @@ public:
 	// Does nothing in camera geometry (where the layer is made only in the
 	// shared memory, hal/frame_sink.hpp).
 	void compose(const RgbImage &colour, const Gray8Image &alpha, const Roi &roi, int opacityQ8);
+	// The same frame made where it goes (FrameSink::publishBoard, issue
+	// 29 §2): the camera-geometry layer is made now, the warp into the
+	// slots the maker is lent; composite() and lecturer() keep an older
+	// frame. Null in camera geometry. colour and alpha's layer is taken
+	// now: the maker stays valid until the next call here.
+	BoardFrameMaker *composeInPlace(const RgbImage &colour, const Gray8Image &alpha, const Roi &roi,
+					int opacityQ8);
 	// The board picture alone, the lecturer layer empty (NO SIGNAL frames).
 	void showBoardOnly();
 
@@ -103,6 +111,7 @@ private:
 	const ColourFrame *waitingPicture_ = nullptr; // the source's, taken between frames
 
 	RgbImage picture_;            // last good board picture, the source's size
+	ColourFrame spare_;           // lent to the source for its next picture (startSource())
 	int pictureWidth_ = 0, pictureHeight_ = 0; // its size (also while a solid colour has no pixels)
 	RgbImage scaled_;             // the picture at the output size; empty at the source's size
 	BoardCalibration calibration_;
@@ -115,6 +124,7 @@ private:
 	KernelPath layerPath_ = kernelPathFromEnvironment();
 	RgbImage composite_;
 	RgbaImage lecturer_;
+	ComposedBoardFrame inPlace_; // composeInPlace()'s: cameraLayer_ warped over the picture
 };
 
 } // namespace depthkey

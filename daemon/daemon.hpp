@@ -99,7 +99,9 @@ private:
 	// parts: the keyed frame's composite parts; null when it went out
 	// without depth (the colour frame is the composite) and for NO SIGNAL.
 	void scorePublished(const ColourFrame &frame, bool keyed);
-	void publish(const RgbImage *colour, const CompositeInputs *parts, uint64_t captureNs, uint32_t flags);
+	// boardMaker: board geometry made where it goes (BoardOutput::composeInPlace).
+	void publish(const RgbImage *colour, const CompositeInputs *parts, uint64_t captureNs, uint32_t flags,
+		     BoardFrameMaker *boardMaker = nullptr);
 	// The composite publish() sends: the board's in board geometry, else the
 	// pipeline's image when it made one (NO SIGNAL's too), else none when it
 	// is made from its parts in the shared memory, or (no depth) the colour frame.
@@ -109,6 +111,10 @@ private:
 	// Whether the pipeline's composite image is read by more than the
 	// recorder's shared memory this frame (preview, virtual webcam, stage dumps).
 	bool compositeReadHere(uint64_t nowNs) const;
+	// Whether the board geometry's composite and layer are read here too
+	// (virtual webcam, preview, stage dumps, a snapshot): made as images
+	// then, else only in the shared memory (issue 29 §2).
+	bool boardImagesReadHere(uint64_t nowNs) const;
 	void publishNoSignal(uint64_t nowNs);
 	StatusSummary summary() const;
 	StatusSnapshot statusSnapshot() const;

@@ -88,17 +88,27 @@ void Daemon::onKeyed(KeyingJob &job)
 	// or silent) the board's picture alone goes out, marked offline: it is the
 	// lecture's content, and warping the whole colour frame would cost the
 	// CPU a slow box needs to get depth back.
-	if (depth)
-		board_.compose(frame.rgb, output_.alpha, pipeline_.roi(), opacityToQ8(settings_.composite.opacity));
+	// Read nowhere but in the shared memory, it is made there (issue 29 §2).
+	BoardFrameMaker *inPlace = nullptr;
+	const int opacityQ8 = opacityToQ8(settings_.composite.opacity);
+	if (depth && !boardImagesReadHere(startUs * 1000u))
+		inPlace = board_.composeInPlace(frame.rgb, output_.alpha, pipeline_.roi(), opacityQ8);
+	else if (depth)
+		board_.compose(frame.rgb, output_.alpha, pipeline_.roi(), opacityQ8);
 	else
 		board_.showBoardOnly();
 	stageDumps_.onKeyedFrame(frame, depth, status_.colourFrames(), pipelineView());
 	CompositeInputs parts;
 	if (depth)
 		parts = pipeline_.compositeInputs(frame.rgb, output_.alpha);
-	preview_.offer(&frame, depth, depth ? &pipeline_.trimap() : nullptr, output_,
-		       recordedPictures(&frame.rgb, depth != nullptr), frame.timestampNs, loop_.nowUs() * 1000u);
-	publish(&frame.rgb, depth ? &parts : nullptr, frame.timestampNs, flags);
+	RecordedPictures recorded = recordedPictures(&frame.rgb, depth != nullptr);
+	if (inPlace) { // made only in the shared memory
+		recorded.composite = nullptr;
+		recorded.boardLayer = nullptr;
+	}
+	preview_.offer(&frame, depth, depth ? &pipeline_.trimap() : nullptr, output_, recorded, frame.timestampNs,
+		       loop_.nowUs() * 1000u);
+	publish(&frame.rgb, depth ? &parts : nullptr, frame.timestampNs, flags, inPlace);
 	scorePublished(frame, depth != nullptr);
 	pipelineStatus_ = pipeline_.status();
 	// The frame's work, wherever it ran: the pipeline on the worker and
@@ -155,6 +165,12 @@ bool Daemon::compositeReadHere(uint64_t nowNs) const
 	       stageDumps_.readsStages();
 }
 
+bool Daemon::boardImagesReadHere(uint64_t nowNs) const
+{
+	return webcam_.enabled() || preview_.wantsComposite(nowNs) || preview_.wantsLecturer(nowNs) ||
+	       stageDumps_.readsStages() || snapshotWanted_;
+}
+
 const RgbImage *Daemon::publishedComposite(const RgbImage *colour, bool fromParts) const
 {
 	if (board_.boardGeometry())
@@ -170,17 +186,18 @@ RecordedPictures Daemon::recordedPictures(const RgbImage *colour, bool fromParts
 	return { publishedComposite(colour, fromParts), board ? &board_.lecturer() : nullptr, &board_.picture() };
 }
 
-void Daemon::publish(const RgbImage *colour, const CompositeInputs *parts, uint64_t captureNs, uint32_t flags)
+void Daemon::publish(const RgbImage *colour, const CompositeInputs *parts, uint64_t captureNs, uint32_t flags,
+		     BoardFrameMaker *boardMaker)
 {
 	if (keyingStalled_.load(std::memory_order_relaxed))
 		return; // TEST-ONLY: NO SIGNAL frames stop too
-	const bool board = board_.boardGeometry();
-	const RgbImage *composite = publishedComposite(colour, parts != nullptr);
+	const bool boardImages = board_.boardGeometry() && !boardMaker;
+	const RgbImage *composite = boardMaker ? nullptr : publishedComposite(colour, parts != nullptr);
 	// Never waits; a full or lost device is its own status (hal/v4l2/v4l2_output.hpp).
 	if (composite)
 		webcam_.write(*composite);
-	if (outputs_.publish({ composite, parts, colour, output_.alpha,
-			       board ? &board_.lecturer() : nullptr, captureNs, flags }) < 0)
+	if (outputs_.publish({ composite, parts, colour, output_.alpha, boardImages ? &board_.lecturer() : nullptr,
+			       captureNs, flags, boardMaker }) < 0)
 		return;
 	status_.countPublished(flags & DK_SHM_FLAG_ONLINE);
 }

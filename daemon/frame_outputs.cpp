@@ -100,12 +100,13 @@ int FrameOutputs::publish(const OutputFrame &frame)
 			return ret;
 	}
 	fillSkippedSlots(frame);
-	int ret = frame.composite ? sink_->publishComposite(*frame.composite, frame.captureNs, frame.flags)
-				  : sink_->publishComposite(*frame.compositeInputs, frame.captureNs, frame.flags);
+	int ret = frame.boardMaker ? sink_->publishBoard(*frame.boardMaker, frame.captureNs, frame.flags)
+		  : frame.composite ? sink_->publishComposite(*frame.composite, frame.captureNs, frame.flags)
+				    : sink_->publishComposite(*frame.compositeInputs, frame.captureNs, frame.flags);
 	ret = noteRepair(ret);
 	if (ret >= 0)
 		ret = noteRepair(sink_->publishLecturer(frame.colour, frame.alpha, frame.captureNs, frame.flags));
-	if (ret >= 0 && frame.boardLecturer)
+	if (ret >= 0 && frame.boardLecturer && !frame.boardMaker)
 		ret = noteRepair(sink_->publishBoardLecturer(*frame.boardLecturer, frame.captureNs, frame.flags));
 	if (ret < 0)
 		logger().errorOnce("output", "cannot publish: " + sink_->describeError(),

@@ -31,6 +31,10 @@ struct OutputFrame {
 	const RgbaImage *boardLecturer;  // the layer in the board's geometry, or null
 	uint64_t captureNs;
 	uint32_t flags;                  // DK_SHM_FLAG_*
+	// Board geometry made where it goes (FrameSink::publishBoard): the
+	// composite and the board-geometry layer, in place of composite,
+	// compositeInputs and boardLecturer; null: those.
+	BoardFrameMaker *boardMaker = nullptr;
 };
 
 // The geometry the outputs are opened at.

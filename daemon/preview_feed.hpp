@@ -57,6 +57,11 @@ public:
 	{
 		return encoder_.running() && encoder_.wanted(PreviewStage::Composite, nowNs);
 	}
+	// The same for the lecturer layer.
+	bool wantsLecturer(uint64_t nowNs) const
+	{
+		return encoder_.running() && encoder_.wanted(PreviewStage::Lecturer, nowNs);
+	}
 
 private:
 	void rereadPasswords();

@@ -39,6 +39,7 @@ public:
 		if (publishDelayUs_)
 			usleep(publishDelayUs_); // a slow box: keying takes this much longer
 		composite_ = image;
+		boardHolds_ = 0;
 		compositeCount_++;
 		noColourCount_ += (flags & DK_SHM_FLAG_COLOUR_OK) == 0;
 		captureNs_ = captureNs;
@@ -81,7 +82,33 @@ public:
 		if (ret)
 			return ret;
 		boardLecturer_ = image;
+		boardHolds_ = 0;
 		boardLecturerCount_++;
+		captureNs_ = captureNs;
+		flags_ = flags;
+		return 0;
+	}
+
+	// Made in place into the images composite() and boardLecturer() show,
+	// which hold what the last frame left, as a ring slot does.
+	int publishBoard(BoardFrameMaker &maker, uint64_t captureNs, uint32_t flags) override
+	{
+		if (!boardWidth_)
+			return -EBADF;
+		if (!open_)
+			return -EBADF;
+		const bool sized = composite_.width() == boardWidth_ && composite_.height() == boardHeight_ &&
+				   boardLecturer_.width() == boardWidth_ && boardLecturer_.height() == boardHeight_;
+		if (!sized) {
+			composite_.resize(boardWidth_, boardHeight_);
+			boardLecturer_.resize(boardWidth_, boardHeight_);
+			boardHolds_ = 0;
+		}
+		boardHolds_ = maker.make({ viewOf(composite_), viewOf(boardLecturer_), boardHolds_ });
+		compositeCount_++;
+		boardLecturerCount_++;
+		boardInPlaceCount_++;
+		noColourCount_ += (flags & DK_SHM_FLAG_COLOUR_OK) == 0;
 		captureNs_ = captureNs;
 		flags_ = flags;
 		return 0;
@@ -119,6 +146,8 @@ public:
 	int boardHeight() const { return boardHeight_; }
 	const RgbaImage &boardLecturer() const { return boardLecturer_; }
 	uint64_t boardLecturerCount() const { return boardLecturerCount_; }
+	// Board-geometry frames made in place (publishBoard()).
+	uint64_t boardInPlaceCount() const { return boardInPlaceCount_; }
 	const OutputSettings &settings() const { return settings_; }
 	const RgbImage &composite() const { return composite_; }
 	const RgbaImage &lecturer() const { return lecturer_; }
@@ -151,6 +180,8 @@ private:
 	RgbImage composite_;
 	RgbaImage boardLecturer_;
 	uint64_t boardLecturerCount_ = 0;
+	uint64_t boardInPlaceCount_ = 0;
+	uint64_t boardHolds_ = 0; // what publishBoard()'s maker left in the images
 	RgbaImage lecturer_;
 	uint64_t compositeCount_ = 0;
 	uint64_t noColourCount_ = 0;

@@ -4,6 +4,7 @@
 // FakeFrameSink (hal/fake_frame_sink.hpp). Publishing never blocks.
 #pragma once
 
+#include "algo/board_compositor.hpp"
 #include "algo/composite.hpp"
 #include "algo/image.hpp"
 #include "settings/settings.hpp"
@@ -20,6 +21,32 @@ struct ReaderCounts {
 	int boardLecturer = 0; // the board-geometry layer (0 while not calibrated)
 	int total() const { return composite + lecturer + boardLecturer; }
 	bool operator==(const ReaderCounts &) const = default;
+};
+
+// Makes the board geometry's frame where it goes (FrameSink::publishBoard):
+// the composite and the board-geometry lecturer layer written straight into
+// the streams' next slots, not into images copied there (issue 29 §2).
+class BoardFrameMaker
+{
+public:
+	virtual ~BoardFrameMaker() = default;
+	// Writes every pixel of target that differs from what target.holds
+	// names; returns the tag of what it holds now (BoardCompositor::compose).
+	virtual uint64_t make(const BoardTarget &target) = 0;
+};
+
+// The usual maker: the compositor's warp of layer (the camera-geometry
+// lecturer layer) within roi over board.
+struct ComposedBoardFrame : BoardFrameMaker {
+	BoardCompositor *compositor = nullptr;
+	const RgbaImage *layer = nullptr;
+	Roi roi;
+	const RgbImage *board = nullptr;
+	int opacityQ8 = 256;
+	uint64_t make(const BoardTarget &target) override
+	{
+		return compositor->compose(*layer, roi, *board, opacityQ8, target);
+	}
 };
 
 class FrameSink
@@ -50,6 +77,11 @@ public:
 				    uint32_t flags) = 0;
 	// The board-geometry lecturer layer; -EBADF when opened without a board size.
 	virtual int publishBoardLecturer(const RgbaImage &image, uint64_t captureNs, uint32_t flags) = 0;
+	// The composite and the board-geometry lecturer layer together, made
+	// by maker where they go; -EBADF when opened without a board size. A
+	// reader sees both frames whole or not at all: a failure leaves the
+	// streams' newest frames as they were.
+	virtual int publishBoard(BoardFrameMaker &maker, uint64_t captureNs, uint32_t flags) = 0;
 
 	// Every open stream's newest frame again, stamped captureNs with flags
 	// (DK_SHM_FLAG_REPEATED): a capture slot whose frame was shed or keyed

@@ -151,6 +151,37 @@ int ShmFrameSink::publishBoardLecturer(const RgbaImage &image, uint64_t captureN
 	return publish(boardLecturer_, image, captureNs, flags);
 }
 
+// Both slots lent, made, then committed: the composite and the layer
+// published within a few stores of each other, each whole, the one never
+// without the other (the composite's slot is abandoned when the layer's
+// cannot be lent).
+int ShmFrameSink::publishBoard(BoardFrameMaker &maker, uint64_t captureNs, uint32_t flags)
+{
+	if (!boardLecturer_.isOpen())
+		return noteWrite(boardLecturer_, -EBADF);
+	ShmRingWriter::LentSlot composite, layer;
+	const int compositeRet = composite_.lend(composite, captureNs, flags);
+	if (compositeRet < 0 && compositeRet != -EUCLEAN)
+		return noteWrite(composite_, compositeRet);
+	const int layerRet = boardLecturer_.lend(layer, captureNs, flags);
+	if (layerRet < 0 && layerRet != -EUCLEAN) {
+		composite_.abandon();
+		return noteWrite(boardLecturer_, layerRet);
+	}
+	const BoardTarget target{
+		{ reinterpret_cast<Rgb8 *>(composite.pixels), composite_.width(), composite_.height(),
+		  static_cast<size_t>(composite.stride) },
+		{ reinterpret_cast<Rgba8 *>(layer.pixels), boardLecturer_.width(), boardLecturer_.height(),
+		  static_cast<size_t>(layer.stride) },
+		composite.holds == layer.holds ? composite.holds : 0 // one frame's pair, or unknown
+	};
+	const uint64_t holds = maker.make(target);
+	composite_.commit(holds);
+	boardLecturer_.commit(holds);
+	// -EUCLEAN: a stream repaired, the frame published all the same.
+	return compositeRet ? noteWrite(composite_, compositeRet) : noteWrite(boardLecturer_, layerRet);
+}
+
 ReaderCounts ShmFrameSink::countReaders(uint64_t nowNs)
 {
 	return { composite_.countReaders(nowNs), lecturer_.countReaders(nowNs), boardLecturer_.countReaders(nowNs) };

@@ -19,6 +19,7 @@ public:
 	int publishLecturer(const RgbImage *colour, const Gray8Image &alpha, uint64_t captureNs,
 			    uint32_t flags) override;
 	int publishBoardLecturer(const RgbaImage &image, uint64_t captureNs, uint32_t flags) override;
+	int publishBoard(BoardFrameMaker &maker, uint64_t captureNs, uint32_t flags) override;
 	int repeatLast(uint64_t captureNs, uint32_t flags) override;
 	ReaderCounts countReaders(uint64_t nowNs) override;
 	void close() override;

@@ -17,6 +17,8 @@
 
 namespace depthkey {
 
+static_assert(DK_SHM_MAX_SLOTS <= 8, "ShmRingWriter::holds_ has a tag per slot");
+
 namespace {
 
 // Group read-only: a reader that could write the object could shrink it
@@ -312,6 +314,7 @@ void ShmRingWriter::writeHeader()
 		__atomic_store_n(&slot.payload_bytes, 0, __ATOMIC_RELAXED);
 	}
 	__atomic_store_n(&h->online, 1, __ATOMIC_RELAXED);
+	holds_.fill(0); // a repair may have zeroed the pixels (ftruncate)
 
 	generation_ = newGeneration(previous);
 	__atomic_store_n(&h->generation, generation_, __ATOMIC_RELEASE);
@@ -319,43 +322,79 @@ void ShmRingWriter::writeHeader()
 
 int ShmRingWriter::write(const uint8_t *pixels, int srcStride, uint64_t captureNs, uint32_t flags)
 {
-	if (!header_)
-		return fail(-EBADF, "write to a closed ring");
-	const size_t rowBytes = static_cast<size_t>(stride_);
-	if (!pixels || srcStride < stride_)
+	if (header_ && (!pixels || srcStride < stride_))
 		return fail(-EINVAL, "write with a bad source buffer");
-	const int guarded = guard();
+	const size_t rowBytes = static_cast<size_t>(stride_);
+	LentSlot slot;
+	const int guarded = lend(slot, captureNs, flags);
 	if (guarded < 0 && guarded != -EUCLEAN)
 		return guarded;
-
-	uint8_t *dst = beginFrame(captureNs, flags);
 	if (static_cast<size_t>(srcStride) == rowBytes) {
-		std::memcpy(dst, pixels, rowBytes * height_);
+		std::memcpy(slot.pixels, pixels, rowBytes * height_);
 	} else {
 		for (int y = 0; y < height_; y++)
-			std::memcpy(dst + y * rowBytes, pixels + static_cast<size_t>(y) * srcStride,
-				    rowBytes);
+			std::memcpy(slot.pixels + y * rowBytes, pixels + static_cast<size_t>(y) * srcStride, rowBytes);
 	}
-	endFrame();
+	commit(0);
 	return guarded;
 }
 
 int ShmRingWriter::repeatLast(uint64_t captureNs, uint32_t flags)
 {
-	if (!header_)
-		return fail(-EBADF, "repeat on a closed ring");
-	if (frame_ == 0)
+	if (header_ && frame_ == 0)
 		return fail(-ENODATA, "repeat before the first frame");
-	// The same check as write(): a shrunk object would SIGBUS the copy.
-	const int guarded = guard();
+	// The same check as write() (lend()): a shrunk object would SIGBUS the copy.
+	LentSlot slot;
+	const int guarded = lend(slot, captureNs, flags);
 	if (guarded < 0 && guarded != -EUCLEAN)
 		return guarded;
 	// Slots >= 2: the newest frame's slot is not the one written next.
-	const uint8_t *last = data_ + (frame_ % static_cast<uint64_t>(slots_)) * slotSize_;
-	uint8_t *dst = beginFrame(captureNs, flags);
-	std::memcpy(dst, last, static_cast<size_t>(stride_) * height_);
-	endFrame();
+	const uint64_t last = frame_ % static_cast<uint64_t>(slots_);
+	std::memcpy(slot.pixels, data_ + last * slotSize_, static_cast<size_t>(stride_) * height_);
+	commit(holds_[last]); // the same pixels, the same tag
 	return guarded;
+}
+
+int ShmRingWriter::lend(LentSlot &slot, uint64_t captureNs, uint32_t flags)
+{
+	if (!header_)
+		return fail(-EBADF, "write to a closed ring");
+	if (lent_)
+		abandon(); // a caller that neither committed nor abandoned
+	const int guarded = guard();
+	if (guarded < 0 && guarded != -EUCLEAN)
+		return guarded;
+	const uint64_t index = (frame_ + 1) % static_cast<uint64_t>(slots_);
+	slot.pixels = beginFrame(captureNs, flags);
+	slot.stride = stride_;
+	slot.holds = holds_[index];
+	lent_ = true;
+	return guarded;
+}
+
+void ShmRingWriter::commit(uint64_t holds)
+{
+	if (!lent_)
+		return;
+	lent_ = false;
+	holds_[(frame_ + 1) % static_cast<uint64_t>(slots_)] = holds;
+	endFrame();
+}
+
+// The slot's frame number 0 and its sequence even again: a reader never
+// picks it (latest_frame still names the last committed frame, in
+// another slot), and one that raced with us drops its copy; the frame
+// number is not used up.
+void ShmRingWriter::abandon()
+{
+	if (!lent_)
+		return;
+	lent_ = false;
+	dk_shm_slot &slot = header_->slots[(frame_ + 1) % static_cast<uint64_t>(slots_)];
+	holds_[(frame_ + 1) % static_cast<uint64_t>(slots_)] = 0;
+	__atomic_store_n(&slot.frame, 0, __ATOMIC_RELAXED);
+	const uint32_t seq = __atomic_load_n(&slot.sequence, __ATOMIC_RELAXED);
+	__atomic_store_n(&slot.sequence, seq + 1, __ATOMIC_RELEASE);
 }
 
 uint8_t *ShmRingWriter::beginFrame(uint64_t captureNs, uint32_t flags)
@@ -392,6 +431,7 @@ void ShmRingWriter::close()
 {
 	if (!header_)
 		return;
+	abandon();
 	__atomic_store_n(&header_->online, 0, __ATOMIC_RELEASE);
 	munmap(header_, mapSize_);
 	fd_.reset(); // releases the writer lock

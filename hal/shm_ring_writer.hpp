@@ -72,17 +72,35 @@ public:
 	template<typename MakeRow>
 	int writeRows(MakeRow &&makeRow, uint64_t captureNs, uint32_t flags)
 	{
-		if (!header_)
-			return fail(-EBADF, "write to a closed ring");
-		const int guarded = guard();
+		LentSlot slot;
+		const int guarded = lend(slot, captureNs, flags);
 		if (guarded < 0 && guarded != -EUCLEAN)
 			return guarded;
-		uint8_t *dst = beginFrame(captureNs, flags);
 		for (int y = 0; y < height_; y++)
-			makeRow(y, dst + static_cast<size_t>(y) * static_cast<size_t>(stride_));
-		endFrame();
+			makeRow(y, slot.pixels + static_cast<size_t>(y) * static_cast<size_t>(slot.stride));
+		commit(0);
 		return guarded;
 	}
+
+	// The next slot's pixels, lent to be written in place (issue 29 §2: a
+	// frame written once, where it goes). holds: the tag the last commit()
+	// of this slot gave, if the slot still holds what was written then (0:
+	// unknown, write it whole); the slots' tags go with their pixels
+	// (repeatLast() copies them along).
+	struct LentSlot {
+		uint8_t *pixels = nullptr;
+		int stride = 0; // bytes between rows
+		uint64_t holds = 0;
+	};
+	// Marks the next slot busy (readers skip it) and lends it. Returns as
+	// write(), without -EINVAL; on failure nothing is lent. Then exactly
+	// one of commit() (the frame is published: the newest, whole) or
+	// abandon() (a failure mid-way: never seen, the newest frame stays the
+	// last committed one), with no other write in between.
+	int lend(LentSlot &slot, uint64_t captureNs, uint32_t flags);
+	// holds: a tag for what was written (0 for none), given back by lend().
+	void commit(uint64_t holds);
+	void abandon();
 
 	// Marks the stream offline and unmaps. The object stays, holding the last
 	// frames, until the next open() (this process or a restarted one)
@@ -174,6 +192,10 @@ private:
 	std::array<ReaderSeen, 16> readerSeen_{};
 	size_t mapSize_ = 0;
 	size_t presenceSize_ = 0;
+	// Per slot: the tag of what commit() wrote there (LentSlot::holds), 0
+	// when unknown (a fresh or repaired object, a frame from write()).
+	std::array<uint64_t, 8> holds_{};
+	bool lent_ = false;
 
 	int width_ = 0;
 	int height_ = 0;

@@ -100,6 +100,18 @@ RgbaImage layerOf(const RgbImage &colour, const Gray8Image &alpha)
 	return layer;
 }
 
+// The lecturer layer of a 20x22 box of the scene's alpha (made opaque
+// enough to warp) that walks step px right a frame and bobs down.
+RgbaImage walkingBox(const Scene &s, int frame, int step, Roi &box)
+{
+	Gray8Image alpha(kCw, kCh, 0);
+	box = { 2 + step * frame, 3 + 3 * (frame % 4), std::min(kCw, 22 + step * frame), 25 + 3 * (frame % 4) };
+	for (int y = box.y0; y < box.y1; ++y)
+		for (int x = box.x0; x < box.x1; ++x)
+			alpha.at(x, y) = s.alpha.at(x, y) | 64;
+	return layerOf(s.colour, alpha);
+}
+
 // Tolerance: Q8 map coordinates (1/512 px rounding) and Q8 weights with one
 // rounding each for the sample and the blend: at most 2 levels per channel
 // on these images, under 0.3 on average.
@@ -242,17 +254,12 @@ TEST(BoardCompositor, KeptOutputsEqualFreshOnesAsHeMovesAndTheBoardChanges)
 	RgbaImage lecturer;
 	for (int frame = 0; frame < 12; ++frame) {
 		// A box that walks right and down, and a new board at frame 5.
-		Gray8Image alpha(kCw, kCh, 0);
-		Roi box{ 2 + 5 * frame, 3 + 3 * (frame % 4), 22 + 5 * frame, 25 + 3 * (frame % 4) };
-		box.x1 = std::min(box.x1, kCw);
-		for (int y = box.y0; y < box.y1; ++y)
-			for (int x = box.x0; x < box.x1; ++x)
-				alpha.at(x, y) = s.alpha.at(x, y) | 64;
+		Roi box;
+		const RgbaImage source = walkingBox(s, frame, 5, box);
 		if (frame == 5) {
 			s.board = makeScene(22).board;
 			kept.forgetBoard();
 		}
-		RgbaImage source = layerOf(s.colour, alpha);
 		kept.compose(source, box, s.board, 200, composite, lecturer);
 		if (frame == 9) {
 			// Someone else's buffers: garbage, which must all be overwritten.
@@ -270,6 +277,68 @@ TEST(BoardCompositor, KeptOutputsEqualFreshOnesAsHeMovesAndTheBoardChanges)
 		ASSERT_EQ(0, std::memcmp(lecturer.data(), freshLecturer.data(), lecturer.size() * sizeof(Rgba8)))
 			<< "frame " << frame;
 	}
+}
+
+// Written into a ring's slots (issue 29 §2): a pair of buffers a slot,
+// each holding what the compositor wrote there slots frames ago (or a
+// repeated frame's copy, or someone else's garbage); frame by frame, what
+// it writes is byte for byte what a fresh compositor writes into fresh
+// images (the path that copied them into the slots).
+TEST(BoardCompositor, RingSlotsEqualFreshImagesAsHeMovesAndTheBoardChanges)
+{
+	for (int slots : { 2, 3 }) {
+		Scene s = makeScene(31);
+		BoardCompositor kept;
+		ASSERT_TRUE(kept.configure(tiltedView(), kCw, kCh, kBw, kBh));
+		std::vector<RgbImage> composites(slots, RgbImage(kBw, kBh, Rgb8{ 5, 6, 7 }));
+		std::vector<RgbaImage> layers(slots, RgbaImage(kBw, kBh, Rgba8{ 8, 8, 8, 8 }));
+		std::vector<uint64_t> holds(slots, 0);
+		for (int frame = 1; frame <= 16; ++frame) {
+			const int slot = frame % slots, last = (frame - 1) % slots;
+			if (frame == 7 || frame == 8) { // repeated frames: the last slot copied, its tag too
+				composites[slot] = composites[last];
+				layers[slot] = layers[last];
+				holds[slot] = holds[last];
+				continue;
+			}
+			if (frame == 11) { // someone else wrote this slot: written whole
+				composites[slot] = RgbImage(kBw, kBh, Rgb8{ 1, 2, 3 });
+				holds[slot] = 0;
+			}
+			Roi box;
+			const RgbaImage source = walkingBox(s, frame, 4, box);
+			if (frame == 5) {
+				s.board = makeScene(32).board;
+				kept.forgetBoard();
+			}
+			holds[slot] = kept.compose(source, box, s.board, 200,
+						   { viewOf(composites[slot]), viewOf(layers[slot]), holds[slot] });
+			EXPECT_NE(holds[slot], 0u);
+			BoardCompositor fresh;
+			ASSERT_TRUE(fresh.configure(tiltedView(), kCw, kCh, kBw, kBh));
+			RgbImage freshComposite;
+			RgbaImage freshLecturer;
+			fresh.compose(source, box, s.board, 200, freshComposite, freshLecturer);
+			ASSERT_TRUE(composites[slot] == freshComposite) << slots << " slots, frame " << frame;
+			ASSERT_TRUE(layers[slot] == freshLecturer) << slots << " slots, frame " << frame;
+		}
+	}
+}
+
+// A target of another size than the output is never written past: the
+// board alone where it fits, tag 0 (its contents not known next time).
+TEST(BoardCompositor, ATargetOfAnotherSizeIsNotWrittenPast)
+{
+	Scene s = makeScene(3);
+	BoardCompositor compositor;
+	ASSERT_TRUE(compositor.configure(tiltedView(), kCw, kCh, kBw, kBh));
+	RgbImage composite(kBw, kBh - 1, Rgb8{ 1, 1, 1 });
+	RgbaImage lecturer(kBw, kBh - 1, Rgba8{ 9, 9, 9, 9 });
+	EXPECT_EQ(compositor.compose(layerOf(s.colour, s.alpha), s.roi, s.board, 256,
+				     { viewOf(composite), viewOf(lecturer), 0 }),
+		  0u);
+	EXPECT_EQ(composite.at(3, 3), Rgb8({ 1, 1, 1 })); // the board does not fit it either
+	EXPECT_EQ(lecturer.at(3, 3), Rgba8({ 0, 0, 0, 0 }));
 }
 
 TEST(BoardCompositor, RefusesASingularHomographyAndMismatchedSizes)
@@ -306,6 +375,25 @@ TEST(BoardCompositor, AllocatesNothingPerFrame)
 	for (int i = 0; i < 20; ++i) {
 		Roi roi{ s.roi.x0 + i % 5, s.roi.y0, s.roi.x1 - i % 3, s.roi.y1 };
 		compositor.compose(source, roi, s.board, 128, composite, lecturer);
+	}
+	EXPECT_EQ(count.count(), 0u);
+}
+
+TEST(BoardCompositor, AllocatesNothingPerFrameIntoRingSlots)
+{
+	if (!test::allocationCounting())
+		GTEST_SKIP() << "allocations are not counted in sanitizer builds";
+	Scene s = makeScene(6);
+	BoardCompositor compositor;
+	ASSERT_TRUE(compositor.configure(tiltedView(), kCw, kCh, kBw, kBh));
+	RgbImage composites[2] = { RgbImage(kBw, kBh), RgbImage(kBw, kBh) };
+	RgbaImage layers[2] = { RgbaImage(kBw, kBh), RgbaImage(kBw, kBh) }, source = layerOf(s.colour, s.alpha);
+	uint64_t holds[2] = {};
+	test::CountAllocations count;
+	for (int i = 0; i < 20; ++i) {
+		Roi roi{ s.roi.x0 + i % 5, s.roi.y0, s.roi.x1 - i % 3, s.roi.y1 };
+		holds[i % 2] = compositor.compose(source, roi, s.board, 128,
+						  { viewOf(composites[i % 2]), viewOf(layers[i % 2]), holds[i % 2] });
 	}
 	EXPECT_EQ(count.count(), 0u);
 }

@@ -6,14 +6,20 @@
 // camera-geometry composite + layer of the same frame (compositeRoi +
 // lecturerLayer at 640x480), what the daemon publishes without H; and the
 // upper bound, alpha everywhere (the whole colour frame warped), and the
-// floor, nobody there (the board picture copied).
+// floor, nobody there (the board picture copied). And the board-geometry
+// frame published to the shared memory (BM_BoardPublish): made in images
+// and copied into the ring, or made in the ring's slots (issue 29 §2).
 #include "algo/board_compositor.hpp"
 #include "algo/composite.hpp"
 #include "hal/kernel_path_env.hpp"
+#include "hal/shm_frame_sink.hpp"
 #include "hal/sim/board_display.hpp"
 #include "hal/sim/lecture_simulator.hpp"
 
 #include <benchmark/benchmark.h>
+
+#include <string>
+#include <unistd.h>
 
 using namespace depthkey;
 
@@ -103,6 +109,57 @@ void BM_BoardWarpComposite(benchmark::State &state)
 	state.counters["warped_px"] = double(compositor.warpedPixels());
 }
 
+// The composite and the board-geometry layer to the shared memory (2
+// slots, the default), this frame and the next in turn (whole:3 above).
+// range(1): 0 = composed into images, then copied into the slots
+// (publishComposite + publishBoardLecturer); 1 = composed in the slots
+// (publishBoard); range(2): 1 = a new board picture every 5th frame.
+void BM_BoardPublish(benchmark::State &state)
+{
+	constexpr double kFrameS = 0.04;
+	const Frame f = lectureFrame(double(state.range(0)));
+	const Frame next = lectureFrame(double(state.range(0)) + kFrameS);
+	BoardCompositor compositor;
+	compositor.configure(f.colourToBoard, 640, 480, kBoardW, kBoardH);
+	RgbaImage cameraLayer[2];
+	lecturerLayer(f.colour.rgb, f.truth.alpha, cameraLayer[0]);
+	lecturerLayer(next.colour.rgb, next.truth.alpha, cameraLayer[1]);
+	const Roi rois[2] = { f.roi, next.roi };
+	const std::string prefix = "/depthkey-bench-" + std::to_string(getpid());
+	OutputSettings names;
+	names.compositeName = prefix + ".composite";
+	names.lecturerName = prefix + ".lecturer";
+	names.boardLecturerName = prefix + ".lecturer.board";
+	ShmFrameSink sink;
+	if (sink.open(names, 640, 480, kBoardW, kBoardH) < 0) {
+		state.SkipWithError(sink.describeError().c_str());
+		return;
+	}
+	ComposedBoardFrame maker;
+	maker.compositor = &compositor;
+	maker.board = &f.board;
+	maker.opacityQ8 = 128;
+	RgbImage composite;
+	RgbaImage layer;
+	size_t frame = 0;
+	for (auto _ : state) {
+		const size_t i = frame % 2;
+		if (state.range(2) && frame % 5 == 0)
+			compositor.forgetBoard();
+		frame++;
+		if (state.range(1)) {
+			maker.layer = &cameraLayer[i];
+			maker.roi = rois[i];
+			sink.publishBoard(maker, frame, 0);
+		} else {
+			compositor.compose(cameraLayer[i], rois[i], f.board, 128, composite, layer);
+			sink.publishComposite(composite, frame, 0);
+			sink.publishBoardLecturer(layer, frame, 0);
+		}
+	}
+	sink.remove();
+}
+
 void BM_CameraGeometryComposite(benchmark::State &state)
 {
 	Frame f = lectureFrame(double(state.range(0)));
@@ -133,5 +190,14 @@ BENCHMARK(BM_BoardWarpComposite)
 	->Args({ 8, 1, 0 })
 	->Args({ 8, 2, 0 })
 	->ArgNames({ "t", "whole", "rows" })
+	->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_BoardPublish)
+	->Args({ 1, 0, 0 })
+	->Args({ 1, 1, 0 })
+	->Args({ 1, 0, 1 })
+	->Args({ 1, 1, 1 })
+	->Args({ 8, 0, 0 })
+	->Args({ 8, 1, 0 })
+	->ArgNames({ "t", "in_slots", "new_board" })
 	->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CameraGeometryComposite)->Args({ 1 })->Args({ 8 })->ArgNames({ "t" })->Unit(benchmark::kMicrosecond);
