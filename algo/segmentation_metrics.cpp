@@ -1,5 +1,7 @@
 #include "algo/segmentation_metrics.hpp"
 
+#include <cstring>
+
 namespace depthkey {
 
 namespace {
@@ -17,37 +19,37 @@ SegmentationScorer::SegmentationScorer(int tolerancePx)
 }
 
 // Row by row with plain pointers (the daemon scores every frame it
-// publishes, issue 29): an interior pixel is an edge when it is inside and a
-// 4-neighbour is not; the rows and columns at the image border look only at
-// the neighbours they have. Written branch-free so the compiler vectorises it.
-void SegmentationScorer::boundary(const Gray8Image &mask, Gray8Image &out) const
+// publishes, issue 29): a pixel is an edge when it is inside and a
+// 4-neighbour is not. Beyond the image border there is no neighbour: the
+// rows above the first and below the last read a row that is all inside,
+// and the first and last columns are done apart, so the inner loop has no
+// branch and the compiler vectorises it.
+void SegmentationScorer::boundary(const Gray8Image &mask, Gray8Image &out)
 {
 	const int w = mask.width(), h = mask.height();
 	out.resize(w, h);
+	if (w == 0)
+		return;
+	if (allInside_.size() != size_t(w))
+		allInside_.assign(size_t(w), 255); // once per width
 	for (int y = 0; y < h; ++y) {
 		const uint8_t *c = mask.row(y);
-		const uint8_t *u = y > 0 ? mask.row(y - 1) : nullptr;
-		const uint8_t *d = y + 1 < h ? mask.row(y + 1) : nullptr;
+		const uint8_t *u = y > 0 ? mask.row(y - 1) : allInside_.data();
+		const uint8_t *d = y + 1 < h ? mask.row(y + 1) : allInside_.data();
 		uint8_t *o = out.row(y);
-		// Outside neighbours as 0/1, then one pass over the inner columns.
-		for (int x = 0; x < w; ++x) {
-			int outside = (u && u[x] < kLecturer) | (d && d[x] < kLecturer);
-			o[x] = static_cast<uint8_t>(outside);
-		}
-		for (int x = 1; x + 1 < w; ++x)
-			o[x] = static_cast<uint8_t>((c[x] >= kLecturer) &
-						    (o[x] | (c[x - 1] < kLecturer) | (c[x + 1] < kLecturer)));
-		if (w == 1) {
-			o[0] = static_cast<uint8_t>((c[0] >= kLecturer) & o[0]);
-		} else {
-			o[0] = static_cast<uint8_t>((c[0] >= kLecturer) & (o[0] | (c[1] < kLecturer)));
-			o[w - 1] = static_cast<uint8_t>((c[w - 1] >= kLecturer) & (o[w - 1] | (c[w - 2] < kLecturer)));
+		for (int x = 1; x < w - 1; ++x)
+			o[x] = uint8_t((c[x] >= kLecturer) & ((u[x] < kLecturer) | (d[x] < kLecturer) |
+							   (c[x - 1] < kLecturer) | (c[x + 1] < kLecturer)));
+		for (int x : { 0, w - 1 }) { // the same pixel twice when w == 1
+			const bool left = x > 0 && c[x - 1] < kLecturer, right = x + 1 < w && c[x + 1] < kLecturer;
+			o[x] = uint8_t(c[x] >= kLecturer && (u[x] < kLecturer || d[x] < kLecturer || left || right));
 		}
 	}
 }
 
 // Only the edge pixels are looked at (a few thousand of a frame's 300k):
-// each row is searched for its next edge, then the tolerance disc around it.
+// each row is searched for its next edge eight pixels at a time, then the
+// tolerance disc around it.
 std::pair<long, long> SegmentationScorer::matched(const Gray8Image &from, const Gray8Image &to) const
 {
 	const int w = from.width(), h = from.height();
@@ -55,6 +57,11 @@ std::pair<long, long> SegmentationScorer::matched(const Gray8Image &from, const 
 	for (int y = 0; y < h; ++y) {
 		const uint8_t *row = from.row(y);
 		for (int x = 0; x < w; ++x) {
+			uint64_t eight;
+			if (x + 8 <= w && (std::memcpy(&eight, row + x, 8), eight == 0)) {
+				x += 7; // eight pixels without an edge
+				continue;
+			}
 			if (!row[x])
 				continue;
 			total++;

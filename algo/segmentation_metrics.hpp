@@ -32,13 +32,14 @@ public:
 	SegmentationScore score(const Gray8Image &predicted, const Gray8Image &truth);
 
 private:
-	void boundary(const Gray8Image &mask, Gray8Image &out) const;
+	void boundary(const Gray8Image &mask, Gray8Image &out);
 	// Boundary pixels of `from` with a boundary pixel of `to` within the
 	// tolerance, and how many boundary pixels `from` has.
 	std::pair<long, long> matched(const Gray8Image &from, const Gray8Image &to) const;
 
 	std::vector<std::pair<int, int>> disc_;
 	Gray8Image predictedEdge_, truthEdge_;
+	std::vector<uint8_t> allInside_; // the row beyond the top and bottom border
 };
 
 // Mean of per-frame scores (every frame weighs the same).
