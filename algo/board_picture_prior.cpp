@@ -36,9 +36,42 @@ int BoardPicturePrior::configure(int colourWidth, int colourHeight, const Homogr
 			boardOf_[k] = int32_t(vr) * boardWidth + int32_t(ur);
 			onDisplay_.data()[k] = kTrimapBoard;
 		}
+	pictureRowsOf_.assign(size_t(colourHeight), { boardHeight, -1 });
+	for (int y = 0; y < colourHeight; ++y)
+		for (int x = 0; x < colourWidth; ++x)
+			if (const int32_t b = boardOf_[size_t(y) * colourWidth + x]; b >= 0) {
+				auto &[first, last] = pictureRowsOf_[size_t(y)];
+				first = std::min(first, int(b / boardWidth));
+				last = std::max(last, int(b / boardWidth));
+			}
+	changedFirst_ = 1;
+	changedLast_ = 0;
 	for (int &g : gainQ8_)
 		g = 256;
 	return 0;
+}
+
+void BoardPicturePrior::pictureRowsChanged(int firstRow, int lastRow)
+{
+	if (firstRow > lastRow || !sampledFrom_)
+		return; // nothing changed, or all is sampled again anyway
+	if (changedFirst_ > changedLast_) {
+		changedFirst_ = firstRow;
+		changedLast_ = lastRow;
+	} else {
+		changedFirst_ = std::min(changedFirst_, firstRow);
+		changedLast_ = std::max(changedLast_, lastRow);
+	}
+}
+
+void BoardPicturePrior::sampleRow(const RgbImage &picture, int y)
+{
+	const Rgb8 *board = picture.data();
+	const int32_t *b = boardOf_.data() + size_t(y) * colourWidth_;
+	Rgb8 *out = sampled_.row(y);
+	for (int x = 0; x < colourWidth_; ++x)
+		if (b[x] >= 0)
+			out[x] = board[b[x]];
 }
 
 bool BoardPicturePrior::predict(const RgbImage &picture, const RgbImage &colour, const BoardModel &model)
@@ -47,16 +80,16 @@ bool BoardPicturePrior::predict(const RgbImage &picture, const RgbImage &colour,
 	    colour.width() != colourWidth_ || colour.height() != colourHeight_ || model.empty())
 		return false;
 	if (sampledFrom_ != &picture) {
-		const Rgb8 *board = picture.data();
-		for (int y = 0; y < colourHeight_; ++y) {
-			const int32_t *b = boardOf_.data() + size_t(y) * colourWidth_;
-			Rgb8 *out = sampled_.row(y);
-			for (int x = 0; x < colourWidth_; ++x)
-				if (b[x] >= 0)
-					out[x] = board[b[x]];
-		}
+		for (int y = 0; y < colourHeight_; ++y)
+			sampleRow(picture, y);
 		sampledFrom_ = &picture;
+	} else if (changedFirst_ <= changedLast_) {
+		for (int y = 0; y < colourHeight_; ++y)
+			if (const auto [first, last] = pictureRowsOf_[size_t(y)]; first <= changedLast_ && last >= changedFirst_)
+				sampleRow(picture, y);
 	}
+	changedFirst_ = 1;
+	changedLast_ = 0;
 	uint64_t colourSum[3] = {}, pictureSum[3] = {};
 	size_t fitted = 0;
 	const int rowStep = fitRowStep(), columnStep = fitColumnStep();

@@ -92,6 +92,10 @@ public:
 		boardPicture_ = picture;
 		picturePrior_.pictureChanged();
 	}
+	// The same picture, changed in place in its rows firstRow..lastRow only
+	// (first > last: not at all): sampled again there only.
+	void boardPictureRowsChanged(int firstRow, int lastRow) { picturePrior_.pictureRowsChanged(firstRow, lastRow); }
+	const RgbImage *boardPicture() const { return boardPicture_; }
 	// Whether the board's picture and its geometry are both set.
 	bool hasBoardPicture() const { return boardPicture_ && boardWidth_ > 0; }
 	// The row kernels to use (algo/kernel_path.hpp); the best by default.

@@ -1,5 +1,6 @@
 #include "daemon/board_output.hpp"
 
+#include "algo/changed_rows.hpp"
 #include "algo/composite.hpp"
 
 #include "daemon/log.hpp"
@@ -112,18 +113,26 @@ void BoardOutput::applyPicture(const ColourFrame &frame)
 	bool resized = frame.rgb.width() != pictureWidth_ || frame.rgb.height() != pictureHeight_;
 	pictureWidth_ = frame.rgb.width();
 	pictureHeight_ = frame.rgb.height();
-	if (!solidColour() && &frame == &spare_)
+	// What changed since the last picture: the prior samples only that again.
+	RowRange changed{ 0, pictureHeight_ - 1 };
+	if (!solidColour() && &frame == &spare_) {
 		std::swap(picture_, spare_.rgb); // the next picture is made over the last one
-	else if (!solidColour())
+		changed = changedRows(spare_.rgb, picture_);
+	} else if (!solidColour()) {
+		changed = changedRows(picture_, frame.rgb);
 		picture_ = frame.rgb; // same size: no allocation
-	else if (!picture_.empty())
+	} else if (!picture_.empty())
 		fillSolid(picture_);
 	if (resized)
 		updateGeometry();
 	if (boardGeometry()) {
 		scalePicture();
-		if (pipeline_ && !resized) // a new picture in place: the prior samples it again
-			pipeline_->setBoardPicture(&picture_);
+		if (pipeline_ && !resized) { // a new picture in place
+			if (pipeline_->boardPicture() == &picture_)
+				pipeline_->boardPictureRowsChanged(changed.first, changed.last);
+			else
+				pipeline_->setBoardPicture(&picture_);
+		}
 	} else if (pipeline_)
 		pipeline_->setBoardImage(pipelineBoard());
 }

@@ -5,6 +5,7 @@
 // lecturer, never seen by the camera, matches the model at once.
 #include "algo/board_model.hpp"
 #include "algo/board_picture_prior.hpp"
+#include "algo/changed_rows.hpp"
 #include "algo/trimap.hpp"
 
 #include <gtest/gtest.h>
@@ -162,4 +163,67 @@ TEST(BoardPicturePrior, AStrokeWrittenBehindTheLecturerIsKnownBeforeItIsSeen)
 	}
 	EXPECT_LE(model.distance(25, 24, strokeSeen), 12) << "taught: the stroke is board";
 	EXPECT_LE(model.distance(5, 5, colour.row(5)[5]), 6) << "the board elsewhere still matches";
+}
+
+TEST(ChangedRows, TheFirstAndLastRowThatDifferOrNone)
+{
+	const RgbImage before = boardPicture(5);
+	RgbImage now = before;
+	EXPECT_TRUE(changedRows(before, now).empty());
+	now.row(17)[3] = Rgb8{ 1, 2, 3 };
+	EXPECT_EQ(changedRows(before, now).first, 17);
+	EXPECT_EQ(changedRows(before, now).last, 17);
+	now.row(60)[now.width() - 1] = Rgb8{ 4, 5, 6 };
+	EXPECT_EQ(changedRows(before, now).first, 17);
+	EXPECT_EQ(changedRows(before, now).last, 60);
+	const RowRange all = changedRows(before, RgbImage(4, 3));
+	EXPECT_EQ(all.first, 0);
+	EXPECT_EQ(all.last, 2);
+}
+
+TEST(BoardPicturePrior, RowsChangedInPlaceAreSampledAgainAsAWholeSamplingWould)
+{
+	// A slanted view: each colour row sees several picture rows.
+	Homography slanted;
+	slanted.h = { 1.8, 0.3, 2, 0.25, 1.7, 1, 0, 0, 1 };
+	RgbImage picture = boardPicture(7);
+	const RgbImage colour = cameraView(picture);
+	BoardModel model;
+	model.learn(colour, Gray8Image(kW, kH, kTrimapBoard));
+	auto fresh = [&](const RgbImage &p) {
+		BoardPicturePrior whole;
+		EXPECT_EQ(whole.configure(kW, kH, slanted, RadialLens{}, 2 * kW, 2 * kH), 0);
+		whole.predict(p, colour, model);
+		return whole.sampled();
+	};
+	BoardPicturePrior prior;
+	ASSERT_EQ(prior.configure(kW, kH, slanted, RadialLens{}, 2 * kW, 2 * kH), 0);
+	prior.predict(picture, colour, model);
+	ASSERT_EQ(prior.sampled(), fresh(picture));
+
+	// Strokes in two bands of rows, told as they come, sampled at the next
+	// predict(): exactly what sampling the whole new picture gives.
+	RgbImage before = picture;
+	for (int x = 10; x < 90; ++x)
+		picture.row(30)[x] = picture.row(31)[x] = Rgb8{ 230, 230, 220 };
+	RowRange changed = changedRows(before, picture);
+	prior.pictureRowsChanged(changed.first, changed.last);
+	before = picture;
+	for (int x = 20; x < 40; ++x)
+		picture.row(70)[x] = Rgb8{ 200, 40, 40 };
+	changed = changedRows(before, picture);
+	prior.pictureRowsChanged(changed.first, changed.last);
+	prior.predict(picture, colour, model);
+	EXPECT_EQ(prior.sampled(), fresh(picture));
+
+	// Rows said unchanged are not read again (the saving): a stroke not
+	// told is not in the prediction until the picture is sampled anew.
+	for (int x = 0; x < 2 * kW; ++x)
+		picture.row(50)[x] = Rgb8{ 255, 255, 0 };
+	prior.pictureRowsChanged(1, 0);
+	prior.predict(picture, colour, model);
+	EXPECT_NE(prior.sampled(), fresh(picture));
+	prior.pictureChanged();
+	prior.predict(picture, colour, model);
+	EXPECT_EQ(prior.sampled(), fresh(picture));
 }
