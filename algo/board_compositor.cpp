@@ -224,6 +224,30 @@ void BoardCompositor::compose(const RgbaImage &source, const Roi &roi, const Rgb
 	imageTag_ = compose(source, roi, board, opacityQ8, { viewOf(composite), viewOf(lecturer), imageTag_ });
 }
 
+void BoardCompositor::forgetBoardRows(int firstRow, int lastRow)
+{
+	imageTag_ = 0;
+	if (firstRow > lastRow)
+		return;
+	boardVersion_++;
+	boardChanges_[boardVersion_ % kBoardHistory] = { firstRow, lastRow };
+}
+
+BoardCompositor::Rows BoardCompositor::boardRowsChangedSince(uint64_t since) const
+{
+	if (since == boardVersion_)
+		return {};
+	if (since > boardVersion_ || boardVersion_ - since >= kBoardHistory)
+		return { 0, INT_MAX }; // too long ago to know: all of it
+	Rows rows{ INT_MAX, -1 };
+	for (uint64_t v = since + 1; v <= boardVersion_; ++v) {
+		const Rows &changed = boardChanges_[v % kBoardHistory];
+		rows.first = std::min(rows.first, changed.first);
+		rows.last = std::max(rows.last, changed.last);
+	}
+	return rows;
+}
+
 uint64_t BoardCompositor::compose(const RgbaImage &source, const Roi &roi, const RgbImage &board, int opacityQ8,
 				  const BoardTarget &target)
 {
@@ -259,15 +283,18 @@ uint64_t BoardCompositor::compose(const RgbaImage &source, const Roi &roi, const
 	// What the target holds: transparent but where the tiles warped into
 	// it last were, and (the same board picture) the board there too.
 	const Written *before = writtenAs(target.holds);
-	const bool compositeValid = before && before->boardVersion == boardVersion_;
+	const Rows stale = before ? boardRowsChangedSince(before->boardVersion) : Rows{ 0, INT_MAX };
 	const std::vector<uint8_t> &lastWarpedTiles = before ? before->warpedTiles : noTiles_;
 	// The layer: clear the tiles warped last time that this frame does
 	// not warp over (a whole 1920x1080 RGBA clear would cost a third of
 	// the warp), or all of it when the target is unknown.
 	// The composite likewise, with the board: copied where it last warped
-	// (or all of it, after forgetBoard() or into an unknown target).
+	// (or all of it, into an unknown target), and in the rows of tiles
+	// where the board changed since the target's picture.
 	for (size_t t = 0; t < copyTiles_.size(); ++t) {
-		copyTiles_[t] = !warpedTiles_[t] && (!compositeValid || lastWarpedTiles[t]);
+		const int rowTop = int(t / size_t(tilesX_)) * kBoardTile;
+		const bool boardStale = rowTop <= stale.last && rowTop + kBoardTile - 1 >= stale.first;
+		copyTiles_[t] = !warpedTiles_[t] && (boardStale || lastWarpedTiles[t]);
 		clearTiles_[t] = !warpedTiles_[t] && (!before || lastWarpedTiles[t]);
 	}
 	warpedPixels_ = 0;

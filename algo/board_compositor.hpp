@@ -37,6 +37,7 @@
 #include "algo/radial_lens.hpp"
 
 #include <array>
+#include <climits>
 #include <cstdint>
 #include <vector>
 
@@ -91,7 +92,14 @@ public:
 	// compose() copies the board only where it warped last time: call this
 	// when the board picture changed, or composite was written by anyone
 	// else (the next compose copies all of it, into every target).
-	void forgetBoard() { boardVersion_++; imageTag_ = 0; }
+	void forgetBoard() { forgetBoardRows(0, INT_MAX); }
+	// Only the board's rows firstRow..lastRow (output rows) changed
+	// (first > last: none): a target that held the board of up to
+	// kBoardHistory pictures ago gets only the rows changed since copied.
+	// The board's picture comes 10 times a second, mostly the one before
+	// with a stroke more (algo/changed_rows.hpp); copying it whole into
+	// each slot was the event loop's largest cost (15 %) after the warp.
+	void forgetBoardRows(int firstRow, int lastRow);
 
 	// The board pixels the last compose() warped (for tests and previews).
 	const Roi &warpedRoi() const { return warped_; }
@@ -143,6 +151,14 @@ private:
 	size_t nextWritten_ = 0;
 	uint64_t nextTag_ = 1;
 	uint64_t boardVersion_ = 1;          // forgetBoard() moves it on
+	// The rows each of the last board versions changed (index: version
+	// modulo kBoardHistory), and those changed since version `since`.
+	static constexpr uint64_t kBoardHistory = 16;
+	struct Rows {
+		int first = 1, last = 0;
+	};
+	std::array<Rows, kBoardHistory> boardChanges_{};
+	Rows boardRowsChangedSince(uint64_t since) const;
 	std::vector<uint8_t> noTiles_;       // all 0: what an unknown target had warped
 	uint64_t imageTag_ = 0;              // what the images' pair holds
 	const void *lastComposite_ = nullptr, *lastLecturer_ = nullptr; // the images imageTag_ is for

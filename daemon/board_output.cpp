@@ -126,7 +126,7 @@ void BoardOutput::applyPicture(const ColourFrame &frame)
 	if (resized)
 		updateGeometry();
 	if (boardGeometry()) {
-		scalePicture();
+		scalePicture(changed);
 		if (pipeline_ && !resized) { // a new picture in place
 			if (pipeline_->boardPicture() == &picture_)
 				pipeline_->boardPictureRowsChanged(changed.first, changed.last);
@@ -234,10 +234,13 @@ void BoardOutput::updateGeometry()
 }
 
 // Nearest neighbour, pixel centres kept; nothing to do at the same size
-// (outputPicture() is the picture then).
-void BoardOutput::scalePicture()
+// (outputPicture() is the picture then, and the next composites copy only
+// its changed rows; a scaled picture is copied whole).
+void BoardOutput::scalePicture(RowRange changed)
 {
-	compositor_.forgetBoard(); // the next composite copies the new picture whole
+	if (!scaled_.empty())
+		changed = { 0, scaled_.height() - 1 };
+	compositor_.forgetBoardRows(changed.first, changed.last);
 	if (scaled_.empty())
 		return;
 	const int sw = picture_.width(), sh = picture_.height(), dw = scaled_.width(), dh = scaled_.height();

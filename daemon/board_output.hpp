@@ -10,6 +10,7 @@
 #pragma once
 
 #include "algo/board_compositor.hpp"
+#include "algo/changed_rows.hpp"
 #include "algo/pipeline.hpp"
 #include "config/board_calibration_file.hpp"
 #include "hal/camera.hpp"
@@ -17,6 +18,7 @@
 #include "hal/kernel_path_env.hpp"
 #include "settings/settings.hpp"
 
+#include <climits>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -92,7 +94,8 @@ private:
 	void applyPicture(const ColourFrame &frame);
 	void loadHomography();
 	void updateGeometry();
-	void scalePicture();
+	// changed: the picture's rows that differ from the last picture's.
+	void scalePicture(RowRange changed = { 0, INT_MAX });
 	const RgbImage &outputPicture() const { return scaled_.empty() ? picture_ : scaled_; }
 	// [board] backend "colour": the picture is the [board] colour at
 	// pictureWidth_ x pictureHeight_, its pixels (picture_) made only while

@@ -3,6 +3,7 @@
 // kernel bit for bit, what lies outside the camera's view or the ROI, and no
 // allocation per frame.
 #include "algo/board_compositor.hpp"
+#include "algo/changed_rows.hpp"
 #include "algo/composite.hpp"
 #include "tests/allocation_counter.hpp"
 
@@ -314,6 +315,51 @@ TEST(BoardCompositor, RingSlotsEqualFreshImagesAsHeMovesAndTheBoardChanges)
 			holds[slot] = kept.compose(source, box, s.board, 200,
 						   { viewOf(composites[slot]), viewOf(layers[slot]), holds[slot] });
 			EXPECT_NE(holds[slot], 0u);
+			BoardCompositor fresh;
+			ASSERT_TRUE(fresh.configure(tiltedView(), kCw, kCh, kBw, kBh));
+			RgbImage freshComposite;
+			RgbaImage freshLecturer;
+			fresh.compose(source, box, s.board, 200, freshComposite, freshLecturer);
+			ASSERT_TRUE(composites[slot] == freshComposite) << slots << " slots, frame " << frame;
+			ASSERT_TRUE(layers[slot] == freshLecturer) << slots << " slots, frame " << frame;
+		}
+	}
+}
+
+// The board changed in some rows only (a stroke more, said by
+// forgetBoardRows): each slot gets only those rows again, and still equals
+// a fresh composite; a slot that missed more changes than are remembered
+// is written whole.
+TEST(BoardCompositor, RingSlotsGetOnlyTheChangedRowsOfTheBoardAndStillEqualFreshImages)
+{
+	for (int slots : { 2, 3 }) {
+		Scene s = makeScene(41);
+		BoardCompositor kept;
+		ASSERT_TRUE(kept.configure(tiltedView(), kCw, kCh, kBw, kBh));
+		std::vector<RgbImage> composites(slots, RgbImage(kBw, kBh, Rgb8{ 5, 6, 7 }));
+		std::vector<RgbaImage> layers(slots, RgbaImage(kBw, kBh, Rgba8{ 8, 8, 8, 8 }));
+		std::vector<uint64_t> holds(slots, 0);
+		for (int frame = 1; frame <= 24; ++frame) {
+			const int slot = frame % slots;
+			const RgbImage before = s.board;
+			// A stroke in a band of rows on most frames; none on every 4th.
+			if (frame % 4 != 0) {
+				const int y0 = (frame * 13) % (kBh - 3);
+				for (int y = y0; y < y0 + 3; ++y)
+					for (int x = frame % 7; x < kBw; x += 2)
+						s.board.at(x, y) = Rgb8{ uint8_t(200 + frame), 200, 190 };
+			}
+			if (frame == 17) // many changes while this slot waits: more than remembered
+				for (int k = 0; k < 20; ++k) {
+					s.board.at(k, k) = Rgb8{ uint8_t(k), 1, 1 };
+					kept.forgetBoardRows(k, k);
+				}
+			const RowRange changed = changedRows(before, s.board);
+			kept.forgetBoardRows(changed.first, changed.last);
+			Roi box;
+			const RgbaImage source = walkingBox(s, frame, 4, box);
+			holds[slot] = kept.compose(source, box, s.board, 200,
+						   { viewOf(composites[slot]), viewOf(layers[slot]), holds[slot] });
 			BoardCompositor fresh;
 			ASSERT_TRUE(fresh.configure(tiltedView(), kCw, kCh, kBw, kBh));
 			RgbImage freshComposite;
