@@ -285,6 +285,19 @@ TEST(BoardCompositor, KeptOutputsEqualFreshOnesAsHeMovesAndTheBoardChanges)
 // repeated frame's copy, or someone else's garbage); frame by frame, what
 // it writes is byte for byte what a fresh compositor writes into fresh
 // images (the path that copied them into the slots).
+// Whether a slot holds what a fresh compositor makes of the same frame.
+static bool equalsFreshComposite(const RgbaImage &source, const Roi &box, const RgbImage &board, const RgbImage &composite,
+				 const RgbaImage &layer)
+{
+	BoardCompositor fresh;
+	if (!fresh.configure(tiltedView(), kCw, kCh, kBw, kBh))
+		return false;
+	RgbImage freshComposite;
+	RgbaImage freshLecturer;
+	fresh.compose(source, box, board, 200, freshComposite, freshLecturer);
+	return composite == freshComposite && layer == freshLecturer;
+}
+
 TEST(BoardCompositor, RingSlotsEqualFreshImagesAsHeMovesAndTheBoardChanges)
 {
 	for (int slots : { 2, 3 }) {
@@ -315,13 +328,8 @@ TEST(BoardCompositor, RingSlotsEqualFreshImagesAsHeMovesAndTheBoardChanges)
 			holds[slot] = kept.compose(source, box, s.board, 200,
 						   { viewOf(composites[slot]), viewOf(layers[slot]), holds[slot] });
 			EXPECT_NE(holds[slot], 0u);
-			BoardCompositor fresh;
-			ASSERT_TRUE(fresh.configure(tiltedView(), kCw, kCh, kBw, kBh));
-			RgbImage freshComposite;
-			RgbaImage freshLecturer;
-			fresh.compose(source, box, s.board, 200, freshComposite, freshLecturer);
-			ASSERT_TRUE(composites[slot] == freshComposite) << slots << " slots, frame " << frame;
-			ASSERT_TRUE(layers[slot] == freshLecturer) << slots << " slots, frame " << frame;
+			ASSERT_TRUE(equalsFreshComposite(source, box, s.board, composites[slot], layers[slot]))
+				<< slots << " slots, frame " << frame;
 		}
 	}
 }
@@ -360,13 +368,8 @@ TEST(BoardCompositor, RingSlotsGetOnlyTheChangedRowsOfTheBoardAndStillEqualFresh
 			const RgbaImage source = walkingBox(s, frame, 4, box);
 			holds[slot] = kept.compose(source, box, s.board, 200,
 						   { viewOf(composites[slot]), viewOf(layers[slot]), holds[slot] });
-			BoardCompositor fresh;
-			ASSERT_TRUE(fresh.configure(tiltedView(), kCw, kCh, kBw, kBh));
-			RgbImage freshComposite;
-			RgbaImage freshLecturer;
-			fresh.compose(source, box, s.board, 200, freshComposite, freshLecturer);
-			ASSERT_TRUE(composites[slot] == freshComposite) << slots << " slots, frame " << frame;
-			ASSERT_TRUE(layers[slot] == freshLecturer) << slots << " slots, frame " << frame;
+			ASSERT_TRUE(equalsFreshComposite(source, box, s.board, composites[slot], layers[slot]))
+				<< slots << " slots, frame " << frame;
 		}
 	}
 }
