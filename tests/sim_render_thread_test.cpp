@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <dirent.h>
@@ -46,6 +47,9 @@ private:
 		if (std::this_thread::get_id() == callerThread)
 			renderedOnCallerThread = true;
 		frame.rgb.resize(8, 8);
+		// Each frame its own colour: its number (frame.sequence is the last one's).
+		const uint8_t shade = uint8_t(frame.sequence + 1);
+		std::fill(frame.rgb.data(), frame.rgb.data() + frame.rgb.size(), Rgb8{ shade, shade, shade });
 		std::this_thread::sleep_for(renderTime_);
 		finished++;
 	}
@@ -114,6 +118,37 @@ TEST(SimRenderThread, FramesAreRenderedOffTheLoopAndDeliveredOnItAfterTheirRende
 	// arrives a transfer after it.
 	EXPECT_GE(shortestDelayUs, 5000u);
 	EXPECT_EQ(threadNames().count("dk-sim-test"), 0u) << "the render thread outlived stop()";
+}
+
+// A handler may keep a pointer to the frame it was given until the next
+// (daemon/board_output.hpp's waiting board picture): the next render, made
+// while the loop still has it, goes into the other buffer.
+TEST(SimRenderThread, ADeliveredFrameStaysAsItWasUntilTheNextIsDelivered)
+{
+	EventLoop loop;
+	ASSERT_EQ(loop.open(), 0);
+	TimedRenderCamera camera(100, std::chrono::milliseconds(2));
+	const ColourFrame *last = nullptr;
+	uint8_t lastShade = 0;
+	int frames = 0, kept = 0;
+	ASSERT_EQ(camera.start(
+			  loop,
+			  [&](const ColourFrame &f) {
+				  if (last && last != &f && last->rgb.data()[0].r == lastShade)
+					  kept++;
+				  last = &f;
+				  lastShade = f.rgb.data()[0].r;
+				  EXPECT_EQ(lastShade, uint8_t(f.sequence));
+				  if (++frames == 6)
+					  loop.exit(0);
+			  },
+			  [](const DeviceStatus &) {}),
+		  0);
+	EventSource timeout;
+	ASSERT_EQ(loop.addTimer(5'000'000, [&] { loop.exit(1); }, timeout), 0);
+	ASSERT_EQ(loop.run(), 0);
+	camera.stop();
+	EXPECT_EQ(kept, 5) << "a frame's buffer was rendered into before the next frame was delivered";
 }
 
 TEST(SimRenderThread, ARenderSlowerThanThePeriodDropsTheTicksItOverrunsAndCountsThem)

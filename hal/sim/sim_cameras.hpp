@@ -29,8 +29,11 @@ namespace depthkey {
 // camera's frame arrives a transfer after its capture. A render still
 // running at the next tick drops that tick's frame (counted in
 // droppedFrames), as a real camera drops frames the host does not take in
-// time. At most one frame is in flight, delivered (the handler copies it)
-// before the next is lent or rendered: one buffer is enough.
+// time. At most one frame is in flight. A frame made in the camera's own
+// storage stays as delivered until the next is delivered (a handler may keep
+// a pointer to it meanwhile: daemon/board_output.hpp's waiting picture), so
+// the next render goes into the other of two buffers: the second is
+// allocated by the first frame made in it, and reused after.
 //
 // A final camera's destructor must stop() it: a render in progress calls
 // render(), which its members serve.
@@ -98,7 +101,8 @@ private:
 		uint64_t now = loop_->nowUs();
 		captureUs_ = now - std::min(now, captureDelayUs(sequence_));
 		Frame *lent = lender_ ? lender_() : nullptr;
-		rendering_ = lent ? lent : &frame_; // frame_ stays empty while frames are lent
+		// own_ stays empty while frames are lent.
+		rendering_ = lent ? lent : delivered_ == &own_[0] ? &own_[1] : &own_[0];
 		rendering_->sequence = sequence_;
 		renderer_.begin();
 	}
@@ -107,6 +111,7 @@ private:
 		Frame &frame = *rendering_;
 		frame.timestampNs = captureUs_ * 1000u;
 		frame.sequence = ++sequence_;
+		delivered_ = &frame;
 		onFrame_(frame);
 	}
 
@@ -114,9 +119,10 @@ private:
 	EventSource timer_;
 	FrameHandler onFrame_;
 	FrameLender lender_;
-	Frame frame_;
+	Frame own_[2];
 	// The frame in flight: where it is made and when it was captured.
-	Frame *rendering_ = &frame_;
+	Frame *rendering_ = &own_[0];
+	const Frame *delivered_ = nullptr; // the last frame delivered, whichever buffer
 	uint64_t captureUs_ = 0;
 	uint64_t sequence_ = 0; // the last frame's number, whichever buffer it was made in
 	DeviceStatus status_;
