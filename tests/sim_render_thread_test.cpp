@@ -77,6 +77,15 @@ std::multiset<std::string> threadNames()
 	return names;
 }
 
+// Runs the loop until a handler exits it (0), or 5 s pass (1).
+int runUntilExit(EventLoop &loop)
+{
+	EventSource timeout;
+	if (loop.addTimer(5'000'000, [&] { loop.exit(1); }, timeout) < 0)
+		return -1;
+	return loop.run();
+}
+
 void runFor(EventLoop &loop, uint64_t us)
 {
 	EventSource timeout;
@@ -107,9 +116,7 @@ TEST(SimRenderThread, FramesAreRenderedOffTheLoopAndDeliveredOnItAfterTheirRende
 			  [](const DeviceStatus &) {}),
 		  0);
 	EXPECT_EQ(threadNames().count("dk-sim-test"), 1u);
-	EventSource timeout;
-	ASSERT_EQ(loop.addTimer(5'000'000, [&] { loop.exit(1); }, timeout), 0);
-	ASSERT_EQ(loop.run(), 0);
+	ASSERT_EQ(runUntilExit(loop), 0);
 	camera.stop();
 	EXPECT_FALSE(camera.renderedOnCallerThread);
 	EXPECT_FALSE(deliveredOffLoop);
@@ -144,9 +151,7 @@ TEST(SimRenderThread, ADeliveredFrameStaysAsItWasUntilTheNextIsDelivered)
 			  },
 			  [](const DeviceStatus &) {}),
 		  0);
-	EventSource timeout;
-	ASSERT_EQ(loop.addTimer(5'000'000, [&] { loop.exit(1); }, timeout), 0);
-	ASSERT_EQ(loop.run(), 0);
+	ASSERT_EQ(runUntilExit(loop), 0);
 	camera.stop();
 	EXPECT_EQ(kept, 5) << "a frame's buffer was rendered into before the next frame was delivered";
 }
@@ -213,9 +218,7 @@ TEST(SimRenderThread, AStopWhileAFrameRendersWaitsForItDeliversNothingAndARestar
 			  },
 			  poll),
 		  0);
-	EventSource timeout;
-	ASSERT_EQ(loop.addTimer(5'000'000, [&] { loop.exit(1); }, timeout), 0);
-	ASSERT_EQ(loop.run(), 0);
+	ASSERT_EQ(runUntilExit(loop), 0);
 	camera.stop();
 	EXPECT_EQ(finishedAtStop, 1) << "stop() returned while a render still ran";
 	EXPECT_EQ(stateAtStop, DeviceState::Stopped);
