@@ -53,7 +53,10 @@ public:
 	// The slot the next addColour() fills, for a camera to make its frame in
 	// (Camera::lendFrames): addColour() of that very frame copies nothing.
 	// Null when the ring is full. Valid until addColour(), clear() or
-	// configure(); pop() and next() do not move it.
+	// configure(); pop() and next() do not move it. No member reads or
+	// writes that frame before addColour() takes it (the storage of all
+	// slots stays put), so a camera may fill it on a thread of its own
+	// while the queue is used on another.
 	ColourFrame *freeSlot();
 
 	// The oldest held frame when it is due at nowNs, bracketed with depth;

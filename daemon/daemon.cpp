@@ -153,6 +153,10 @@ void Daemon::startCameras()
 	// rather than after: the simulator's frames arrive a render (10-20 ms)
 	// after their capture, so at 25 fps and 150 ms the oldest is still
 	// waiting when the next capture starts, though 160 ms after its own.
+	// The simulator renders it on its own thread (hal/sim/sim_render_thread.hpp)
+	// while the loop goes on pairing and keying: the queue leaves that slot
+	// alone until the frame is delivered here, and stopCameras() stops the
+	// camera (waiting for its render) before it clears the ring.
 	colour_->lendFrames([this]() -> ColourFrame * {
 		keyDueFrames(true);
 		return pairing_.queue().freeSlot();

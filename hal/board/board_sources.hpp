@@ -36,13 +36,15 @@ private:
 	DeviceStatus status_;
 };
 
-class SimBoardSource : public PeriodicSimCamera<ColourFrame>
+class SimBoardSource final : public PeriodicSimCamera<ColourFrame>
 {
 public:
 	SimBoardSource(const BoardSettings &settings, const SimSettings &sim) : settings_(settings), sim_(sim) {}
+	~SimBoardSource() override { stop(); }
 	std::string name() const override { return "sim-board"; }
 
 private:
+	const char *threadName() const override { return "dk-sim-board"; }
 	int fps() const override { return settings_.fps; }
 	void prepare() override { display_.configure(sim_, settings_.width); }
 	void render(uint64_t nowUs, ColourFrame &frame) override { display_.render(nowUs / 1e6, frame.rgb); }

@@ -12,6 +12,7 @@
 
 #include "hal/camera.hpp"
 #include "hal/sim/lecture_simulator.hpp"
+#include "hal/sim/sim_render_thread.hpp"
 #include "hal/sim/sim_technician.hpp"
 #include "hal/sim/sim_timing.hpp"
 #include "settings/settings.hpp"
@@ -21,8 +22,21 @@
 
 namespace depthkey {
 
-// What both simulated cameras share: a periodic timer on the event loop that
-// renders a frame into a reused buffer, stamps it and hands it over.
+// What the simulated cameras share: a periodic timer on the event loop at
+// whose ticks frames are captured, rendered on a thread of the camera's own
+// (hal/sim/sim_render_thread.hpp: the simulator's cost, not the box's) into
+// a reused buffer, and delivered on the loop once rendered, as a real
+// camera's frame arrives a transfer after its capture. A render still
+// running at the next tick drops that tick's frame (counted in
+// droppedFrames), as a real camera drops frames the host does not take in
+// time. At most one frame is in flight. A frame made in the camera's own
+// storage stays as delivered until the next is delivered (a handler may keep
+// a pointer to it meanwhile: daemon/board_output.hpp's waiting picture), so
+// the next render goes into the other of two buffers: the second is
+// allocated by the first frame made in it, and reused after.
+//
+// A final camera's destructor must stop() it: a render in progress calls
+// render(), which its members serve.
 template<typename Frame>
 class PeriodicSimCamera : public Camera<Frame>
 {
@@ -36,45 +50,68 @@ public:
 
 	int start(EventLoop &loop, FrameHandler onFrame, StatusHandler onStatus) override
 	{
+		stop();
 		loop_ = &loop;
 		onFrame_ = std::move(onFrame);
 		prepare();
 		sequence_ = 0;
-		int ret = loop.addPeriodic(1000000u / fps(), [this] { capture(); }, timer_);
+		int ret = renderer_.start(loop, threadName(), [this] { render(captureUs_, *rendering_); },
+					  [this] { deliver(); });
 		if (ret < 0)
 			return ret;
+		ret = loop.addPeriodic(1000000u / fps(), [this] { capture(); }, timer_);
+		if (ret < 0) {
+			renderer_.stop();
+			return ret;
+		}
 		status_ = { DeviceState::Streaming, 0, "" };
 		onStatus(status_);
 		return 0;
 	}
+	// A frame being rendered is finished first, and not delivered.
 	void stop() override
 	{
 		timer_.reset();
-		status_ = { DeviceState::Stopped, 0, "" };
+		renderer_.stop();
+		status_ = { DeviceState::Stopped, 0, "", status_.droppedFrames };
 	}
 	DeviceStatus status() const override { return status_; }
 
 protected:
+	// The render thread's name (15 characters at most), e.g. "dk-sim-colour".
+	virtual const char *threadName() const = 0;
 	virtual int fps() const = 0;
 	virtual void prepare() = 0;
 	// Renders the scene for capture time nowUs; frame.sequence is the
-	// previous frame's number.
+	// previous frame's number. Runs on the render thread: it may use only
+	// what the loop leaves alone while the camera streams.
 	virtual void render(uint64_t nowUs, Frame &frame) = 0;
-	// How long before its delivery (the timer's tick) frame n (from 0) was
-	// captured: its timestamp and the scene it shows.
+	// How long before the timer's tick frame n (from 0) was captured: its
+	// timestamp and the scene it shows.
 	virtual uint64_t captureDelayUs(uint64_t /*n*/) const { return 0; }
 
 private:
 	void capture()
 	{
+		renderer_.deliverFinished(); // the last frame, if its wake-up is still to come
+		if (renderer_.busy()) {
+			status_.droppedFrames++; // this tick's frame is never made
+			return;
+		}
 		uint64_t now = loop_->nowUs();
-		now -= std::min(now, captureDelayUs(sequence_));
+		captureUs_ = now - std::min(now, captureDelayUs(sequence_));
 		Frame *lent = lender_ ? lender_() : nullptr;
-		Frame &frame = lent ? *lent : frame_; // frame_ stays empty while frames are lent
-		frame.sequence = sequence_;
-		render(now, frame);
-		frame.timestampNs = now * 1000u;
+		// own_ stays empty while frames are lent.
+		rendering_ = lent ? lent : delivered_ == &own_[0] ? &own_[1] : &own_[0];
+		rendering_->sequence = sequence_;
+		renderer_.begin();
+	}
+	void deliver()
+	{
+		Frame &frame = *rendering_;
+		frame.timestampNs = captureUs_ * 1000u;
 		frame.sequence = ++sequence_;
+		delivered_ = &frame;
 		onFrame_(frame);
 	}
 
@@ -82,22 +119,30 @@ private:
 	EventSource timer_;
 	FrameHandler onFrame_;
 	FrameLender lender_;
-	Frame frame_;
+	Frame own_[2];
+	// The frame in flight: where it is made and when it was captured.
+	Frame *rendering_ = &own_[0];
+	const Frame *delivered_ = nullptr; // the last frame delivered, whichever buffer
+	uint64_t captureUs_ = 0;
 	uint64_t sequence_ = 0; // the last frame's number, whichever buffer it was made in
 	DeviceStatus status_;
+	SimRenderThread renderer_; // last: stopped before the members a render uses go
 };
 
-class SimColourCamera : public PeriodicSimCamera<ColourFrame>
+class SimColourCamera final : public PeriodicSimCamera<ColourFrame>
 {
 public:
 	SimColourCamera(const ColourCameraSettings &settings, const SimSettings &sim)
 		: settings_(settings), sim_(sim) {}
+	~SimColourCamera() override { stop(); }
 	std::string name() const override { return "sim-colour"; }
 	// A calibration session (depthkey-calibrate --live): the technician's
-	// pattern instead of the lecture. Shared with the depth camera.
+	// pattern instead of the lecture. Shared with the depth camera; set
+	// before start() (the render thread reads it).
 	void setTechnician(std::shared_ptr<const sim::SimTechnician> technician) { technician_ = std::move(technician); }
 
 private:
+	const char *threadName() const override { return "dk-sim-colour"; }
 	int fps() const override { return settings_.fps; }
 	void prepare() override;
 	void render(uint64_t nowUs, ColourFrame &frame) override;
@@ -111,11 +156,12 @@ private:
 	std::shared_ptr<const sim::SimTechnician> technician_;
 };
 
-class SimDepthCamera : public PeriodicSimCamera<DepthFrame>
+class SimDepthCamera final : public PeriodicSimCamera<DepthFrame>
 {
 public:
 	SimDepthCamera(const DepthCameraSettings &settings, const SimSettings &sim)
 		: settings_(settings), sim_(sim) {}
+	~SimDepthCamera() override { stop(); }
 	std::string name() const override { return "sim-depth"; }
 	void setTechnician(std::shared_ptr<const sim::SimTechnician> technician) { technician_ = std::move(technician); }
 
@@ -123,6 +169,7 @@ public:
 	static constexpr int kHeight = LectureSimulator::kTofHeight;
 
 private:
+	const char *threadName() const override { return "dk-sim-depth"; }
 	int fps() const override { return settings_.fps; }
 	void prepare() override;
 	void render(uint64_t nowUs, DepthFrame &frame) override;

@@ -10,9 +10,11 @@ runs N seconds after a 3 s start, and this prints, as figures (medians of the
 runs, never a verdict):
   - the CPU share of one core of each of its threads, from
     /proc/PID/task/TID/stat over the measured seconds: dk-keying (the
-    pipeline, daemon/keying_worker.hpp) apart from the event loop, which also
-    renders the simulated cameras (the simulator's own cost: it would be a
-    camera's DMA on the box) and publishes;
+    pipeline, daemon/keying_worker.hpp) apart from the event loop, which
+    pairs and publishes; and apart from both, the dk-sim* threads, where the
+    simulated cameras render (hal/sim/sim_render_thread.hpp): the
+    simulator's own cost, a camera's DMA on the box, not the daemon's
+    (issue 29 §2), so the box's share is the total without them;
   - the status line's keying time (median and p99 of a frame's work) and the
     frames shed (a waiting frame dropped because the worker was busy), read
     from the last STATUS= the daemon sent to our notify socket;
@@ -103,6 +105,18 @@ def run_case(bin_dir, config, work, seconds):
     }
 
 
+def is_simulator(name):
+    """A thread of the simulated cameras' rendering (dk-sim-colour, -depth,
+    -board): the stand-in's cost, not the box's."""
+    return name.startswith("dk-sim")
+
+
+def thread_label(name):
+    if is_simulator(name):
+        return "the simulator's rendering (a camera's DMA on the box: not the daemon's)"
+    return {"dk-keying": "the keying worker", "depthkeyd": "the event loop (pairing, publishing)"}.get(name, "")
+
+
 def shed_of(status):
     m = re.search(r"([0-9]+) shed", status)
     return int(m.group(1)) if m else None
@@ -126,9 +140,12 @@ def main():
                 med([r["keying_ms"] for r in runs]), med([r["keying_p99_ms"] for r in runs]),
                 "/".join(str(r["shed"]) for r in runs), args.seconds, med([r["output_fps"] for r in runs])))
             for name in names:
-                label = {"dk-keying": "the keying worker",
-                         "depthkeyd": "the event loop (incl. rendering the simulated cameras)"}.get(name, "")
-                print("    %-11s %5.1f%% of one core  %s" % (name, med([r["shares"].get(name, 0) for r in runs]), label))
+                print("    %-13s %5.1f%% of one core  %s" % (name, med([r["shares"].get(name, 0) for r in runs]),
+                                                         thread_label(name)))
+            box = [sum(v for n, v in r["shares"].items() if not is_simulator(n)) for r in runs]
+            sim = [sum(v for n, v in r["shares"].items() if is_simulator(n)) for r in runs]
+            print("    the box's threads %5.1f%% of one core; the simulator's rendering %.1f%% apart" % (
+                med(box), med(sim)))
 
 
 if __name__ == "__main__":
