@@ -220,6 +220,34 @@ double LatencyEstimator::rivalPeak(const std::vector<double> &r, size_t best)
 	return rival;
 }
 
+double LatencyEstimator::peakShift(const std::vector<double> &r, size_t best)
+{
+	// A parabola fitted (least squares) to the curve within kFitHalfWidthMs
+	// of the best lag, as far as the curve reaches on both sides: the top of
+	// the peak is flat and bumpy (a few intervals more or less move its
+	// highest point by 10 ms from one second to the next), its shape is not.
+	const size_t w = std::min({ size_t(kFitHalfWidthMs), best, r.size() - 1 - best });
+	if (w == 0)
+		return 0.0;
+	double s0 = 0, s2 = 0, s4 = 0, sr = 0, srd = 0, srd2 = 0;
+	for (size_t k = best - w; k <= best + w; ++k) {
+		const double d = double(k) - double(best), d2 = d * d;
+		s0 += 1;
+		s2 += d2;
+		s4 += d2 * d2;
+		sr += r[k];
+		srd += r[k] * d;
+		srd2 += r[k] * d2;
+	}
+	// Symmetric d: the slope alone from sum(r d), the curvature from the
+	// 2x2 system of the constant and the square.
+	const double slope = srd / s2;
+	const double curvature = (s0 * srd2 - s2 * sr) / (s0 * s4 - s2 * s2);
+	if (curvature >= 0)
+		return 0.0;
+	return std::clamp(-slope / (2 * curvature), -double(w), double(w));
+}
+
 double LatencyEstimator::colourMotionPerSecond() const
 {
 	if (colourCount_ < 2 || lumaWidth_ <= 0 || lumaHeight_ <= 0)
@@ -247,14 +275,7 @@ LatencyEstimator::Estimate LatencyEstimator::estimate() const
 			best = k;
 	}
 	e.correlation = r_[best];
-	double offset = double(best) - maxLagMs_;
-	if (best > 0 && best + 1 < r_.size()) {
-		const double a = r_[best - 1], b = r_[best], c = r_[best + 1];
-		const double denominator = a - 2 * b + c;
-		if (denominator < 0)
-			offset += 0.5 * (a - c) / denominator;
-	}
-	e.offsetMs = offset;
+	e.offsetMs = double(best) - maxLagMs_ + peakShift(r_, best);
 	e.peakMargin = e.correlation - rivalPeak(r_, best);
 	e.valid = e.correlation >= kMinCorrelation;
 	return e;

@@ -10,8 +10,8 @@
 // For each candidate offset L (-max_lag..+max_lag, 1 ms steps) the colour
 // motion over each depth frame's interval, shifted by L, is read off the
 // cumulative colour motion (linear between colour frames), and correlated
-// (Pearson) with the depth motion; the best L, refined by a parabola through
-// its neighbours, is the offset to add to depth timestamps (negative: depth
+// (Pearson) with the depth motion; the best L, refined by a parabola fitted
+// to the peak's top, is the offset to add to depth timestamps (negative: depth
 // frames are stamped after their capture).
 // The evidence accumulates (issue 29 §3): each depth interval is folded into
 // per-lag correlation sums once the colour around it (+-max_lag) has come,
@@ -45,6 +45,9 @@ public:
 	static constexpr double kMinCorrelation = 0.5;
 	// The peak's own lobe, ms either side: about half a depth period.
 	static constexpr int kPeakLobeMs = 50;
+	// The peak's top, ms either side of the best lag, that the sub-lag
+	// refinement fits.
+	static constexpr int kFitHalfWidthMs = 25;
 	// The evidence's half-life: long enough that the estimate rests on
 	// minutes of lecture, short enough that a changed latency (another hub,
 	// a firmware update) takes over within a few minutes.
@@ -100,6 +103,8 @@ private:
 	// The best correlation among the local maxima outside the peak's lobe
 	// (-1 when there is none).
 	static double rivalPeak(const std::vector<double> &r, size_t best);
+	// The refinement of the best lag, ms, from the shape of the peak.
+	static double peakShift(const std::vector<double> &r, size_t best);
 	double colourMotionPerSecond() const;
 
 	int nearMm_ = 500, farMm_ = 1850, maxLagMs_ = 300;
