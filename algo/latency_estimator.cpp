@@ -15,6 +15,7 @@ void LatencyEstimator::configure(int nearMm, int farMm, int maxLagMs)
 		// Once per configuration: 2 * max_lag + 1 lags.
 		lags_.assign(size_t(2 * maxLagMs_ + 1), LagSums{});
 		cumulative_.assign(lags_.size(), 0.0);
+		sharp_.assign(lags_.size(), 0);
 		r_.assign(lags_.size(), 0.0);
 		reset();
 	}
@@ -26,7 +27,8 @@ void LatencyEstimator::reset()
 	colourCount_ = colourNext_ = pendingCount_ = pendingNext_ = 0;
 	colourTotal_ = newestDepthNs_ = 0;
 	std::fill(lags_.begin(), lags_.end(), LagSums{});
-	weight_ = intervals_ = 0;
+	intervals_ = 0;
+	colourPeriodNs_ = 0;
 	chain_ = 0;
 	lastFoldedNs_ = 0;
 	lastY_ = 0;
@@ -58,6 +60,13 @@ void LatencyEstimator::addColour(const RgbImage &rgb, uint64_t timestampNs)
 	}
 	if (colourCount_ && timestampNs <= colour_[(colourNext_ + kColourHistory - 1) % kColourHistory].ns)
 		return; // out of order: ignored
+	if (colourCount_) {
+		// The usual colour interval, a slow average (a gap of a second is
+		// a camera gone, not its rate).
+		const double interval = double(timestampNs - colour_[(colourNext_ + kColourHistory - 1) % kColourHistory].ns);
+		if (interval < 1e9)
+			colourPeriodNs_ = colourPeriodNs_ > 0 ? colourPeriodNs_ + (interval - colourPeriodNs_) / 32 : interval;
+	}
 	colourTotal_ += moved;
 	colour_[colourNext_] = { timestampNs, uint32_t(std::min<uint64_t>(colourTotal_, UINT32_MAX)) };
 	colourNext_ = (colourNext_ + 1) % kColourHistory;
@@ -120,6 +129,13 @@ void LatencyEstimator::addDepth(const DepthFrame &depth, uint64_t timestampNs)
 bool LatencyEstimator::colourMotionAlong(double t0, double stepNs)
 {
 	const size_t n = cumulative_.size();
+	// A point in a gap of more than kMaxGapPeriods usual colour intervals
+	// is not sharp: the motion is spread evenly over the gap, which it was
+	// not. (On a busy box the loop stalls, and the colour and depth frames
+	// after a stall come together: lags near 0 would read sharp colour at
+	// both ends of such intervals while the true lag reads the gap, a pull
+	// of 20-30 ms towards 0.)
+	const double maxGapNs = kMaxGapPeriods * colourPeriodNs_;
 	if (colourCount_ < 2 || t0 < double(colourAt(0).ns) ||
 	    t0 + double(n - 1) * stepNs > double(colourAt(colourCount_ - 1).ns))
 		return false;
@@ -136,6 +152,7 @@ bool LatencyEstimator::colourMotionAlong(double t0, double stepNs)
 		const Sample &a = colourAt(lo), &b = colourAt(lo + 1);
 		const double f = b.ns > a.ns ? std::clamp((t - double(a.ns)) / double(b.ns - a.ns), 0.0, 1.0) : 0.0;
 		cumulative_[k] = double(a.motion) + f * (double(b.motion) - double(a.motion));
+		sharp_[k] = double(b.ns - a.ns) <= maxGapNs;
 	}
 	return true;
 }
@@ -164,13 +181,7 @@ void LatencyEstimator::fold(const Sample &depth)
 		chain_ = 0;
 		return;
 	}
-	if (chain_ == 0) {
-		for (size_t k = 0; k < lags_.size(); ++k)
-			lags_[k].lastCumulative = cumulative_[k];
-		lastFoldedNs_ = depth.ns;
-		chain_ = 1;
-		return;
-	}
+	const bool haveInterval = chain_ >= 1, haveChange = chain_ == 2;
 	// Per second, so that jittered intervals compare. The changes of the
 	// motion from one interval to the next are correlated, not the motion
 	// itself: walking and standing make a slow swell that correlates at any
@@ -178,30 +189,41 @@ void LatencyEstimator::fold(const Sample &depth)
 	// the lag down.
 	const double seconds = std::max(1e-3, double(depth.ns - lastFoldedNs_) * 1e-9);
 	const double y = depth.motion / seconds, dy = y - lastY_;
-	const bool addChange = chain_ == 2;
 	// Older evidence fades with the time passed, so a changed latency
 	// takes over.
-	const double decay = std::exp2(-seconds / kHalfLifeS);
-	intervals_ = intervals_ * decay + 1.0;
-	if (addChange)
-		weight_ = weight_ * decay + 1.0;
+	const double decay = haveInterval ? std::exp2(-seconds / kHalfLifeS) : 1.0;
+	if (haveInterval)
+		intervals_ = intervals_ * decay + 1.0;
 	for (size_t k = 0; k < lags_.size(); ++k) {
 		LagSums &s = lags_[k];
-		const double x = (cumulative_[k] - s.lastCumulative) / seconds;
-		if (addChange) {
+		// Each lag keeps its own chain: an interval counts where the
+		// colour at both its ends is sharp, a change where two
+		// consecutive intervals do.
+		const bool xSharp = haveInterval && s.lastSharp && sharp_[k];
+		const double x = xSharp ? (cumulative_[k] - s.lastCumulative) / seconds : 0.0;
+		s.w *= decay;
+		s.sx *= decay;
+		s.sy *= decay;
+		s.sxx *= decay;
+		s.syy *= decay;
+		s.sxy *= decay;
+		if (haveChange && xSharp && s.lastXSharp) {
 			const double dx = x - s.lastX;
-			s.sx = s.sx * decay + dx;
-			s.sy = s.sy * decay + dy;
-			s.sxx = s.sxx * decay + dx * dx;
-			s.syy = s.syy * decay + dy * dy;
-			s.sxy = s.sxy * decay + dx * dy;
+			s.w += 1.0;
+			s.sx += dx;
+			s.sy += dy;
+			s.sxx += dx * dx;
+			s.syy += dy * dy;
+			s.sxy += dx * dy;
 		}
 		s.lastX = x;
+		s.lastXSharp = xSharp;
 		s.lastCumulative = cumulative_[k];
+		s.lastSharp = sharp_[k];
 	}
 	lastY_ = y;
 	lastFoldedNs_ = depth.ns;
-	chain_ = 2;
+	chain_ = haveInterval ? 2 : 1;
 }
 
 double LatencyEstimator::rivalPeak(const std::vector<double> &r, size_t best)
@@ -264,16 +286,20 @@ LatencyEstimator::Estimate LatencyEstimator::estimate() const
 	e.depthFrames = size_t(std::lround(intervals_));
 	e.colourMotionPerS = colourMotionPerSecond();
 	e.maxLagMs = maxLagMs_;
-	if (e.depthFrames < kMinDepthFrames || weight_ < 3.0)
+	if (e.depthFrames < kMinDepthFrames)
 		return e;
 	size_t best = 0;
 	for (size_t k = 0; k < lags_.size(); ++k) {
 		const LagSums &s = lags_[k];
-		const double vx = s.sxx - s.sx * s.sx / weight_, vy = s.syy - s.sy * s.sy / weight_;
-		r_[k] = vx > 0 && vy > 0 ? (s.sxy - s.sx * s.sy / weight_) / std::sqrt(vx * vy) : 0.0;
+		const double vx = s.sxx - s.sx * s.sx / s.w, vy = s.syy - s.sy * s.sy / s.w;
+		r_[k] = s.w >= 3.0 && vx > 0 && vy > 0 ? (s.sxy - s.sx * s.sy / s.w) / std::sqrt(vx * vy) : 0.0;
 		if (r_[k] > r_[best])
 			best = k;
 	}
+	// What the best lag rests on: the changes it summed, decayed.
+	e.depthFrames = size_t(std::lround(lags_[best].w));
+	if (e.depthFrames < kMinDepthFrames)
+		return e;
 	e.correlation = r_[best];
 	e.offsetMs = double(best) - maxLagMs_ + peakShift(r_, best);
 	e.peakMargin = e.correlation - rivalPeak(r_, best);

@@ -52,6 +52,9 @@ public:
 	// minutes of lecture, short enough that a changed latency (another hub,
 	// a firmware update) takes over within a few minutes.
 	static constexpr double kHalfLifeS = 90.0;
+	// Colour gaps longer than this many usual colour intervals leave the
+	// lags whose points fall in them out of an interval (see fold()).
+	static constexpr double kMaxGapPeriods = 2.5;
 
 	void configure(int nearMm, int farMm, int maxLagMs = 300);
 	void reset();
@@ -63,8 +66,8 @@ public:
 		bool valid = false;
 		double offsetMs = 0;     // add to depth timestamps
 		double correlation = 0;  // at the peak
-		// Depth intervals in the evidence, decayed (at 10 fps at most
-		// 10 x kHalfLifeS / ln 2).
+		// Depth intervals in the best lag's evidence, decayed (at 10 fps
+		// at most 10 x kHalfLifeS / ln 2).
 		size_t depthFrames = 0;
 		// How clearly the peak beats the rest: the peak's correlation less
 		// the best correlation of any other local maximum further than
@@ -86,8 +89,9 @@ private:
 	// Per lag: the correlation sums of the changes (decayed), and the
 	// chain's last cumulative colour motion and last colour rate.
 	struct LagSums {
-		double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+		double w = 0, sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
 		double lastCumulative = 0, lastX = 0;
+		bool lastSharp = false, lastXSharp = false;
 	};
 	const Sample &colourAt(size_t k) const
 	{
@@ -122,8 +126,9 @@ private:
 	// The accumulated evidence, one entry per lag (allocated at configure).
 	std::vector<LagSums> lags_;
 	std::vector<double> cumulative_;         // scratch of colourMotionAlong
+	std::vector<uint8_t> sharp_;             // its points outside long colour gaps
+	double colourPeriodNs_ = 0;              // the usual colour interval (average)
 	mutable std::vector<double> r_;          // scratch of estimate()
-	double weight_ = 0;                      // decayed count of changes summed
 	double intervals_ = 0;                   // decayed count of intervals folded
 	// The chain of folded intervals: 0 none, 1 a cumulative per lag, 2 also
 	// a rate (the next interval adds a change).
