@@ -70,7 +70,12 @@ void BoardOutput::startSource()
 	// simulated board; hal/camera.hpp) makes them in spare_, which
 	// applyPicture() swaps with picture_ rather than copy (4.5 MB a
 	// picture at 1920x780). The others' pictures are copied.
-	source_->lendFrames([this]() -> ColourFrame * { return solidColour() ? nullptr : &spare_; });
+	// Not while spare_ holds a picture that waits for keying to finish: the
+	// simulated board renders on a thread of its own (hal/sim/
+	// sim_render_thread.hpp) and would write over it while the loop takes
+	// it; the source then makes that picture in its own storage.
+	source_->lendFrames(
+		[this]() -> ColourFrame * { return solidColour() || waitingPicture_ == &spare_ ? nullptr : &spare_; });
 	std::string name = source_->name();
 	int ret = source_->start(
 		*loop_, [this](const ColourFrame &f) { onPicture(f); },

@@ -115,6 +115,31 @@ TEST(BoardOutput, ComposesInBoardGeometryAndKeepsTheLastPictureWhileLost)
 	EXPECT_EQ(f.statuses.back(), (std::pair<std::string, DeviceState>{ "fake-board", DeviceState::Lost }));
 }
 
+// A picture made in the daemon's lent storage waits there while keying
+// runs; the next picture must not be made over it (the simulated board
+// renders on a thread of its own): nothing is lent until it is taken.
+TEST(BoardOutput, APictureWaitingInLentStorageIsNotLentAgain)
+{
+	Fixture f;
+	BoardOutput board;
+	bool busy = false;
+	board.setPipelineBusy([&] { return busy; });
+	f.start(board);
+	ASSERT_TRUE(board.boardGeometry()) << board.statusText();
+	ColourFrame *lent = f.source->borrow();
+	ASSERT_NE(lent, nullptr);
+	lent->rgb = RgbImage(kBw, kBh, Rgb8{ 9, 8, 7 });
+	busy = true;
+	f.source->deliver(*lent);
+	EXPECT_EQ(f.source->borrow(), nullptr) << "the waiting picture would be written over";
+	busy = false;
+	board.takeWaitingPicture();
+	EXPECT_NE(f.source->borrow(), nullptr) << "taken: storage is lent again";
+	RgbImage colour(kCw, kCh, Rgb8{ 0, 0, 0 });
+	board.compose(colour, Gray8Image(kCw, kCh, 0), Roi{ 0, 0, kCw, kCh }, 256);
+	EXPECT_EQ(board.composite().at(100, 50), (Rgb8{ 9, 8, 7 }));
+}
+
 TEST(BoardOutput, SaysWhyItIsNotCalibratedAndFallsBackToCameraGeometry)
 {
 	Fixture f;

@@ -28,6 +28,9 @@ public:
 	bool freeRunning() const override { return freeRunning_; }
 
 	void deliver(const Frame &frame) { onFrame_(frame); }
+	// What the daemon lends for the next frame (hal/camera.hpp), or null.
+	void lendFrames(typename Camera<Frame>::FrameLender lender) override { lender_ = std::move(lender); }
+	Frame *borrow() { return lender_ ? lender_() : nullptr; }
 	// false: a source that waits for the daemon (a replay not in real time).
 	void setFreeRunning(bool freeRunning) { freeRunning_ = freeRunning; }
 	void setState(DeviceState state, int error, const std::string &detail)
@@ -38,6 +41,7 @@ public:
 	}
 
 private:
+	typename Camera<Frame>::FrameLender lender_;
 	std::string name_;
 	bool freeRunning_ = true;
 	FrameHandler onFrame_;
