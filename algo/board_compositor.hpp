@@ -21,10 +21,11 @@
 // slots (issue 29 §2: each frame written once, where it goes), a pair for
 // each slot, so the compositor remembers which tiles it warped into each of
 // its last kRemembered pairs, known by the tag compose() returns. A new
-// board picture (forgetBoard()) is copied whole once: at 1920x1080 that
-// copy is about a quarter of such a frame's time (docs/board.md), and the
-// board's picture changes far less often than the camera's (a capture
-// stick's every frame). Nothing is allocated per frame
+// board picture is copied into each pair once, and only in the rows it
+// changed (forgetBoardRows(); forgetBoard(): all of them): at 1920x1080 a
+// whole copy is about a quarter of such a frame's time (docs/board.md),
+// and a board's picture comes 10 times a second mostly unchanged, or with
+// a stroke more. Nothing is allocated per frame
 // (tests/board_compositor_test.cpp counts).
 #pragma once
 
