@@ -55,6 +55,7 @@ public:
 		onFrame_ = std::move(onFrame);
 		prepare();
 		sequence_ = 0;
+		lastCaptureUs_ = 0;
 		int ret = renderer_.start(loop, threadName(), [this] { render(captureUs_, *rendering_); },
 					  [this] { deliver(); });
 		if (ret < 0)
@@ -99,7 +100,12 @@ private:
 			return;
 		}
 		uint64_t now = loop_->nowUs();
-		captureUs_ = now - std::min(now, captureDelayUs(sequence_));
+		// A camera's timestamps only go forward. The capture instant is the
+		// tick less its jitter; a tick the loop ran late followed by one on
+		// time could put it before the last frame's (a late tick of 4+ ms
+		// at 50 fps with 8 ms of jitter): then just after it instead.
+		captureUs_ = std::max(now - std::min(now, captureDelayUs(sequence_)), lastCaptureUs_ + 1);
+		lastCaptureUs_ = captureUs_;
 		Frame *lent = lender_ ? lender_() : nullptr;
 		// own_ stays empty while frames are lent.
 		rendering_ = lent ? lent : delivered_ == &own_[0] ? &own_[1] : &own_[0];
@@ -123,7 +129,7 @@ private:
 	// The frame in flight: where it is made and when it was captured.
 	Frame *rendering_ = &own_[0];
 	const Frame *delivered_ = nullptr; // the last frame delivered, whichever buffer
-	uint64_t captureUs_ = 0;
+	uint64_t captureUs_ = 0, lastCaptureUs_ = 0;
 	uint64_t sequence_ = 0; // the last frame's number, whichever buffer it was made in
 	DeviceStatus status_;
 	SimRenderThread renderer_; // last: stopped before the members a render uses go
