@@ -224,9 +224,10 @@ void BoardCompositor::compose(const RgbaImage &source, const Roi &roi, const Rgb
 	imageTag_ = compose(source, roi, board, opacityQ8, { viewOf(composite), viewOf(lecturer), imageTag_ });
 }
 
+// The images' pair is known by its tag like a slot: the rows' history
+// brings it up to date too.
 void BoardCompositor::forgetBoardRows(int firstRow, int lastRow)
 {
-	imageTag_ = 0;
 	if (firstRow > lastRow)
 		return;
 	boardVersion_++;

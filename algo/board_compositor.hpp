@@ -93,7 +93,11 @@ public:
 	// compose() copies the board only where it warped last time: call this
 	// when the board picture changed, or composite was written by anyone
 	// else (the next compose copies all of it, into every target).
-	void forgetBoard() { forgetBoardRows(0, INT_MAX); }
+	void forgetBoard()
+	{
+		forgetBoardRows(0, INT_MAX);
+		imageTag_ = 0;
+	}
 	// Only the board's rows firstRow..lastRow (output rows) changed
 	// (first > last: none): a target that held the board of up to
 	// kBoardHistory pictures ago gets only the rows changed since copied.

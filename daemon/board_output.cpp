@@ -118,13 +118,18 @@ void BoardOutput::applyPicture(const ColourFrame &frame)
 	bool resized = frame.rgb.width() != pictureWidth_ || frame.rgb.height() != pictureHeight_;
 	pictureWidth_ = frame.rgb.width();
 	pictureHeight_ = frame.rgb.height();
-	// What changed since the last picture: the prior samples only that again.
+	// What changed since the last picture, where only that is copied and
+	// sampled again: in board geometry at the same size (a new size or
+	// geometry takes the whole picture anyway).
+	const bool rowsMatter = !resized && boardGeometry();
 	RowRange changed{ 0, pictureHeight_ - 1 };
 	if (!solidColour() && &frame == &spare_) {
 		std::swap(picture_, spare_.rgb); // the next picture is made over the last one
-		changed = changedRows(spare_.rgb, picture_);
+		if (rowsMatter)
+			changed = changedRows(spare_.rgb, picture_);
 	} else if (!solidColour()) {
-		changed = changedRows(picture_, frame.rgb);
+		if (rowsMatter)
+			changed = changedRows(picture_, frame.rgb);
 		picture_ = frame.rgb; // same size: no allocation
 	} else if (!picture_.empty())
 		fillSolid(picture_);

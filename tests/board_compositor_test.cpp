@@ -342,8 +342,11 @@ TEST(BoardCompositor, RingSlotsGetOnlyTheChangedRowsOfTheBoardAndStillEqualFresh
 {
 	for (int slots : { 2, 3 }) {
 		Scene s = makeScene(41);
-		BoardCompositor kept;
+		BoardCompositor kept, imagesKept; // into ring slots; into its own pair of images
 		ASSERT_TRUE(kept.configure(tiltedView(), kCw, kCh, kBw, kBh));
+		ASSERT_TRUE(imagesKept.configure(tiltedView(), kCw, kCh, kBw, kBh));
+		RgbImage composite;
+		RgbaImage layer;
 		std::vector<RgbImage> composites(slots, RgbImage(kBw, kBh, Rgb8{ 5, 6, 7 }));
 		std::vector<RgbaImage> layers(slots, RgbaImage(kBw, kBh, Rgba8{ 8, 8, 8, 8 }));
 		std::vector<uint64_t> holds(slots, 0);
@@ -361,15 +364,19 @@ TEST(BoardCompositor, RingSlotsGetOnlyTheChangedRowsOfTheBoardAndStillEqualFresh
 				for (int k = 0; k < 20; ++k) {
 					s.board.at(k, k) = Rgb8{ uint8_t(k), 1, 1 };
 					kept.forgetBoardRows(k, k);
+					imagesKept.forgetBoardRows(k, k);
 				}
 			const RowRange changed = changedRows(before, s.board);
 			kept.forgetBoardRows(changed.first, changed.last);
+			imagesKept.forgetBoardRows(changed.first, changed.last);
 			Roi box;
 			const RgbaImage source = walkingBox(s, frame, 4, box);
 			holds[slot] = kept.compose(source, box, s.board, 200,
 						   { viewOf(composites[slot]), viewOf(layers[slot]), holds[slot] });
 			ASSERT_TRUE(equalsFreshComposite(source, box, s.board, composites[slot], layers[slot]))
 				<< slots << " slots, frame " << frame;
+			imagesKept.compose(source, box, s.board, 200, composite, layer);
+			ASSERT_TRUE(equalsFreshComposite(source, box, s.board, composite, layer)) << "images, frame " << frame;
 		}
 	}
 }
