@@ -364,10 +364,9 @@ int ShmRingWriter::lend(LentSlot &slot, uint64_t captureNs, uint32_t flags)
 	const int guarded = guard();
 	if (guarded < 0 && guarded != -EUCLEAN)
 		return guarded;
-	const uint64_t index = (frame_ + 1) % static_cast<uint64_t>(slots_);
 	slot.pixels = beginFrame(captureNs, flags);
 	slot.stride = stride_;
-	slot.holds = holds_[index];
+	slot.holds = holds_[nextSlot()];
 	lent_ = true;
 	return guarded;
 }
@@ -377,7 +376,7 @@ void ShmRingWriter::commit(uint64_t holds)
 	if (!lent_)
 		return;
 	lent_ = false;
-	holds_[(frame_ + 1) % static_cast<uint64_t>(slots_)] = holds;
+	holds_[nextSlot()] = holds;
 	endFrame();
 }
 
@@ -390,8 +389,8 @@ void ShmRingWriter::abandon()
 	if (!lent_)
 		return;
 	lent_ = false;
-	dk_shm_slot &slot = header_->slots[(frame_ + 1) % static_cast<uint64_t>(slots_)];
-	holds_[(frame_ + 1) % static_cast<uint64_t>(slots_)] = 0;
+	dk_shm_slot &slot = header_->slots[nextSlot()];
+	holds_[nextSlot()] = 0;
 	__atomic_store_n(&slot.frame, 0, __ATOMIC_RELAXED);
 	const uint32_t seq = __atomic_load_n(&slot.sequence, __ATOMIC_RELAXED);
 	__atomic_store_n(&slot.sequence, seq + 1, __ATOMIC_RELEASE);

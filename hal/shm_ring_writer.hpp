@@ -170,6 +170,8 @@ private:
 	// frame_ + 1 marked busy and its fields set (returns its pixels), then
 	// marked done and made the latest.
 	uint8_t *beginFrame(uint64_t captureNs, uint32_t flags);
+	// The slot the next frame goes to (lent until committed or abandoned).
+	size_t nextSlot() const { return size_t((frame_ + 1) % static_cast<uint64_t>(slots_)); }
 	void endFrame();
 
 	std::string name_;
