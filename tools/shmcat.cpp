@@ -280,8 +280,11 @@ int64_t ShmCat::fillSlots(uint64_t ns, uint64_t written, uint64_t room)
 	// or lose a frame now and then, and the duration would drift from the
 	// capture time. An outage longer than --timeout, or times going back,
 	// start the count again from here.
+	// The first frame written starts the count too: nothing is in out_ yet
+	// to repeat for the slots before it (a writer whose capture times
+	// start near zero, as a test's, would otherwise get blank frames).
 	const uint64_t maxGapNs = static_cast<uint64_t>(opts_.timeoutSec * 1e9);
-	if (ns < lastWrittenNs_ || ns - lastWrittenNs_ > maxGapNs)
+	if (written == 0 || ns < lastWrittenNs_ || ns - lastWrittenNs_ > maxGapNs)
 		firstWrittenNs_ = ns - std::min(ns, written * intervalNs_);
 	const uint64_t due = (ns - firstWrittenNs_ + intervalNs_ / 2) / intervalNs_ + 1;
 	if (due <= written) {
