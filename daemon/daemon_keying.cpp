@@ -106,6 +106,7 @@ void Daemon::onKeyed(KeyingJob &job)
 		recorded.composite = nullptr;
 		recorded.boardLayer = nullptr;
 	}
+	recorded.compositeInSharedMemory = !recorded.composite;
 	preview_.offer(&frame, depth, depth ? &pipeline_.trimap() : nullptr, output_, recorded, frame.timestampNs,
 		       loop_.nowUs() * 1000u);
 	publish(&frame.rgb, depth ? &parts : nullptr, frame.timestampNs, flags, inPlace);

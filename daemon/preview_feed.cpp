@@ -106,6 +106,8 @@ void PreviewFeed::offer(const ColourFrame *colour, const DepthFrame *depth, cons
 		give(PreviewStage::Alpha, { "", StageKind::Mask, nullptr, nullptr, &output.alpha });
 	if (recorded.composite && !recorded.composite->empty())
 		give(PreviewStage::Composite, { "", StageKind::Colour, recorded.composite });
+	else if (recorded.compositeInSharedMemory)
+		encoder_.made(PreviewStage::Composite, nowNs);
 	if (recorded.board && !recorded.board->empty())
 		give(PreviewStage::Board, { "", StageKind::Colour, recorded.board });
 	const bool boardLayer = recorded.boardLayer && !recorded.boardLayer->empty();

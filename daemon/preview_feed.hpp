@@ -21,6 +21,11 @@ struct RecordedPictures {
 	const RgbImage *composite = nullptr;   // as published; null when made only in the shared memory
 	const RgbaImage *boardLayer = nullptr; // board geometry: the warped lecturer layer; else null
 	const RgbImage *board = nullptr;       // the board's picture; null or empty: a solid colour unmade
+	// The composite went out, made only in the shared memory (composite
+	// null): the loop makes an image of it here too once a preview client
+	// asks, so the preview must hear it is made, or it answers "no frame"
+	// and never asks.
+	bool compositeInSharedMemory = false;
 };
 
 class PreviewFeed

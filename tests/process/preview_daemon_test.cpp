@@ -203,6 +203,29 @@ TEST_F(PreviewDaemon, PageStreamStatusAndMetrics)
 	EXPECT_NE(metrics.body.find("\ndepthkey_live_iou{window=\"5s\"} 0."), std::string::npos) << metrics.body;
 }
 
+// Keyed frames' composite is made only in the shared memory (camera
+// geometry: from its parts in the slot); the preview's snapshot must still
+// get one, made on the loop once asked. It answered 503 "no composite frame
+// yet" for good: the loop told the preview of no composite, so the preview
+// never asked (found in a screenshot, 7 December).
+TEST_F(PreviewDaemon, TheCompositeMadeOnlyInSharedMemoryIsStillShown)
+{
+	const std::string url = start("listen = \"127.0.0.1:0\"\n");
+	ASSERT_FALSE(url.empty()) << daemon_.log();
+	// Past the preview's 2 s window of the NO SIGNAL frames before the
+	// cameras ran, whose composite is an image here.
+	ASSERT_TRUE(depthkey::test::waitUntil([&] { return latestFrame() > 10; }, 10s)) << daemon_.log();
+	std::this_thread::sleep_for(2500ms);
+	depthkey::test::HttpReply snapshot = curlGet(url + "/snapshot/composite.jpg", "--max-time 5");
+	ASSERT_EQ(snapshot.code, 200) << snapshot.body;
+	depthkey::RgbImage rgb;
+	depthkey::MjpegDecoder decoder;
+	EXPECT_EQ(decoder.decode(reinterpret_cast<const uint8_t *>(snapshot.body.data()), snapshot.body.size(), 320,
+				 240, rgb),
+		  0)
+		<< decoder.lastError();
+}
+
 TEST_F(PreviewDaemon, ClientsThatStopReadingDoNotSlowTheFrameRate)
 {
 	const std::string url = start("listen = \"127.0.0.1:0\"\n");

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -64,26 +65,36 @@ TEST(PreviewScreenshot, ChromiumShowsTheStageImages)
 
 	// Every box but the alpha matte (black while nobody is keyed) shows a
 	// picture: not the black of a box without one (nor of a broken-image
-	// icon). Colour and depth always have texture (board, desk, noise); the
-	// composite and seeds may be flat while the lecturer is out of view.
-	// A box without a picture is the figure's black (#000: mean and
-	// deviation about 0); the dark board alone sums to a mean of 82. The
-	// colour box's texture depends on where the simulated lecturer is: 61-209
-	// with him in it, 23.6 (CI, stop 22) with only the dark board and a few
-	// strokes there, so "textured" means a deviation over 10.
+	// icon), and not the tile a stage without a picture shows ("no colour
+	// frame yet" on grey stripes, #111/#181818, light grey text). That tile
+	// is neutral grey: B = G = R in every pixel (measured: mean colourfulness
+	// 0.00, mean 65, deviation 36), while every stage picture has colour:
+	// the simulated board is dark green (the colour box alone with it, CI's
+	// ASan run: mean B, G, R 32, 36, 31, colourfulness at least 4.9), depth
+	// and seeds are false colour. A deviation over 10 used to stand for "a
+	// picture": the grey tile passed it, and the dark board alone fell under
+	// it (8.2, stop 35). The deviation still says "not a flat fill" (over 3:
+	// camera noise).
 	const char *names[] = { "composite", "colour", "depth", "seeds" };
 	const int boxes[] = { 0, 3, 4, 5 };
 	for (int i = 0; i < 4; i++) {
 		cv::Mat box = page(stageBox(boxes[i]));
 		cv::Scalar mean, deviation;
 		cv::meanStdDev(box, mean, deviation);
-		std::printf("    %s: mean %.1f, deviation %.1f (sums over B, G, R)\n", names[i], mean[0] + mean[1] + mean[2],
-			    deviation[0] + deviation[1] + deviation[2]);
-		EXPECT_GT(mean[0] + mean[1] + mean[2], 30.0) << names[i] << " shows no picture in " << shot;
-		if (i == 1 || i == 2) {
-			EXPECT_GT(deviation[0] + deviation[1] + deviation[2], 10.0)
-				<< names[i] << " looks flat in " << shot << " (mean " << mean << ")";
+		double colourfulness = 0; // per pixel, max - min of B, G, R
+		for (int y = 0; y < box.rows; y++) {
+			for (int x = 0; x < box.cols; x++) {
+				const cv::Vec3b p = box.at<cv::Vec3b>(y, x);
+				colourfulness += std::max({ p[0], p[1], p[2] }) - std::min({ p[0], p[1], p[2] });
+			}
 		}
+		colourfulness /= static_cast<double>(box.total());
+		std::printf("    %s: mean %.1f, deviation %.1f (sums over B, G, R), colourfulness %.2f\n", names[i],
+			    mean[0] + mean[1] + mean[2], deviation[0] + deviation[1] + deviation[2], colourfulness);
+		EXPECT_GT(mean[0] + mean[1] + mean[2], 30.0) << names[i] << " shows no picture in " << shot;
+		EXPECT_GT(colourfulness, 2.0) << names[i] << " shows the grey no-picture tile in " << shot;
+		EXPECT_GT(deviation[0] + deviation[1] + deviation[2], 3.0)
+			<< names[i] << " looks flat in " << shot << " (mean " << mean << ")";
 	}
 	// And the status table was filled in from /status.json: its first row
 	// names the colour camera (dark page, light text: bright pixels below
