@@ -272,7 +272,7 @@ bench: deps
 OFFSET_TRIALS ?= 20
 OFFSET_SECONDS ?= 30
 offset-trials: deps
-	@$(MAKE) --no-print-directory -j$(JOBS) all
+	@$(MAKE) --no-print-directory -j$(JOBS) all $(SIM_CALIBRATION) $(SIM_BOARD_CALIBRATION)
 	@sh tests/offset/offset-trials.sh $(BIN) $(BUILD) $(OFFSET_TRIALS) $(OFFSET_SECONDS)
 
 # Not in `make test`: it takes half an hour to an hour (SOAK_FRAMES=N for fewer).
