@@ -1,5 +1,6 @@
 #include "algo/board_model.hpp"
 
+#include "algo/board_learn_rows.hpp"
 #include "algo/board_teach_rows.hpp"
 
 #include <algorithm>
@@ -24,33 +25,19 @@ void BoardModel::learn(const RgbImage &colour, const Gray8Image &trimap)
 		model_.resize(w, h);
 		reset();
 	}
-	uint64_t colourSum[3] = {}, modelSum[3] = {};
-	for (int y = phase_; y < h; y += kRowStride) {
-		const Rgb8 *c = colour.row(y);
-		const uint8_t *t = trimap.row(y);
-		Rgba8 *m = model_.row(y);
-		for (int x = 0; x < w; ++x) {
-			if (t[x] != kTrimapBoard)
-				continue;
-			if (m[x].a == 0) {
-				m[x] = { c[x].r, c[x].g, c[x].b, 1 };
-				continue;
-			}
-			colourSum[0] += c[x].r;
-			colourSum[1] += c[x].g;
-			colourSum[2] += c[x].b;
-			modelSum[0] += m[x].r;
-			modelSum[1] += m[x].g;
-			modelSum[2] += m[x].b;
-			update(m[x], c[x]);
-		}
-	}
+	// A row kernel (algo/board_learn_rows.hpp): the teach row's sums, the
+	// colour in .predicted.
+	const BoardLearnRows rows = boardLearnRows(kernelPath_);
+	BoardTeachSums sums;
+	for (int y = phase_; y < h; y += kRowStride)
+		rows.learn(colour.row(y), trimap.row(y), model_.row(y), w, sums);
 	// The gain of the light against the model as it was before this update
 	// (the rows learned here have moved a quarter of the way towards it).
 	int gains[3];
 	for (int k = 0; k < 3; ++k)
-		gains[k] = modelSum[k] ? int(std::clamp<uint64_t>((colourSum[k] * 256 + modelSum[k] / 2) / modelSum[k], 128, 512))
-				       : 256;
+		gains[k] = sums.model[k] ? int(std::clamp<uint64_t>((sums.predicted[k] * 256 + sums.model[k] / 2) / sums.model[k],
+								     128, 512))
+					 : 256;
 	setGains(gains);
 	lastPhase_ = phase_;
 	phase_ = (phase_ + 1) % kRowStride;
@@ -96,29 +83,31 @@ void BoardModel::learnDecided(const RgbImage &colour, const Gray8Image &trimap, 
 	const int w = colour.width(), h = colour.height();
 	if (model_.width() != w || model_.height() != h || alpha.width() != w || alpha.height() != h || roi.empty())
 		return;
-	marginPx = std::max(1, marginPx);
-	auto clearOfLecturer = [&](int x, int y) {
-		for (int dy = -marginPx; dy <= marginPx; dy += marginPx) {
-			const int yy = y + dy;
-			if (yy < 0 || yy >= h)
-				continue;
-			const uint8_t *a = alpha.row(yy);
-			for (int dx = -marginPx; dx <= marginPx; dx += marginPx) {
-				const int xx = x + dx;
-				if (xx >= 0 && xx < w && a[xx])
-					return false;
-			}
-		}
-		return true;
-	};
+	const int m = std::max(1, marginPx);
+	// The 9 alpha pixels at -m, 0, +m in x and y, as row kernels
+	// (algo/board_learn_rows.hpp): the three rows ORed into near (x from
+	// -m to w + m, 0 outside the image, which is ignored as the per-pixel
+	// test did), then which pixels are learned, in trimap bytes for the
+	// learn row (its sums are not wanted here). Scratch grows only.
+	const size_t nearSize = size_t(w) + 2 * size_t(m);
+	if (near_.size() < nearSize)
+		near_.resize(nearSize);
+	if (select_.size() < size_t(w))
+		select_.resize(size_t(w));
+	uint8_t *near = near_.data() + m, *select = select_.data();
+	std::memset(near - m, 0, size_t(m));
+	std::memset(near + w, 0, size_t(m));
+	const int lo = std::max(0, roi.x0 - m), hi = std::min(w, roi.x1 + m), n = roi.x1 - roi.x0;
+	const BoardLearnRows rows = boardLearnRows(kernelPath_);
+	BoardTeachSums unused;
 	const int first = roi.y0 + ((lastPhase_ - roi.y0 % kRowStride + kRowStride) % kRowStride);
 	for (int y = first; y < roi.y1; y += kRowStride) {
-		const Rgb8 *c = colour.row(y);
-		const uint8_t *t = trimap.row(y);
-		Rgba8 *m = model_.row(y);
-		for (int x = roi.x0; x < roi.x1; ++x)
-			if (t[x] != kTrimapBoard && t[x] != kTrimapLecturer && clearOfLecturer(x, y))
-				update(m[x], c[x]);
+		// A row outside the image adds nothing: row y in its place.
+		const uint8_t *at = alpha.row(y);
+		const uint8_t *above = y - m >= 0 ? alpha.row(y - m) : at, *below = y + m < h ? alpha.row(y + m) : at;
+		rows.alphaOr(above + lo, at + lo, below + lo, near + lo, hi - lo);
+		rows.decidedSelect(near + roi.x0, trimap.row(y) + roi.x0, m, select + roi.x0, n);
+		rows.learn(colour.row(y) + roi.x0, select + roi.x0, model_.row(y) + roi.x0, n, unused);
 	}
 }
 

@@ -66,7 +66,8 @@ public:
 	// every kTeachRowStride-th row in turn; the light's gain then follows
 	// the prediction on those rows.
 	void teach(const RgbImage &sampled, const int gainQ8[3], const Gray8Image &mask);
-	// Which row kernels teach() runs (algo/kernel_path.hpp): the same bytes on each.
+	// Which row kernels teach(), learn() and learnDecided() run
+	// (algo/kernel_path.hpp): the same bytes on each.
 	void setKernelPath(KernelPath path) { kernelPath_ = path; }
 	// c times a Q8 gain per channel, rounded, clamped at 255.
 	static Rgb8 scaleQ8(Rgb8 c, const int gainQ8[3])
@@ -121,6 +122,9 @@ private:
 	// pixel, and three lookups replace three multiplies (issue 28).
 	int16_t gained_[3][256];
 	bool gainedFilled_ = false;
+	// learnDecided()'s scratch rows: the alpha rows ORed (with a margin of
+	// zeros each side) and which pixels are learned.
+	std::vector<uint8_t> near_, select_;
 };
 
 } // namespace depthkey
