@@ -31,6 +31,21 @@ cv::Rect stageBox(int index)
 	return cv::Rect(x + width / 5, y + height / 5, width * 3 / 5, height * 3 / 5);
 }
 
+// Per pixel max - min of B, G, R, averaged: 0 for any grey.
+double colourfulness(const cv::Mat &box)
+{
+	double sum = 0;
+	for (int y = 0; y < box.rows; y++) {
+		for (int x = 0; x < box.cols; x++) {
+			const cv::Vec3b p = box.at<cv::Vec3b>(y, x);
+			sum += std::max({ p[0], p[1], p[2] }) - std::min({ p[0], p[1], p[2] });
+		}
+	}
+	return sum / static_cast<double>(box.total());
+}
+
+const int kPictureBoxes[] = { 0, 3, 4, 5 }; // composite, colour, depth, seeds
+
 } // namespace
 
 TEST(PreviewScreenshot, ChromiumShowsTheStageImages)
@@ -51,17 +66,32 @@ TEST(PreviewScreenshot, ChromiumShowsTheStageImages)
 	ASSERT_FALSE(url.empty()) << daemon.log();
 
 	const std::string shot = daemon.dir() + "/page.png";
-	// --timeout: the streams never finish loading; take the picture after 8 s.
-	std::string out = depthkey::test::run("timeout 60 chromium --headless=new --no-sandbox --disable-gpu "
-					      "--disable-background-networking --disable-component-update --no-first-run "
-					      "--hide-scrollbars --window-size=1280,1500 --timeout=8000 --screenshot=" +
-						      shot + " " + url + "/",
-					      status);
+	// --timeout: the streams never finish loading; take the picture after
+	// 8 s. A tile whose first fetch came before its stage's first picture
+	// shows the grey no-picture tile and asks again a second later; on a
+	// loaded machine (stop 36, load ~3) the colour tile was still grey at
+	// 8 s once. The page is taken again, up to 3 times, while a box is grey,
+	// as PreviewTiles does.
+	std::string out;
+	cv::Mat page;
+	for (int attempt = 1; attempt <= 3; attempt++) {
+		out = depthkey::test::run("timeout 60 chromium --headless=new --no-sandbox --disable-gpu "
+					  "--disable-background-networking --disable-component-update --no-first-run "
+					  "--hide-scrollbars --window-size=1280,1500 --timeout=8000 --screenshot=" +
+						  shot + " " + url + "/",
+					  status);
+		ASSERT_EQ(status, 0) << out;
+		page = cv::imread(shot, cv::IMREAD_COLOR);
+		ASSERT_FALSE(page.empty()) << out;
+		ASSERT_EQ(page.cols, 1280);
+		bool grey = false;
+		for (int box : kPictureBoxes)
+			grey = grey || colourfulness(page(stageBox(box))) <= 2.0;
+		if (!grey)
+			break;
+		std::printf("    attempt %d: a box shows the grey no-picture tile; the page again\n", attempt);
+	}
 	depthkey::test::unlinkStreams(prefix);
-	ASSERT_EQ(status, 0) << out;
-	cv::Mat page = cv::imread(shot, cv::IMREAD_COLOR);
-	ASSERT_FALSE(page.empty()) << out;
-	ASSERT_EQ(page.cols, 1280);
 
 	// Every box but the alpha matte (black while nobody is keyed) shows a
 	// picture: not the black of a box without one (nor of a broken-image
@@ -76,23 +106,15 @@ TEST(PreviewScreenshot, ChromiumShowsTheStageImages)
 	// it (8.2, stop 35). The deviation still says "not a flat fill" (over 3:
 	// camera noise).
 	const char *names[] = { "composite", "colour", "depth", "seeds" };
-	const int boxes[] = { 0, 3, 4, 5 };
 	for (int i = 0; i < 4; i++) {
-		cv::Mat box = page(stageBox(boxes[i]));
+		cv::Mat box = page(stageBox(kPictureBoxes[i]));
 		cv::Scalar mean, deviation;
 		cv::meanStdDev(box, mean, deviation);
-		double colourfulness = 0; // per pixel, max - min of B, G, R
-		for (int y = 0; y < box.rows; y++) {
-			for (int x = 0; x < box.cols; x++) {
-				const cv::Vec3b p = box.at<cv::Vec3b>(y, x);
-				colourfulness += std::max({ p[0], p[1], p[2] }) - std::min({ p[0], p[1], p[2] });
-			}
-		}
-		colourfulness /= static_cast<double>(box.total());
+		const double colour = colourfulness(box);
 		std::printf("    %s: mean %.1f, deviation %.1f (sums over B, G, R), colourfulness %.2f\n", names[i],
-			    mean[0] + mean[1] + mean[2], deviation[0] + deviation[1] + deviation[2], colourfulness);
+			    mean[0] + mean[1] + mean[2], deviation[0] + deviation[1] + deviation[2], colour);
 		EXPECT_GT(mean[0] + mean[1] + mean[2], 30.0) << names[i] << " shows no picture in " << shot;
-		EXPECT_GT(colourfulness, 2.0) << names[i] << " shows the grey no-picture tile in " << shot;
+		EXPECT_GT(colour, 2.0) << names[i] << " shows the grey no-picture tile in " << shot;
 		EXPECT_GT(deviation[0] + deviation[1] + deviation[2], 3.0)
 			<< names[i] << " looks flat in " << shot << " (mean " << mean << ")";
 	}
