@@ -19,6 +19,15 @@ void FusedEvidence::bind(const RgbImage &colour, const Gray8Image &depthEvidence
 		distance_.resize(size_t(colour.width()));
 		change_.resize(size_t(colour.width()));
 	}
+	++frame_;
+	const uint16_t old = uint16_t(frame_ - 2 * kStampRefresh);
+	if (lastMoved_.size() != colour.size()) {
+		lastMoved_.assign(colour.size(), old); // once per size: never moved
+	} else if (frame_ % kStampRefresh == 0) {
+		for (uint16_t &stamp : lastMoved_)
+			if (uint16_t(frame_ - stamp) >= kStampRefresh)
+				stamp = old;
+	}
 }
 
 void FusedEvidence::configure(const DecisionSettings &s)
@@ -61,10 +70,18 @@ void FusedEvidence::confidences(int y, int x0, int x1, uint8_t *out)
 		std::fill(distance, distance + (x1 - x0), int16_t(-1));
 	if (t0 < t1)
 		colourChange_(c + t0, pc + t0, t1 - t0, change + (t0 - x0));
+	uint16_t *stamps = lastMoved_.data() + size_t(y) * size_t(colour_->width());
 	auto span = [&]<bool kPrevious>(int from, int to) {
 		for (int x = from, k = from - x0; x < to; ++x, ++k) {
 			const int siox = classifier_->confidence(quantiseColour(c[x]));
-			*out++ = fuse(siox, e[x], distance[k], kPrevious ? pa[x] : -1, kPrevious ? change[k] : 0);
+			bool movedLately = false;
+			if constexpr (kPrevious) {
+				if (change[k] >= stillColour_)
+					stamps[x] = frame_;
+				movedLately = uint16_t(frame_ - stamps[x]) < kHoldFrames;
+			}
+			*out++ = fuse(siox, e[x], distance[k], kPrevious ? pa[x] : -1, kPrevious ? change[k] : 0,
+				      movedLately);
 		}
 	};
 	span.template operator()<false>(x0, t0);

@@ -24,7 +24,7 @@ namespace {
 constexpr int kDepthSaysLecturer = 254, kDepthSaysBoard = 1, kDepthAtTheEdge = 176;
 
 double fuseReference(const DecisionSettings &s, int siox, int depthEvidence, int boardDistance, int previousAlpha,
-		     int change)
+		     int change, bool movedLately)
 {
 	double sum = siox - 128.0;
 	if (boardDistance >= 0 && boardDistance < s.boardMatch)
@@ -37,10 +37,12 @@ double fuseReference(const DecisionSettings &s, int siox, int depthEvidence, int
 		sum += s.temporalWeight * (previousAlpha - 128.0) / 128.0 * (s.stillColour - change) / s.stillColour;
 	sum = std::clamp(sum, -127.0, 127.0); // the colour camera's say, capped
 	const double depth = s.depthWeight * (depthEvidence - s.depthPivot) / 64.0;
-	// Colour and the board model sure of him where the colour moved: depth's
-	// board verdict held (a hand writing on the board).
+	// Colour and the board model sure of him where the colour moved, or
+	// moved lately and he was there in the last frame: depth's board verdict
+	// held (a hand writing on the board, and holding still against it).
 	const bool moved = previousAlpha >= 0 && change >= s.stillColour;
-	sum += colourAndBoard >= FusedEvidence::kSureLecturerColour && moved
+	const bool held = moved || (movedLately && previousAlpha >= 128);
+	sum += colourAndBoard >= FusedEvidence::kSureLecturerColour && held
 		       ? std::max(depth, -double(FusedEvidence::kContactDepthFloor))
 		       : depth;
 	return std::clamp(sum + 128.0, 1.0, 255.0);
@@ -49,7 +51,7 @@ double fuseReference(const DecisionSettings &s, int siox, int depthEvidence, int
 // The kernel as it was before issue 28, three integer divisions a pixel:
 // the tables and the multiply must give exactly this.
 int fuseWithDivisions(const DecisionSettings &s, int siox, int depthEvidence, int boardDistance, int previousAlpha,
-		      int colourChange)
+		      int colourChange, bool movedLately)
 {
 	int sum = siox - kConfidenceLecturer;
 	if (boardDistance >= 0 && boardDistance < s.boardMatch)
@@ -62,7 +64,8 @@ int fuseWithDivisions(const DecisionSettings &s, int siox, int depthEvidence, in
 	sum = std::clamp(sum, 1 - int(kConfidenceLecturer), 255 - int(kConfidenceLecturer));
 	const int depth = (s.depthWeight * (depthEvidence - s.depthPivot)) >> 6;
 	const bool moved = previousAlpha >= 0 && colourChange >= s.stillColour;
-	sum += colourAndBoard >= FusedEvidence::kSureLecturerColour && moved
+	const bool held = moved || (movedLately && previousAlpha >= 128);
+	sum += colourAndBoard >= FusedEvidence::kSureLecturerColour && held
 		       ? std::max(depth, -FusedEvidence::kContactDepthFloor)
 		       : depth;
 	return std::clamp(sum + int(kConfidenceLecturer), 1, 255);
@@ -137,16 +140,19 @@ TEST(FusedEvidence, TablesEqualTheDivisionsTheyReplaced)
 			for (int depth : { 0, 1, 60, s.depthPivot - 1, s.depthPivot, s.depthPivot + 1, 200, 254, 255 })
 				for (int board : boards)
 					for (int previous = -1; previous <= 255; previous += previous < 2 ? 1 : 51)
-						for (int change : changes) {
-							// Counted, not asserted one by one (millions).
-							const int fused = f.fuse(siox, depth, board, previous, change);
-							const int divided = fuseWithDivisions(s, siox, depth, board, previous, change);
-							if (fused != divided && differ++ == 0)
-								ADD_FAILURE() << "siox " << siox << " depth " << depth << " board " << board
-									      << " previous " << previous << " change " << change << ": "
-									      << fused << " against " << divided;
-							++compared;
-						}
+						for (int change : changes)
+							for (bool lately : { false, true }) {
+								// Counted, not asserted one by one (millions).
+								const int fused = f.fuse(siox, depth, board, previous, change, lately);
+								const int divided =
+									fuseWithDivisions(s, siox, depth, board, previous, change, lately);
+								if (fused != divided && differ++ == 0)
+									ADD_FAILURE() << "siox " << siox << " depth " << depth << " board "
+										      << board << " previous " << previous << " change "
+										      << change << " lately " << lately << ": " << fused
+										      << " against " << divided;
+								++compared;
+							}
 		EXPECT_EQ(differ, 0u) << "of " << compared;
 		EXPECT_GT(compared, 100000u);
 	}
@@ -162,13 +168,14 @@ TEST(FusedEvidence, FixedPointMatchesTheDoubleReferenceWithinTwoUnits)
 		for (int depth = 0; depth <= 255; depth += 11)
 			for (int board = -1; board < 120; board += 9)
 				for (int previous = -1; previous <= 255; previous += 64)
-					for (int change = 0; change < 40; change += 13) {
-						const int fixed = f.fuse(siox, depth, board, previous, change);
-						const double ref = fuseReference(s, siox, depth, board, previous, change);
-						const int error = int(std::ceil(std::abs(fixed - ref) - 1e-9));
-						histogram[error]++;
-						worst = std::max(worst, error);
-					}
+					for (int change = 0; change < 40; change += 13)
+						for (bool lately : { false, true }) {
+							const int fixed = f.fuse(siox, depth, board, previous, change, lately);
+							const double ref = fuseReference(s, siox, depth, board, previous, change, lately);
+							const int error = int(std::ceil(std::abs(fixed - ref) - 1e-9));
+							histogram[error]++;
+							worst = std::max(worst, error);
+						}
 	std::printf("fused confidence, fixed vs double, |error| histogram:");
 	for (auto [e, n] : histogram)
 		std::printf(" %d:%d", e, n);
@@ -211,6 +218,49 @@ TEST(FusedEvidence, EachTermPullsItsWay)
 	EXPECT_LT(f.fuse(250, kDepthSaysBoard, 90, lost, 0), kConfidenceLecturer);
 	EXPECT_LT(f.fuse(250, kDepthSaysBoard, 90, noPrevious, 0), kConfidenceLecturer);
 	EXPECT_LT(f.fuse(250, kDepthSaysBoard, 2, lost, s.stillColour), kConfidenceLecturer);
+	// Holding still against the board, moved lately: kept where he was in
+	// the last frame; not where the last frame lost him, nor where nothing
+	// moved lately (the desk).
+	const int his = 255;
+	EXPECT_GE(f.fuse(250, kDepthSaysBoard, 90, his, 0, true), kConfidenceLecturer);
+	EXPECT_LT(f.fuse(250, kDepthSaysBoard, 90, lost, 0, true), kConfidenceLecturer);
+	EXPECT_LT(f.fuse(250, kDepthSaysBoard, 90, his, 0, false), kConfidenceLecturer);
+	EXPECT_LT(f.fuse(250, kDepthSaysBoard, 2, his, 0, true), kConfidenceLecturer);
+}
+
+// The hold through still moments, through confidences() frame by frame: a
+// pixel sure his by colour, on the board by depth, his in the last frame,
+// whose colour moved once and then held still, is kept for kHoldFrames
+// frames counted from the move (the moving frame included), then depth
+// decides again; a pixel that never moved is never held.
+TEST(FusedEvidence, AStillHandIsHeldForAWhileAfterItMoved)
+{
+	const int w = 4, h = 1;
+	const Rgb8 skin{ 200, 40, 40 }, board{ 40, 80, 60 }, elsewhere{ 90, 200, 200 };
+	RgbImage colour(w, h, skin), moved(w, h, skin), still(w, h, skin);
+	moved.at(0, 0) = elsewhere; // pixel 0 moved in the first frame; pixel 1 never
+	Gray8Image depth(w, h, uint8_t(kDepthSaysBoard)), previousAlpha(w, h, 255), trimap(w, h, kTrimapBoard);
+	BoardModel model;
+	RgbImage boardColour(w, h, board);
+	for (int i = 0; i < 3 * BoardModel::kRowStride; ++i)
+		model.learn(boardColour, trimap);
+	QuantisedLab lab;
+	SioxClassifier classifier(lab);
+	WeightedLab lecturer[] = { { lab[quantiseColour(skin)], 10 } };
+	WeightedLab boardPoints[] = { { lab[quantiseColour(board)], 10 } };
+	classifier.lecturer().build(lecturer, 1);
+	classifier.board().build(boardPoints, 1);
+	classifier.signaturesChanged();
+	FusedEvidence f = configured(DecisionSettings());
+	const Roi roi{ 0, 0, w, h };
+	for (int frame = 0; frame < FusedEvidence::kHoldFrames + 3; ++frame) {
+		f.bind(colour, depth, classifier, model, &previousAlpha, frame == 0 ? &moved : &still, roi);
+		uint8_t row[w];
+		f.confidences(0, 0, w, row);
+		const bool held = frame < FusedEvidence::kHoldFrames;
+		EXPECT_EQ(row[0] >= kConfidenceLecturer, held) << "frame " << frame << ": " << int(row[0]);
+		EXPECT_LT(row[1], kConfidenceLecturer) << "frame " << frame << ": never moved, never held";
+	}
 }
 
 // confidences() splits a row at the previous frame's ROI (issue 28) instead

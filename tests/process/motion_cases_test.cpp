@@ -167,10 +167,13 @@ TEST(MotionCases, WritingHandIsKeptWhereItTouchesTheBoard)
 	// The depth offset measured and applied once a second (pairing.offset_ms
 	// "auto") moves the recall: with the accumulated estimate (issue 29 §3,
 	// -41.2 ms measured, the truth -40) it is 0.960; fixed at -38 ms (what
-	// the sliding-window estimate ended at) 0.976, at -42 ms 0.961. The
-	// floor is the lower.
+	// the sliding-window estimate ended at) 0.976, at -42 ms 0.961.
+	// With the hold through still moments (FusedEvidence::kHoldFrames, 7
+	// December): recall 0.994, worst frame 0.990 (frames 360 and 385, the
+	// chalk held still, were 0.806 and 0.806). The targets are met and are
+	// the floors.
 	std::printf("    target: recall >= 0.97 (%s), every frame >= 0.95 (%s)\n", recall >= 0.97 ? "met" : "NOT met",
 		    worst >= 0.95 ? "met" : "NOT met");
-	EXPECT_GE(recall, 0.955);
-	EXPECT_GE(worst, 0.78);
+	EXPECT_GE(recall, 0.97);
+	EXPECT_GE(worst, 0.95);
 }
