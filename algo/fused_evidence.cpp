@@ -23,10 +23,12 @@ void FusedEvidence::bind(const RgbImage &colour, const Gray8Image &depthEvidence
 	const uint16_t old = uint16_t(frame_ - 2 * kStampRefresh);
 	if (lastMoved_.size() != colour.size()) {
 		lastMoved_.assign(colour.size(), old); // once per size: never moved
+		lastInFront_.assign(colour.size(), old);
 	} else if (frame_ % kStampRefresh == 0) {
-		for (uint16_t &stamp : lastMoved_)
-			if (uint16_t(frame_ - stamp) >= kStampRefresh)
-				stamp = old;
+		for (std::vector<uint16_t> *stamps : { &lastMoved_, &lastInFront_ })
+			for (uint16_t &stamp : *stamps)
+				if (uint16_t(frame_ - stamp) >= kStampRefresh)
+					stamp = old;
 	}
 }
 
@@ -46,6 +48,7 @@ void FusedEvidence::configure(const DecisionSettings &s)
 	for (int e = 0; e < 256; ++e)
 		depthTerm_[size_t(e)] = int16_t((s.depthWeight * (e - s.depthPivot)) >> 6);
 	temporalWeight_ = s.temporalWeight;
+	depthPivot_ = s.depthPivot;
 	stillColour_ = std::max(1, s.stillColour);
 	temporalDivisor_.set(uint32_t(128 * stillColour_));
 }
@@ -71,6 +74,7 @@ void FusedEvidence::confidences(int y, int x0, int x1, uint8_t *out)
 	if (t0 < t1)
 		colourChange_(c + t0, pc + t0, t1 - t0, change + (t0 - x0));
 	uint16_t *stamps = lastMoved_.data() + size_t(y) * size_t(colour_->width());
+	uint16_t *inFront = lastInFront_.data() + size_t(y) * size_t(colour_->width());
 	auto span = [&]<bool kPrevious>(int from, int to) {
 		for (int x = from, k = from - x0; x < to; ++x, ++k) {
 			const int siox = classifier_->confidence(quantiseColour(c[x]));
@@ -78,7 +82,10 @@ void FusedEvidence::confidences(int y, int x0, int x1, uint8_t *out)
 			if constexpr (kPrevious) {
 				if (change[k] >= stillColour_)
 					stamps[x] = frame_;
-				movedLately = uint16_t(frame_ - stamps[x]) < kHoldFrames;
+				if (e[x] > depthPivot_)
+					inFront[x] = frame_;
+				movedLately = uint16_t(frame_ - stamps[x]) < kHoldFrames &&
+					      uint16_t(frame_ - inFront[x]) >= kHoldFrames;
 			}
 			*out++ = fuse(siox, e[x], distance[k], kPrevious ? pa[x] : -1, kPrevious ? change[k] : 0,
 				      movedLately);
