@@ -24,6 +24,18 @@ void colourChangeRow_C(const Rgb8 *colour, const Rgb8 *previous, int n, int16_t 
 				    std::abs(colour[x].b - previous[x].b));
 }
 
+void stillHoldRow_C(const int16_t *change, const uint8_t *evidence, int n, const StillHold &h, uint16_t *moved,
+		    uint16_t *inFront, uint8_t *held)
+{
+	for (int x = 0; x < n; ++x) {
+		if (change[x] >= h.still)
+			moved[x] = h.frame;
+		if (evidence[x] > h.pivot)
+			inFront[x] = h.frame;
+		held[x] = uint16_t(h.frame - moved[x]) < h.holdFrames && uint16_t(h.frame - inFront[x]) >= h.holdFrames;
+	}
+}
+
 BoardDistanceFn boardDistanceRow(KernelPath path)
 {
 	return sse2Rows(path) ? boardDistanceRow_SSE2 : path == KernelPath::Neon ? boardDistanceRow_NEON : boardDistanceRow_C;
@@ -32,6 +44,11 @@ BoardDistanceFn boardDistanceRow(KernelPath path)
 ColourChangeFn colourChangeRow(KernelPath path)
 {
 	return sse2Rows(path) ? colourChangeRow_SSE2 : path == KernelPath::Neon ? colourChangeRow_NEON : colourChangeRow_C;
+}
+
+StillHoldFn stillHoldRow(KernelPath path)
+{
+	return sse2Rows(path) ? stillHoldRow_SSE2 : path == KernelPath::Neon ? stillHoldRow_NEON : stillHoldRow_C;
 }
 
 } // namespace depthkey

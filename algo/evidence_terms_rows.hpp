@@ -5,7 +5,10 @@
 //     colour times the light's gain, round(m g / 256) per channel, as
 //     BoardModel::distance() gives it (-1 where the model has fewer than
 //     BoardModel::kLearnedVisits visits);
-//   colour change: the L1 distance of the colour to the previous frame's.
+//   colour change: the L1 distance of the colour to the previous frame's;
+//   still hold: the two stamps per pixel of FusedEvidence's hold through a
+//     writing hand's still moments (the frame the colour last moved in, the
+//     last frame depth saw him in front), and whether the pixel is held.
 // The table lookups that remain (the SIOX decision, the board and depth
 // terms) stay in FusedEvidence's scalar loop. A plain C reference (_C) and
 // SSE2 and NEON rows (evidence_terms_rows_sse2.cpp, _neon.cpp) that give the
@@ -38,5 +41,23 @@ void colourChangeRow_SSE2(const Rgb8 *colour, const Rgb8 *previous, int n, int16
 void colourChangeRow_NEON(const Rgb8 *colour, const Rgb8 *previous, int n, int16_t *change);
 using ColourChangeFn = void (*)(const Rgb8 *, const Rgb8 *, int, int16_t *);
 ColourChangeFn colourChangeRow(KernelPath path);
+
+// For x in [0, n): moved[x] = frame where change[x] >= still (1..765), and
+// inFront[x] = frame where evidence[x] > pivot (0..254); then held[x] = 1
+// where frame - moved[x] < holdFrames and frame - inFront[x] >= holdFrames
+// (ages mod 2^16; holdFrames 1..32767), else 0.
+struct StillHold {
+	int still, pivot, holdFrames;
+	uint16_t frame;
+};
+void stillHoldRow_C(const int16_t *change, const uint8_t *evidence, int n, const StillHold &h, uint16_t *moved,
+		    uint16_t *inFront, uint8_t *held);
+void stillHoldRow_SSE2(const int16_t *change, const uint8_t *evidence, int n, const StillHold &h, uint16_t *moved,
+		       uint16_t *inFront, uint8_t *held);
+void stillHoldRow_NEON(const int16_t *change, const uint8_t *evidence, int n, const StillHold &h, uint16_t *moved,
+		       uint16_t *inFront, uint8_t *held);
+using StillHoldFn = void (*)(const int16_t *, const uint8_t *, int, const StillHold &, uint16_t *, uint16_t *,
+			     uint8_t *);
+StillHoldFn stillHoldRow(KernelPath path);
 
 } // namespace depthkey

@@ -56,7 +56,32 @@ void colourChangeRow_NEON(const Rgb8 *colour, const Rgb8 *previous, int n, int16
 	colourChangeRow_C(colour + x, previous + x, n - x, change + x);
 }
 
+void stillHoldRow_NEON(const int16_t *change, const uint8_t *evidence, int n, const StillHold &h, uint16_t *moved,
+		       uint16_t *inFront, uint8_t *held)
+{
+	const int16x8_t still = vdupq_n_s16(int16_t(h.still));
+	const uint16x8_t pivot = vdupq_n_u16(uint16_t(h.pivot)), frame = vdupq_n_u16(h.frame);
+	const uint16x8_t hold = vdupq_n_u16(uint16_t(h.holdFrames));
+	int x = 0;
+	for (; x + 8 <= n; x += 8) {
+		const uint16x8_t m = vbslq_u16(vcgeq_s16(vld1q_s16(change + x), still), frame, vld1q_u16(moved + x));
+		const uint16x8_t f = vbslq_u16(vcgtq_u16(vmovl_u8(vld1_u8(evidence + x)), pivot), frame,
+					       vld1q_u16(inFront + x));
+		vst1q_u16(moved + x, m);
+		vst1q_u16(inFront + x, f);
+		const uint16x8_t h16 = vandq_u16(vcltq_u16(vsubq_u16(frame, m), hold), vcgeq_u16(vsubq_u16(frame, f), hold));
+		vst1_u8(held + x, vand_u8(vmovn_u16(h16), vdup_n_u8(1)));
+	}
+	stillHoldRow_C(change + x, evidence + x, n - x, h, moved + x, inFront + x, held + x);
+}
+
 #else
+
+void stillHoldRow_NEON(const int16_t *change, const uint8_t *evidence, int n, const StillHold &h, uint16_t *moved,
+		       uint16_t *inFront, uint8_t *held)
+{
+	stillHoldRow_C(change, evidence, n, h, moved, inFront, held);
+}
 
 void boardDistanceRow_NEON(const Rgb8 *colour, const Rgba8 *model, const int gainQ8[3], int n, int16_t *distance)
 {

@@ -81,7 +81,37 @@ void colourChangeRow_SSE2(const Rgb8 *colour, const Rgb8 *previous, int n, int16
 	colourChangeRow_C(colour + x, previous + x, n - x, change + x);
 }
 
+// Eight pixels a step in 16-bit lanes. An age below holdFrames is
+// _mm_subs_epu16(holdFrames, age) not 0 (SSE2 has no unsigned compare).
+void stillHoldRow_SSE2(const int16_t *change, const uint8_t *evidence, int n, const StillHold &h, uint16_t *moved,
+		       uint16_t *inFront, uint8_t *held)
+{
+	const __m128i zero = _mm_setzero_si128(), one = _mm_set1_epi8(1);
+	const __m128i belowStill = _mm_set1_epi16(short(h.still - 1)), pivot = _mm_set1_epi16(short(h.pivot));
+	const __m128i frame = _mm_set1_epi16(short(h.frame)), hold = _mm_set1_epi16(short(h.holdFrames));
+	auto stamp = [&](__m128i now, uint16_t *stamps) {
+		const __m128i s = _mm_or_si128(_mm_and_si128(now, frame), _mm_andnot_si128(now, load(stamps)));
+		_mm_storeu_si128(reinterpret_cast<__m128i *>(stamps), s);
+		return _mm_cmpeq_epi16(_mm_subs_epu16(hold, _mm_sub_epi16(frame, s)), zero); // age >= holdFrames
+	};
+	int x = 0;
+	for (; x + 8 <= n; x += 8) {
+		const __m128i e = _mm_unpacklo_epi8(_mm_loadl_epi64(reinterpret_cast<const __m128i *>(evidence + x)), zero);
+		const __m128i movedLong = stamp(_mm_cmpgt_epi16(load(change + x), belowStill), moved + x);
+		const __m128i frontLong = stamp(_mm_cmpgt_epi16(e, pivot), inFront + x);
+		const __m128i h16 = _mm_andnot_si128(movedLong, frontLong);
+		_mm_storel_epi64(reinterpret_cast<__m128i *>(held + x), _mm_and_si128(_mm_packs_epi16(h16, h16), one));
+	}
+	stillHoldRow_C(change + x, evidence + x, n - x, h, moved + x, inFront + x, held + x);
+}
+
 #else
+
+void stillHoldRow_SSE2(const int16_t *change, const uint8_t *evidence, int n, const StillHold &h, uint16_t *moved,
+		       uint16_t *inFront, uint8_t *held)
+{
+	stillHoldRow_C(change, evidence, n, h, moved, inFront, held);
+}
 
 void boardDistanceRow_SSE2(const Rgb8 *colour, const Rgba8 *model, const int gainQ8[3], int n, int16_t *distance)
 {

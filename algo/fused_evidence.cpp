@@ -18,6 +18,7 @@ void FusedEvidence::bind(const RgbImage &colour, const Gray8Image &depthEvidence
 	if (distance_.size() < size_t(colour.width())) {
 		distance_.resize(size_t(colour.width()));
 		change_.resize(size_t(colour.width()));
+		held_.resize(size_t(colour.width()));
 	}
 	++frame_;
 	const uint16_t old = uint16_t(frame_ - 2 * kStampRefresh);
@@ -71,24 +72,18 @@ void FusedEvidence::confidences(int y, int x0, int x1, uint8_t *out)
 		boardDistance_(c + x0, board_->row(y) + x0, board_->gainQ8(), x1 - x0, distance);
 	else
 		std::fill(distance, distance + (x1 - x0), int16_t(-1));
-	if (t0 < t1)
+	uint8_t *held = held_.data();
+	if (t0 < t1) {
 		colourChange_(c + t0, pc + t0, t1 - t0, change + (t0 - x0));
-	uint16_t *stamps = lastMoved_.data() + size_t(y) * size_t(colour_->width());
-	uint16_t *inFront = lastInFront_.data() + size_t(y) * size_t(colour_->width());
+		const size_t at = size_t(y) * size_t(colour_->width()) + size_t(t0);
+		stillHold_(change + (t0 - x0), e + t0, t1 - t0, { stillColour_, depthPivot_, kHoldFrames, frame_ },
+			   lastMoved_.data() + at, lastInFront_.data() + at, held + (t0 - x0));
+	}
 	auto span = [&]<bool kPrevious>(int from, int to) {
 		for (int x = from, k = from - x0; x < to; ++x, ++k) {
 			const int siox = classifier_->confidence(quantiseColour(c[x]));
-			bool movedLately = false;
-			if constexpr (kPrevious) {
-				if (change[k] >= stillColour_)
-					stamps[x] = frame_;
-				if (e[x] > depthPivot_)
-					inFront[x] = frame_;
-				movedLately = uint16_t(frame_ - stamps[x]) < kHoldFrames &&
-					      uint16_t(frame_ - inFront[x]) >= kHoldFrames;
-			}
 			*out++ = fuse(siox, e[x], distance[k], kPrevious ? pa[x] : -1, kPrevious ? change[k] : 0,
-				      movedLately);
+				      kPrevious && held[k]);
 		}
 	};
 	span.template operator()<false>(x0, t0);

@@ -93,13 +93,14 @@ public:
 
 	void confidences(int y, int x0, int x1, uint8_t *out) override;
 
-	// The row kernels of the board distance and the colour change
+	// The row kernels of the board distance, the colour change and the hold
 	// (algo/evidence_terms_rows.hpp); the confidences are the same on every
 	// path.
 	void setKernelPath(KernelPath path)
 	{
 		boardDistance_ = boardDistanceRow(path);
 		colourChange_ = colourChangeRow(path);
+		stillHold_ = stillHoldRow(path);
 	}
 
 	// One pixel's confidence from its terms (the kernel, inlined in
@@ -149,6 +150,7 @@ private:
 	// A span's board distances and colour changes, from the row kernels;
 	// sized to the colour width in bind() (once per size).
 	std::vector<int16_t> distance_, change_;
+	std::vector<uint8_t> held_; // the span's movedLately, from stillHold_
 	// Per colour pixel, the frame (frame_, counted by bind()) its colour
 	// last moved in, and the last frame depth saw him in front there; read
 	// and written only where a previous frame is.
@@ -160,6 +162,7 @@ private:
 	uint16_t frame_ = 0;
 	BoardDistanceFn boardDistance_ = boardDistanceRow(bestKernelPath());
 	ColourChangeFn colourChange_ = colourChangeRow(bestKernelPath());
+	StillHoldFn stillHold_ = stillHoldRow(bestKernelPath());
 };
 
 } // namespace depthkey

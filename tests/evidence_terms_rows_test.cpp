@@ -4,7 +4,8 @@
 // change exactly), and the SSE2 and NEON rows against the C rows bit for
 // bit, for any bytes, gains over the whole stated range, visits about the
 // learned threshold, and runs of every length about the vector steps,
-// unaligned.
+// unaligned; the still hold's stamps and flags too, with ages about the
+// hold and across the 16-bit wrap.
 #include "algo/board_model.hpp"
 #include "algo/evidence_terms_rows.hpp"
 #include "tests/simd_paths.hpp"
@@ -99,4 +100,54 @@ TEST(EvidenceTermsRows, EveryPathGivesTheCRowsValues)
 				compared += size_t(n);
 			}
 	EXPECT_GT(compared, 5000u);
+}
+
+// The still hold: stamps of every age (some just set, some about holdFrames
+// old, some from before the frame counter wrapped), changes about still and
+// evidence about the pivot; the stamps written and the flags, every path
+// against the C row, and the C row against the definition.
+TEST(EvidenceTermsRows, EveryPathGivesTheStillHoldRowsStampsAndFlags)
+{
+	std::mt19937 rng(30);
+	size_t compared = 0, held = 0;
+	for (int n : { 0, 1, 7, 8, 9, 15, 16, 17, 33, 64, 101 })
+		for (int trial = 0; trial < 12; ++trial) {
+			const StillHold h{ int(1 + rng() % 60), int(rng() % 255), int(1 + rng() % 20),
+					   uint16_t(trial % 3 ? rng() : rng() % 8) };
+			std::vector<int16_t> change(static_cast<size_t>(n));
+			std::vector<uint8_t> evidence(static_cast<size_t>(n));
+			std::vector<uint16_t> moved(static_cast<size_t>(n)), inFront(static_cast<size_t>(n));
+			for (int x = 0; x < n; ++x) {
+				change[size_t(x)] = int16_t(rng() % 2 ? h.still - 1 + int(rng() % 3) : int(rng() % 766));
+				evidence[size_t(x)] = uint8_t(rng() % 2 ? h.pivot + int(rng() % 3) - 1 : int(rng() & 255));
+				auto age = [&] { return uint16_t(rng() % 2 ? h.holdFrames - 1 + int(rng() % 3) : int(rng())); };
+				moved[size_t(x)] = uint16_t(h.frame - age());
+				inFront[size_t(x)] = uint16_t(h.frame - age());
+			}
+			std::vector<uint16_t> wantMoved = moved, wantInFront = inFront;
+			std::vector<uint8_t> want(size_t(n) + 1, 7);
+			stillHoldRow_C(change.data(), evidence.data(), n, h, wantMoved.data(), wantInFront.data(), want.data());
+			for (int x = 0; x < n; ++x) {
+				const size_t i = size_t(x);
+				ASSERT_EQ(wantMoved[i], change[i] >= h.still ? h.frame : moved[i]);
+				ASSERT_EQ(wantInFront[i], evidence[i] > h.pivot ? h.frame : inFront[i]);
+				const int movedAge = (h.frame - wantMoved[i] + 65536) % 65536;
+				const int frontAge = (h.frame - wantInFront[i] + 65536) % 65536;
+				ASSERT_EQ(want[i], movedAge < h.holdFrames && frontAge >= h.holdFrames ? 1 : 0);
+				held += want[i];
+			}
+			for (KernelPath path : simd_test::kAllPaths) {
+				std::vector<uint16_t> gotMoved = moved, gotInFront = inFront;
+				std::vector<uint8_t> got(size_t(n) + 1, 7); // the one past n stays
+				stillHoldRow(path)(change.data(), evidence.data(), n, h, gotMoved.data(), gotInFront.data(),
+						   got.data());
+				ASSERT_EQ(got, want) << simd_test::pathName(path) << " n " << n;
+				ASSERT_EQ(gotMoved, wantMoved) << simd_test::pathName(path) << " n " << n;
+				ASSERT_EQ(gotInFront, wantInFront) << simd_test::pathName(path) << " n " << n;
+			}
+			compared += size_t(n);
+		}
+	EXPECT_GT(compared, 2000u);
+	EXPECT_GT(held, 50u); // both flags occur
+	EXPECT_LT(held, compared - 50);
 }
