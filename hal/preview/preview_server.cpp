@@ -5,6 +5,7 @@
 #include "hal/preview/preview_page.hpp"
 #include "hal/unique_fd.hpp"
 
+#include <algorithm>
 #include <arpa/inet.h>
 #include <cerrno>
 #include <cstring>
@@ -37,10 +38,13 @@ constexpr int kExtraConnections = kListenBacklog;
 // client trickling requests from one address holds at most its own share
 // (40 such connections took every slot of 24 before, issue 31).
 constexpr int kClientAddresses = 4;
-// The server's threads' nice value: libmicrohttpd's threads inherit it from
-// the thread that starts the library. Weight 110 against the keyer's 1024:
-// a flood of requests takes the keyer's core only when the keyer leaves it.
-constexpr int kServerNice = 10;
+// The server's threads' nice value above the daemon's (at most 19):
+// libmicrohttpd's threads inherit it from the thread that starts the
+// library. Weight 110 against the keyer's 1024: a flood of requests takes
+// the keyer's core only when the keyer leaves it. Relative, because the
+// daemon may itself run niced (a unit's Nice=, `nice make test`): an
+// absolute 10 put the server level with a daemon at 10, and above one at 15.
+constexpr int kServerNiceAbove = 10;
 // What a client backing off is told to wait (FailureLimits::backOffNs).
 constexpr const char *kRetryAfterS = "60";
 // Why a stage has no picture: the page shows it on the tile.
@@ -147,7 +151,10 @@ int PreviewServer::start(const PreviewServerOptions &options, PreviewEncoder &en
 void PreviewServer::waitForFirstClient()
 {
 	// This thread only (Linux's nice is per thread), and so the library's.
-	if (setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), kServerNice) < 0) {
+	const id_t self = static_cast<id_t>(gettid());
+	errno = 0;
+	const int nice = getpriority(PRIO_PROCESS, self); // -1 is a nice value too
+	if (errno == 0 && setpriority(PRIO_PROCESS, self, std::min(19, nice + kServerNiceAbove)) < 0) {
 		// not allowed to: the server runs at the daemon's priority
 	}
 	pollfd fds[2] = { { listen_.get(), POLLIN, 0 }, { wake_.get(), POLLIN, 0 } };
