@@ -156,9 +156,9 @@ TEST_F(CalibrateLive, AHiddenGridIsExplainedWithinTwoSeconds)
 			      &found),
 		  2)
 		<< out;
-	EXPECT_LE(seconds, 2.0);
-	EXPECT_GT(found, 0);
-	EXPECT_LT(found, 35);
+	EXPECT_LE(seconds, 2.0) << out;
+	EXPECT_GT(found, 0) << out;
+	EXPECT_LT(found, 35) << out;
 	EXPECT_NE(out.find("the rest are hidden (by the desk, a monitor, a hand?)", line), std::string::npos) << out;
 	EXPECT_NE(out.find("rejected: neither camera sees the whole 7x5 grid: colour: ", line), std::string::npos) << out;
 }

@@ -234,10 +234,16 @@ int LiveViewSource::read(size_t i, ColourFrame &colour, DepthFrame &depth, std::
 		if (tofSearch_.done(found, tofGrid.centres, timeNs))
 			tofGrid.update(found && timeNs >= startUs * 1000u, timeNs, kTofStillPx); // ToF pixels
 		uint64_t nowUs = loop_.nowUs();
+		// Explained from a frame taken kExplainAfterUs after the instruction
+		// or later, when the pattern has had time to settle: on a loaded box
+		// the last frame can be one taken while it still moved (CI, 8
+		// December: "35 of 35 circles found, but not as a grid" 1.5 s into a
+		// view the desk half hides, from a frame taken mid-move).
+		const uint64_t settledNs = (startUs + kExplainAfterUs) * 1000u;
 		if (nowUs >= startUs + kExplainAfterUs) {
-			if (!colourGrid.seen && haveColour_)
+			if (!colourGrid.seen && haveColour_ && lastColour_.timestampNs >= settledNs)
 				colourMiss.report(startUs, nowUs, [&] { return explainColourMiss(lastColour_.rgb, options_.grid); });
-			if (!tofGrid.seen && haveDepth_)
+			if (!tofGrid.seen && haveDepth_ && lastDepth_.timestampNs >= settledNs)
 				tofMiss.report(startUs, nowUs, [&] { return explainAmplitudeMiss(lastDepth_.amplitude, options_.grid); });
 		}
 		if (colourGrid.stillS() >= kStillS && tofGrid.stillS() >= kStillS) {
