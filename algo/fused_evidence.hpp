@@ -107,7 +107,8 @@ public:
 	// confidences()): siox 1..255, depthEvidence 0..255, boardDistance -1 =
 	// no model, previous alpha -1 = none, colourChange the L1 change since
 	// then, movedLately: its colour moved (by still_colour or more) within
-	// the last kHoldFrames frames. Divisions by powers of two are arithmetic
+	// the last kHoldFrames frames and depth did not see him in front there
+	// within them (stillHoldRow's flag). Divisions by powers of two are arithmetic
 	// shifts (floor), the others truncate towards zero, each at most one
 	// unit off the real value.
 	uint8_t fuse(int siox, int depthEvidence, int boardDistance, int previousAlpha, int colourChange,
